@@ -1,0 +1,5 @@
+"""``python -m exofric`` runs the CLI."""
+
+from .cli import main
+
+main()

@@ -1,0 +1,104 @@
+"""The ``exofric`` command line: thin presentation over the computing modules.
+
+Each sub-command lives in its own module in this package and exposes
+``register(app)``; modules are discovered automatically (names starting with
+``_`` are helpers). Every command takes ``--json`` and then prints exactly one
+JSON object on stdout. Bad input prints one line on stderr and exits 2; a solver
+that does not converge exits 3.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+import sys
+import warnings
+from collections.abc import Sequence
+
+import typer
+
+from .. import __version__
+from ..errors import ConvergenceError, InputError
+
+app = typer.Typer(
+    name="exofric",
+    help="Friction modelling, prediction and control for friction-based variable-stiffness "
+    "exosuits (Ma et al. 2021). Units: mm, N, MPa, s, Nm.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"exofric {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(
+        False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
+    ),
+) -> None:
+    """exofric: model, predict and control friction in variable-stiffness exosuits."""
+
+
+for _mod in sorted(m.name for m in pkgutil.iter_modules(__path__)):
+    if not _mod.startswith("_"):
+        importlib.import_module(f"{__name__}.{_mod}").register(app)
+
+
+def _click_classes(name: str) -> tuple[type[BaseException], ...]:
+    """Exception class ``name`` from click and from typer's vendored click (typer >= 0.20)."""
+    found: list[type[BaseException]] = []
+    for mod in ("click.exceptions", "typer._click.exceptions"):
+        try:
+            cls = getattr(importlib.import_module(mod), name)
+        except (ImportError, AttributeError):
+            continue
+        found.append(cls)
+    return tuple(found)
+
+
+_EXIT = (typer.Exit, *_click_classes("Exit"))
+_ABORT = (typer.Abort, *_click_classes("Abort"))
+_USAGE = _click_classes("ClickException")
+
+
+def _warn_line(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def]
+    print(f"exofric: warning: {message}", file=sys.stderr)
+
+
+def run(argv: Sequence[str] | None = None) -> int:
+    """Run the CLI with ``argv`` (default ``sys.argv[1:]``) and return the exit code."""
+    warnings.showwarning = _warn_line
+    cmd = typer.main.get_command(app)
+    try:
+        rv = cmd.main(
+            args=list(sys.argv[1:] if argv is None else argv),
+            prog_name="exofric",
+            standalone_mode=False,
+        )
+    except _EXIT as exc:
+        return int(getattr(exc, "exit_code", 0))
+    except _ABORT:
+        print("exofric: aborted", file=sys.stderr)
+        return 130
+    except _USAGE as exc:
+        msg = " ".join(str(exc.format_message()).split())  # type: ignore[attr-defined]
+        print(f"exofric: error: {msg}", file=sys.stderr)
+        return 2
+    except InputError as exc:
+        print(f"exofric: error: {exc}", file=sys.stderr)
+        return 2
+    except ConvergenceError as exc:
+        print(f"exofric: did not converge: {exc}", file=sys.stderr)
+        return 3
+    return int(rv) if isinstance(rv, int) else 0
+
+
+def main() -> None:
+    """Console entry point."""
+    raise SystemExit(run())

@@ -1,0 +1,53 @@
+"""Shared presentation helpers for CLI commands (no computation here)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from typing import Any
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from ..errors import InputError
+from ..io import jsonable
+
+JSON_OPTION = typer.Option(False, "--json", help="Print exactly one JSON object on stdout.")
+
+console = Console()
+
+
+def emit(obj: dict[str, Any], as_json: bool, render: Callable[[], None]) -> None:
+    """Print ``obj`` as one JSON object if ``as_json``, else call ``render``."""
+    if as_json:
+        print(json.dumps(jsonable(obj)))
+    else:
+        render()
+
+
+def parse_floats(name: str, text: str) -> list[float]:
+    """Parse ``"0.1,0.2, 0.3"`` into floats; the error names the option."""
+    out = []
+    for part in text.split(","):
+        part = part.strip()
+        if not part:
+            continue
+        try:
+            out.append(float(part))
+        except ValueError:
+            raise InputError(f"{name} must be comma-separated numbers, got {part!r}") from None
+    if not out:
+        raise InputError(f"{name} must list at least one number")
+    return out
+
+
+def kv_table(title: str, rows: list[tuple[str, str, str]]) -> Table:
+    """A two/three-column rich table: quantity, value, unit."""
+    t = Table(title=title, show_header=True, header_style="bold")
+    t.add_column("quantity")
+    t.add_column("value", justify="right")
+    t.add_column("unit")
+    for r in rows:
+        t.add_row(*r)
+    return t
