@@ -18,19 +18,39 @@ def test_material_json_acceptance(cli):
     r = cli(["material", "--shore", "62.5", "--json"])
     assert r.code == 0
     d = r.json()
-    assert set(d) == {"shore", "correlation", "e0_mpa", "g_mpa", "c10_mpa", "c01_mpa",
-                      "d_per_mpa", "k_mpa"}
-    for k, v in [("e0_mpa", 4.00333), ("g_mpa", 1.33444), ("c10_mpa", 0.63545),
-                 ("c01_mpa", 0.031772), ("d_per_mpa", 0.005995)]:
+    assert set(d) == {
+        "shore",
+        "correlation",
+        "e0_mpa",
+        "g_mpa",
+        "c10_mpa",
+        "c01_mpa",
+        "d_per_mpa",
+        "k_mpa",
+    }
+    for k, v in [
+        ("e0_mpa", 4.00333),
+        ("g_mpa", 1.33444),
+        ("c10_mpa", 0.63545),
+        ("c01_mpa", 0.031772),
+        ("d_per_mpa", 0.005995),
+    ]:
         assert d[k] == pytest.approx(v, abs=1e-5)
     for s, e0 in [("60", 3.619), ("65", 4.443), ("70", 5.542)]:
-        assert cli(["material", "--shore", s, "--json"]).json()["e0_mpa"] == pytest.approx(e0, abs=5e-4)
+        assert cli(["material", "--shore", s, "--json"]).json()["e0_mpa"] == pytest.approx(
+            e0, abs=5e-4
+        )
 
 
 @pytest.mark.parametrize(
     "args,field",
-    [(["--shore", "120"], "shore"), (["--shore", "nan"], "shore"), (["--shore", "-3"], "shore"),
-     (["--shore", "62.5", "--poisson", "0.6"], "poisson"), (["--shore", "abc"], "--shore")],
+    [
+        (["--shore", "120"], "shore"),
+        (["--shore", "nan"], "shore"),
+        (["--shore", "-3"], "shore"),
+        (["--shore", "62.5", "--poisson", "0.6"], "poisson"),
+        (["--shore", "abc"], "--shore"),
+    ],
 )
 def test_material_bad_input(cli, args, field):
     r = cli(["material", *args])

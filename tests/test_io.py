@@ -17,7 +17,9 @@ def _write(tmp_path, text, name="d.csv"):
 
 
 def test_good_file_any_order_extra_columns_comments(tmp_path):
-    p = _write(tmp_path, "# rig 3\nnote,outer_diameter_mm,pressure_mpa\na,8.5,0.1\nb,8.8,0.2 # hi\n")
+    p = _write(
+        tmp_path, "# rig 3\nnote,outer_diameter_mm,pressure_mpa\na,8.5,0.1\nb,8.8,0.2 # hi\n"
+    )
     df = read_table(p, REQ, unique_within=("pressure_mpa", None))
     assert list(df.columns) == REQ
     assert df["pressure_mpa"].tolist() == [0.1, 0.2]
@@ -52,17 +54,28 @@ def test_missing_file(tmp_path):
 
 def test_groups(tmp_path):
     p = _write(tmp_path, "test,pressure_mpa,friction_n\nA,0.1,5\nA,0.2,9\nB,0.1,4\nB,0.2,8\n")
-    df = read_table(p, ["pressure_mpa", "friction_n"], ["test"], text_columns=["test"],
-                    unique_within=("pressure_mpa", "test"))
+    df = read_table(
+        p,
+        ["pressure_mpa", "friction_n"],
+        ["test"],
+        text_columns=["test"],
+        unique_within=("pressure_mpa", "test"),
+    )
     assert sorted(set(df["test"])) == ["A", "B"]
     p = _write(tmp_path, "test,pressure_mpa,friction_n\nA,0.1,5\nA,0.1,9\nB,0.1,4\nB,0.2,8\n")
     with pytest.raises(InputError, match="in test 'A'"):
-        read_table(p, ["pressure_mpa", "friction_n"], ["test"], text_columns=["test"],
-                   unique_within=("pressure_mpa", "test"))
+        read_table(
+            p,
+            ["pressure_mpa", "friction_n"],
+            ["test"],
+            text_columns=["test"],
+            unique_within=("pressure_mpa", "test"),
+        )
 
 
 def test_jsonable():
     import numpy as np
 
-    assert jsonable({"a": np.float64(1.5), "b": np.array([1, 2]), "c": float("nan"), "d": (1,)}) \
-        == {"a": 1.5, "b": [1, 2], "c": None, "d": [1]}
+    assert jsonable(
+        {"a": np.float64(1.5), "b": np.array([1, 2]), "c": float("nan"), "d": (1,)}
+    ) == {"a": 1.5, "b": [1, 2], "c": None, "d": [1]}

@@ -100,8 +100,12 @@ def test_out_of_validity_range_warns():
 
 @pytest.mark.parametrize(
     "kwargs,field",
-    [({"poisson": 0.6}, "poisson"), ({"poisson": 0.5}, "poisson"), ({"c01_ratio": -1}, "c01_ratio"),
-     ({"correlation": "bogus"}, "correlation")],
+    [
+        ({"poisson": 0.6}, "poisson"),
+        ({"poisson": 0.5}, "poisson"),
+        ({"c01_ratio": -1}, "c01_ratio"),
+        ({"correlation": "bogus"}, "correlation"),
+    ],
 )
 def test_bad_parameters(kwargs, field):
     with pytest.raises(InputError, match=field):

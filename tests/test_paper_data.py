@@ -12,10 +12,20 @@ from exofric import paper
 def test_scalars_present_with_provenance():
     raw = paper.load()["scalars"]
     for key in [
-        "gamma", "gamma_relative_error_pct", "base_friction_at_0_6_mpa_n",
-        "base_squeeze_force_at_0_6_mpa_n", "test3_max_friction_n", "tube_length_mm",
-        "arm_radius_m", "target_friction_n", "target_pressure_mpa", "settling_pd_model_s",
-        "settling_pi_s", "settling_pi_model_s", "settling_pid_s", "settling_pid_model_s",
+        "gamma",
+        "gamma_relative_error_pct",
+        "base_friction_at_0_6_mpa_n",
+        "base_squeeze_force_at_0_6_mpa_n",
+        "test3_max_friction_n",
+        "tube_length_mm",
+        "arm_radius_m",
+        "target_friction_n",
+        "target_pressure_mpa",
+        "settling_pd_model_s",
+        "settling_pi_s",
+        "settling_pi_model_s",
+        "settling_pid_s",
+        "settling_pid_model_s",
         "knee_torque_max_nm",
     ]:
         assert key in raw and raw[key]["provenance"]
@@ -25,14 +35,18 @@ def test_scalars_present_with_provenance():
 
 def test_reported_arithmetic_the_paper_gets_right():
     # 180.49 N x 0.10 m = 18.05 Nm (Section 3.2); 300 N x 0.1 m = 30 Nm (Section 4).
-    assert paper.scalar("base_friction_at_0_6_mpa_n") * paper.scalar("arm_radius_m") == \
-        pytest.approx(paper.scalar("base_friction_moment_nm"), abs=0.005)
-    assert paper.scalar("test3_max_friction_n") * paper.scalar("arm_radius_m") == \
-        pytest.approx(paper.scalar("test3_torque_nm"))
+    assert paper.scalar("base_friction_at_0_6_mpa_n") * paper.scalar(
+        "arm_radius_m"
+    ) == pytest.approx(paper.scalar("base_friction_moment_nm"), abs=0.005)
+    assert paper.scalar("test3_max_friction_n") * paper.scalar("arm_radius_m") == pytest.approx(
+        paper.scalar("test3_torque_nm")
+    )
     # Settling reductions: (5.73-4.20)/5.73 = 26.7% ("26%"), (6.17-4.39)/6.17 = 28.8% ("29%").
     s = paper.scalar
     assert 100 * (1 - s("settling_pi_model_s") / s("settling_pi_s")) == pytest.approx(26.7, abs=0.1)
-    assert 100 * (1 - s("settling_pid_model_s") / s("settling_pid_s")) == pytest.approx(28.8, abs=0.1)
+    assert 100 * (1 - s("settling_pid_model_s") / s("settling_pid_s")) == pytest.approx(
+        28.8, abs=0.1
+    )
 
 
 def test_tables_shapes():
@@ -61,8 +75,9 @@ def test_to_dict_is_json_clean():
 def test_shipped_csvs():
     from exofric.io import read_table
 
-    sim = read_table(paper.data_path("table1_simulated.csv"),
-                     ["pressure_mpa", "outer_diameter_mm", "shore"])
+    sim = read_table(
+        paper.data_path("table1_simulated.csv"), ["pressure_mpa", "outer_diameter_mm", "shore"]
+    )
     assert len(sim) == 16 and sorted(set(sim["shore"])) == [60.0, 62.5, 65.0, 70.0]
     with pytest.raises(FileNotFoundError):
         paper.data_path("nope.csv")

@@ -86,11 +86,16 @@ def read_table(
         raise InputError(f"{name}: cannot read as UTF-8 text ({exc.__class__.__name__})") from None
     try:
         df = pd.read_csv(
-            _io.StringIO(text), comment="#", skipinitialspace=True, dtype=str,
+            _io.StringIO(text),
+            comment="#",
+            skipinitialspace=True,
+            dtype=str,
             keep_default_na=False,
         )
     except pd.errors.EmptyDataError:
-        raise InputError(f"{name}: no header row (expected columns {', '.join(required)})") from None
+        raise InputError(
+            f"{name}: no header row (expected columns {', '.join(required)})"
+        ) from None
     except pd.errors.ParserError as exc:
         msg = str(exc).strip().splitlines()[-1]
         raise InputError(f"{name}: malformed CSV ({msg})") from None
@@ -119,7 +124,11 @@ def read_table(
         for i, (r, v) in enumerate(zip(raw, vals, strict=True)):
             row = i + 1
             if r == "" or r.lower() == "nan" or (isinstance(v, float) and math.isnan(v)):
-                what = "empty" if r == "" else ("NaN" if r.lower() == "nan" else f"not a number: {r!r}")
+                what = (
+                    "empty"
+                    if r == ""
+                    else ("NaN" if r.lower() == "nan" else f"not a number: {r!r}")
+                )
                 raise InputError(f"{name}: data row {row}, column {col!r} is {what}")
             if not math.isfinite(float(v)):
                 raise InputError(f"{name}: data row {row}, column {col!r} must be finite, got {r}")
@@ -138,7 +147,9 @@ def read_table(
             if len(dup):
                 raise InputError(f"{name}: duplicate {col} {dup.iloc[0]:g}{where}")
             if len(sub) < min_rows:
-                raise InputError(f"{name}: needs at least {min_rows} data rows{where}, got {len(sub)}")
+                raise InputError(
+                    f"{name}: needs at least {min_rows} data rows{where}, got {len(sub)}"
+                )
     elif len(df) < min_rows:
         raise InputError(f"{name}: needs at least {min_rows} data rows, got {len(df)}")
     return df.reset_index(drop=True)

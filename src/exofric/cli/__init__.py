@@ -50,9 +50,9 @@ for _mod in sorted(m.name for m in pkgutil.iter_modules(__path__)):
         importlib.import_module(f"{__name__}.{_mod}").register(app)
 
 
-def _click_classes(name: str) -> tuple[type[BaseException], ...]:
+def _click_classes(name: str) -> tuple[type[Exception], ...]:
     """Exception class ``name`` from click and from typer's vendored click (typer >= 0.20)."""
-    found: list[type[BaseException]] = []
+    found: list[type[Exception]] = []
     for mod in ("click.exceptions", "typer._click.exceptions"):
         try:
             cls = getattr(importlib.import_module(mod), name)
@@ -62,12 +62,12 @@ def _click_classes(name: str) -> tuple[type[BaseException], ...]:
     return tuple(found)
 
 
-_EXIT = (typer.Exit, *_click_classes("Exit"))
-_ABORT = (typer.Abort, *_click_classes("Abort"))
-_USAGE = _click_classes("ClickException")
+_EXIT: tuple[type[Exception], ...] = (typer.Exit, *_click_classes("Exit"))
+_ABORT: tuple[type[Exception], ...] = (typer.Abort, *_click_classes("Abort"))
+_USAGE: tuple[type[Exception], ...] = _click_classes("ClickException")
 
 
-def _warn_line(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def]
+def _warn_line(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def,unused-ignore]
     print(f"exofric: warning: {message}", file=sys.stderr)
 
 

@@ -1,0 +1,104 @@
+"""``exofric inflate``: free inflation of the air tube (FE), beside the closed form."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from ..materials import MooneyRivlin
+from ._common import JSON_OPTION, console, emit, parse_floats
+
+
+def material_from_options(
+    shore: float | None,
+    c10: float | None,
+    c01: float | None,
+    d: float | None,
+    correlation: str = "paper",
+) -> MooneyRivlin:
+    """MooneyRivlin from --shore, with --c10/--c01/--d overriding the derived constants."""
+    from ..errors import InputError
+    if shore is None and None in (c10, c01, d):
+        raise InputError("give --shore, or all of --c10, --c01 and --d")
+    base = MooneyRivlin.from_shore(shore, correlation) if shore is not None else None
+    return MooneyRivlin(
+        c10 if c10 is not None else base.c10,  # type: ignore[union-attr]
+        c01 if c01 is not None else base.c01,  # type: ignore[union-attr]
+        d if d is not None else base.d,  # type: ignore[union-attr]
+        shore if (c10, c01, d) == (None, None, None) else None,
+        correlation if (c10, c01, d) == (None, None, None) else None,
+    )
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``inflate`` command."""
+
+    @app.command("inflate")
+    def inflate_cmd(
+        tube_od: float = typer.Option(..., help="Tube outer diameter d1 (mm)."),
+        tube_id: float = typer.Option(..., help="Tube inner diameter (mm)."),
+        shore: float = typer.Option(None, help="Shore A hardness (Eqs 3-6)."),
+        pressures: str = typer.Option(
+            "0.1,0.2,0.3,0.4,0.5,0.6", help="Comma-separated increasing pressures (MPa)."
+        ),
+        c10: float = typer.Option(None, help="Override C10 (MPa)."),
+        c01: float = typer.Option(None, help="Override C01 (MPa)."),
+        d: float = typer.Option(None, help="Override d (1/MPa)."),
+        n_radial: int = typer.Option(2, help="Elements through the wall."),
+        n_circ: int = typer.Option(6, help="Elements around the quarter."),
+        plot: Path = typer.Option(None, help="Write a PNG of the deformed section and OD(P)."),
+        vtu: Path = typer.Option(None, help="Write the deformed mesh at the last pressure (VTU)."),
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Free plane-strain inflation (FE, quarter model): diameters vs pressure (mm, MPa)."""
+        from ..simulate import MeshSpec, inflate
+
+        mat = material_from_options(shore, c10, c01, d)
+        p = parse_floats("--pressures", pressures)
+        res = inflate(tube_od, tube_id, mat, p, mesh=MeshSpec(n_radial, n_circ))
+        out = res.to_dict()
+        if plot is not None:
+            from ..plotting import plot_inflation
+
+            out["plot"] = str(plot_inflation(res, plot))
+        if vtu is not None:
+            from ..export import write_vtu
+
+            out["vtu"] = str(
+                write_vtu(
+                    vtu,
+                    res.nodes,
+                    res.elements,
+                    res.displacements[-1],
+                    {"von_mises_mpa": res.von_mises_mpa[-1]},
+                )
+            )
+
+        def render() -> None:
+            from rich.table import Table
+
+            t = Table(
+                title=f"Free inflation, tube {tube_od:g}/{tube_id:g} mm ({res.dofs} dofs, "
+                f"{res.solve_time_s * 1e3:.0f} ms)"
+            )
+            for c in ("P (MPa)", "OD FE (mm)", "ID FE (mm)", "OD closed form (mm)", "Newton it."):
+                t.add_column(c, justify="right")
+            for row in zip(
+                out["pressure_mpa"],
+                out["outer_diameter_mm"],
+                out["inner_diameter_mm"],
+                out["analytic_outer_diameter_mm"],
+                out["newton_iterations"],
+                strict=True,
+            ):
+                t.add_row(
+                    f"{row[0]:g}", f"{row[1]:.4f}", f"{row[2]:.4f}", f"{row[3]:.4f}", str(row[4])
+                )
+            console.print(t)
+            console.print(f"[dim]{res.symmetry}. Closed form: incompressible (J = 1).[/dim]")
+            for k in ("plot", "vtu"):
+                if k in out:
+                    console.print(f"wrote {out[k]}")
+
+        emit(out, as_json, render)

@@ -1,0 +1,226 @@
+"""Sparse assembly, Newton with line search, and load stepping with cutback.
+
+Convergence (stated tolerances): a load step is converged when the infinity norm
+of the free residual is below ``tol_r * force_scale`` (default 1e-9 relative,
+force_scale = pressure x size) AND the last Newton increment is below
+``tol_u * length_scale`` (default 1e-10 relative). A step that does not converge
+in ``max_iter`` iterations is cut back (halved) up to ``max_cutbacks`` times;
+then :class:`~exofric.errors.ConvergenceError` names the last load reached.
+Never is an unconverged state returned.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import MatrixRankWarning, spsolve
+
+from ..errors import ConvergenceError
+
+__all__ = ["Assembler", "Problem", "NewtonSettings", "solve_path", "PathPoint"]
+
+
+class Assembler:
+    """Assembles element blocks into a reduced (free-dof) sparse matrix.
+
+    The sparsity pattern, the map of every block entry to its slot in the CSC
+    data array, and the reduction to free dofs are computed once; each
+    assembly is then one ``np.bincount``.
+
+    Parameters
+    ----------
+    n_dofs : int
+        Number of dofs of the full system.
+    free : ndarray of bool (n_dofs,)
+        True for unknown dofs.
+    patterns : sequence of (rows, cols)
+        Index arrays of the blocks that will be assembled, in call order.
+    """
+
+    def __init__(
+        self, n_dofs: int, free: np.ndarray, patterns: Sequence[tuple[np.ndarray, np.ndarray]]
+    ) -> None:
+        self.n_dofs = n_dofs
+        self.free = np.asarray(free, dtype=bool)
+        self.red = np.full(n_dofs, -1)
+        self.red[self.free] = np.arange(int(self.free.sum()))
+        self.nf = int(self.free.sum())
+        rr = np.concatenate([self.red[np.asarray(r).ravel()] for r, _ in patterns])
+        cc = np.concatenate([self.red[np.asarray(c).ravel()] for _, c in patterns])
+        self.sizes = [np.asarray(r).size for r, _ in patterns]
+        self.keep = (rr >= 0) & (cc >= 0)
+        lin = cc[self.keep].astype(np.int64) * self.nf + rr[self.keep]
+        uniq, self.inv = np.unique(lin, return_inverse=True)
+        self.nnz = uniq.size
+        self.indices = (uniq % self.nf).astype(np.int32)
+        cols = uniq // self.nf
+        self.indptr = np.searchsorted(cols, np.arange(self.nf + 1)).astype(np.int32)
+
+    def matrix(self, blocks: Sequence[np.ndarray]) -> sp.csc_matrix:
+        """CSC matrix of the free dofs from block values given in pattern order."""
+        vals = np.concatenate([np.asarray(b).ravel() for b in blocks])[self.keep]
+        data = np.bincount(self.inv, weights=vals, minlength=self.nnz)
+        return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.nf, self.nf))
+
+
+class Problem(Protocol):
+    """What :func:`solve_path` needs from a discretised problem."""
+
+    n_dofs: int
+    free: np.ndarray
+
+    def evaluate(
+        self, u: np.ndarray, load: float, tangent: bool
+    ) -> tuple[float, np.ndarray, sp.csc_matrix | None] | None:
+        """(energy, full residual, reduced tangent or None); None if the state is invalid."""
+        ...
+
+    def scales(self, load: float) -> tuple[float, float]:
+        """(force scale in N per mm depth, length scale in mm) for the tolerances."""
+        ...
+
+
+@dataclass(frozen=True)
+class NewtonSettings:
+    """Solver settings (tolerances are relative to the problem's scales)."""
+
+    tol_r: float = 1e-9
+    tol_u: float = 1e-10
+    max_iter: int = 30
+    max_cutbacks: int = 12
+    max_step: float = 0.05
+    min_step: float = 1e-6
+    line_search_halvings: int = 8
+    extrapolate: bool = True
+    load_name: str = "pressure"
+    load_unit: str = "MPa"
+
+
+@dataclass
+class PathPoint:
+    """A converged state at one requested load."""
+
+    load: float
+    u: np.ndarray
+    iterations: int
+    steps: int
+    info: dict[str, float] = field(default_factory=dict)
+
+
+def _newton(
+    problem: Problem, u: np.ndarray, load: float, s: NewtonSettings
+) -> tuple[np.ndarray, int] | None:
+    free = problem.free
+    fscale, lscale = problem.scales(load)
+    du_norm = np.inf
+    for it in range(1, s.max_iter + 1):
+        out = problem.evaluate(u, load, True)
+        if out is None:
+            return None
+        energy, R, K = out
+        rf = R[free]
+        rnorm = float(np.max(np.abs(rf))) if rf.size else 0.0
+        if not np.isfinite(rnorm):
+            return None
+        if rnorm <= s.tol_r * fscale and du_norm <= s.tol_u * lscale:
+            return u, it - 1
+        assert K is not None
+        with np.errstate(all="ignore"):
+            import warnings
+
+            with warnings.catch_warnings():
+                warnings.simplefilter("error", MatrixRankWarning)
+                try:
+                    d = spsolve(K, -rf)
+                except (MatrixRankWarning, RuntimeError):
+                    return None
+        if not np.all(np.isfinite(d)):
+            return None
+        step = np.zeros_like(u)
+        step[free] = d
+        alpha = 1.0
+        for _ in range(s.line_search_halvings + 1):
+            trial = u + alpha * step
+            t = problem.evaluate(trial, load, False)
+            if t is not None:
+                e_t, R_t, _ = t
+                r_t = float(np.max(np.abs(R_t[free]))) if rf.size else 0.0
+                if np.isfinite(r_t) and (r_t < rnorm or e_t < energy or rnorm <= s.tol_r * fscale):
+                    break
+            alpha *= 0.5
+        else:
+            return None
+        u = trial
+        du_norm = alpha * float(np.max(np.abs(d))) if d.size else 0.0
+        if rnorm <= s.tol_r * fscale and du_norm <= s.tol_u * lscale:
+            # residual was already converged and the correction is negligible
+            return u, it
+    return None
+
+
+def solve_path(
+    problem: Problem,
+    loads: Sequence[float] | np.ndarray,
+    settings: NewtonSettings | None = None,
+    u0: np.ndarray | None = None,
+    load0: float = 0.0,
+    on_step: Callable[[float, np.ndarray], None] | None = None,
+) -> list[PathPoint]:
+    """Follow the equilibrium path through increasing ``loads`` (e.g. pressures in MPa).
+
+    Sub-steps are at most ``settings.max_step``; a failed step is halved and
+    retried; the step grows again after successes. Returns one converged state per
+    requested load.
+
+    Raises
+    ------
+    ConvergenceError
+        When a step cannot be converged even after the allowed cutbacks; the
+        message names the last load reached and the load attempted.
+    """
+    s = settings or NewtonSettings()
+    u = np.zeros(problem.n_dofs) if u0 is None else u0.copy()
+    lam = float(load0)
+    u_prev: np.ndarray | None = None
+    lam_prev = lam
+    step = s.max_step
+    out: list[PathPoint] = []
+    for target in loads:
+        iters = 0
+        nsteps = 0
+        cut = 0
+        while lam < target - 1e-15:
+            h = min(step, target - lam)
+            trial_lam = lam + h
+            guess = u
+            if s.extrapolate and u_prev is not None and lam > lam_prev:
+                guess = u + (u - u_prev) * (h / (lam - lam_prev))
+            res = _newton(problem, guess, trial_lam, s)
+            if res is None and guess is not u:
+                res = _newton(problem, u, trial_lam, s)
+            if res is None:
+                cut += 1
+                step = h * 0.5
+                if cut > s.max_cutbacks or step < s.min_step:
+                    raise ConvergenceError(
+                        f"Newton failed at {s.load_name} {trial_lam:.6g} {s.load_unit} after "
+                        f"{cut - 1} cutbacks; last converged {s.load_name} {lam:.6g} "
+                        f"{s.load_unit}",
+                        reached=lam,
+                    )
+                continue
+            u_prev, lam_prev = u, lam
+            u, k = res
+            lam = trial_lam
+            iters += k
+            nsteps += 1
+            cut = 0
+            step = min(s.max_step, h * 1.5)
+            if on_step is not None:
+                on_step(lam, u)
+        out.append(PathPoint(float(target), u.copy(), iters, nsteps))
+    return out
