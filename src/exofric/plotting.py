@@ -106,3 +106,44 @@ def plot_inflation(result: Any, path: str | Path) -> Path:
     a2.grid(alpha=0.3)
     a2.legend()
     return save(fig, path)
+
+
+def plot_squeeze(
+    result: Any, path: str | Path, show_pressures: Sequence[float] = (0.2, 0.4, 0.6)
+) -> Path:
+    """Deformed sections with stress, the hole and the wire (Fig 6), and N(P) (Fig 7)."""
+    from matplotlib.patches import Circle
+
+    plt = _plt()
+    p = np.asarray(result.pressure_mpa)
+    idx = sorted({int(np.argmin(np.abs(p - q))) for q in show_pressures})
+    fig, axes = plt.subplots(1, len(idx) + 1, figsize=(4.2 * (len(idx) + 1), 4.4))
+    s = result.structure
+    vmax = float(max(result.von_mises_mpa[i].max() for i in idx)) if result.von_mises_mpa else None
+    pc = None
+    for ax, i in zip(axes[:-1], idx, strict=True):
+        pc = draw_section(
+            ax,
+            result.nodes + result.displacements[i],
+            result.elements,
+            result.von_mises_mpa[i],
+            mirror=("x",),
+            vmax=vmax,
+        )
+        ax.add_patch(Circle((0, 0), 0.5 * s.hole_mm, fill=False, color="0.3", lw=1.2))
+        ax.add_patch(Circle(s.wire_center_mm, 0.5 * s.wire_mm, color="0.55"))
+        ax.set_xlim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
+        ax.set_ylim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
+        ax.set_title(f"P = {p[i]:g} MPa, N = {result.squeeze_force_n[i]:.1f} N")
+        ax.set_xlabel("x (mm)")
+    if pc is not None:
+        fig.colorbar(pc, ax=list(axes[:-1]), label="von Mises stress (MPa)", shrink=0.8)
+    ax = axes[-1]
+    ax.plot(p, result.squeeze_force_n, "o-", label="exofric FE")
+    if result.contact_onset_pressure_mpa is not None:
+        ax.axvline(result.contact_onset_pressure_mpa, color="0.6", ls=":", label="contact onset")
+    ax.set_xlabel("pressure (MPa)")
+    ax.set_ylabel(f"squeezing force N (N, L = {s.length_mm:g} mm)")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    return save(fig, path)

@@ -142,16 +142,27 @@ def _newton(
             return None
         step = np.zeros_like(u)
         step[free] = d
+        # Line search on the energy along the Newton direction: try the full step; if
+        # neither the energy nor the residual decreased, take the secant root of the
+        # directional derivative s(a) = R(u + a d) . d (s(0) < 0), which lands next to
+        # the kink of a contact active-set change instead of halving towards it.
+        s0 = float(rf @ d)
         alpha = 1.0
         for _ in range(s.line_search_halvings + 1):
             trial = u + alpha * step
             t = problem.evaluate(trial, load, False)
-            if t is not None:
-                e_t, R_t, _ = t
-                r_t = float(np.max(np.abs(R_t[free]))) if rf.size else 0.0
-                if np.isfinite(r_t) and (r_t < rnorm or e_t < energy or rnorm <= s.tol_r * fscale):
-                    break
-            alpha *= 0.5
+            if t is None:
+                alpha *= 0.5
+                continue
+            e_t, R_t, _ = t
+            r_t = float(np.max(np.abs(R_t[free]))) if rf.size else 0.0
+            if np.isfinite(r_t) and (r_t < rnorm or e_t < energy or rnorm <= s.tol_r * fscale):
+                break
+            s_t = float(R_t[free] @ d)
+            if s0 < 0.0 < s_t:
+                alpha *= min(0.9, max(0.05, s0 / (s0 - s_t)))
+            else:
+                alpha *= 0.5
         else:
             return None
         u = trial
@@ -198,6 +209,7 @@ def solve_path(
             trial_lam = lam + h
             guess = u
             if s.extrapolate and u_prev is not None and lam > lam_prev:
+                # secant predictor (a Newton failure from it is retried from the last state)
                 guess = u + (u - u_prev) * (h / (lam - lam_prev))
             res = _newton(problem, guess, trial_lam, s)
             if res is None and guess is not u:
