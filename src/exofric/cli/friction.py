@@ -1,0 +1,369 @@
+"""``exofric fit-friction | predict | invert | rig``: the friction model (paper Eqs 1, 7-9).
+
+Units: pressure MPa, forces N, torque Nm, arm radius m. File reading happens here (the edge):
+squeeze curves (``exofric squeeze --json`` output or a ``pressure_mpa,squeeze_force_n`` CSV)
+and friction CSVs (``pressure_mpa,friction_n`` with an optional ``test`` column).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import typer
+
+from ..errors import InputError
+from ._common import JSON_OPTION, console, emit, kv_table, parse_floats
+
+__all__ = ["register", "read_squeeze_curve", "read_friction_csv"]
+
+
+def read_squeeze_curve(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
+    """Squeeze curve (pressure MPa, total squeezing force N) from a JSON or CSV file.
+
+    JSON: one object with lists ``pressure_mpa`` and ``squeeze_force_n`` (as printed by
+    ``exofric squeeze --json``). CSV: columns ``pressure_mpa,squeeze_force_n``. Pressures
+    must be strictly increasing after sorting (no repeats).
+    """
+    from ..io import read_table
+
+    p = Path(path)
+    if p.suffix.lower() == ".json":
+        if not p.is_file():
+            raise InputError(f"{path}: file not found")
+        try:
+            obj = json.loads(p.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+            raise InputError(f"{p.name}: not valid JSON ({exc.__class__.__name__})") from None
+        if not isinstance(obj, dict):
+            raise InputError(f"{p.name}: expected a JSON object with pressure_mpa, squeeze_force_n")
+        for key in ("pressure_mpa", "squeeze_force_n"):
+            if key not in obj:
+                raise InputError(f"{p.name}: missing key {key!r} (need pressure_mpa, "
+                                 "squeeze_force_n)")
+        try:
+            pr = np.asarray(obj["pressure_mpa"], dtype=float).ravel()
+            n = np.asarray(obj["squeeze_force_n"], dtype=float).ravel()
+        except (TypeError, ValueError):
+            raise InputError(f"{p.name}: pressure_mpa and squeeze_force_n must be number "
+                             "lists") from None
+        if pr.size != n.size or pr.size < 2:
+            raise InputError(f"{p.name}: pressure_mpa and squeeze_force_n need >= 2 entries of "
+                             f"equal length, got {pr.size} and {n.size}")
+        if not (np.all(np.isfinite(pr)) and np.all(np.isfinite(n))):
+            raise InputError(f"{p.name}: pressure_mpa and squeeze_force_n must be finite")
+        if np.any(pr < 0):
+            raise InputError(f"{p.name}: pressure_mpa must be >= 0")
+    else:
+        df = read_table(p, ["pressure_mpa", "squeeze_force_n"],
+                        unique_within=("pressure_mpa", None))
+        pr = df["pressure_mpa"].to_numpy(float)
+        n = df["squeeze_force_n"].to_numpy(float)
+    o = np.argsort(pr, kind="stable")
+    pr, n = pr[o], n[o]
+    if np.any(np.diff(pr) <= 0):
+        raise InputError(f"{p.name}: duplicate pressure_mpa {pr[1:][np.diff(pr) <= 0][0]:g}")
+    return pr, n
+
+
+def read_friction_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
+    """Friction CSV -> (pressure MPa, friction N, test labels, synthetic flag).
+
+    Columns ``pressure_mpa,friction_n`` and an optional ``test`` label (several tests in one
+    file; pressures may repeat across tests, not within one). ``synthetic`` is True when a
+    comment line says SYNTHETIC (files written by ``exofric rig``).
+    """
+    from ..io import read_table
+
+    df = read_table(path, ["pressure_mpa", "friction_n"], optional=["test"],
+                    text_columns=["test"], unique_within=("pressure_mpa", "test"))
+    tests = df["test"].to_numpy(str) if "test" in df.columns else np.full(len(df), "")
+    try:
+        head = [ln for ln in Path(path).read_text(encoding="utf-8-sig").splitlines()
+                if ln.lstrip().startswith("#")]
+    except OSError:
+        head = []
+    synthetic = any("SYNTHETIC" in ln.upper() for ln in head)
+    return (df["pressure_mpa"].to_numpy(float), df["friction_n"].to_numpy(float), tests,
+            synthetic)
+
+
+def _two(name: str, text: str) -> tuple[float, float]:
+    v = parse_floats(name, text)
+    if len(v) != 2:
+        raise InputError(f"{name} must be two numbers 'low,high', got {len(v)}")
+    return (v[0], v[1])
+
+
+def _choice(name: str, value: str, allowed: tuple[str, ...]) -> str:
+    if value not in allowed:
+        raise InputError(f"{name} must be one of {', '.join(allowed)}, got {value!r}")
+    return value
+
+
+def _register_fit(app: typer.Typer) -> None:
+    @app.command("fit-friction")
+    def fit_friction(
+        squeeze: str = typer.Option(..., help="Squeeze curve N(P): JSON from `exofric squeeze "
+                                    "--json` or CSV pressure_mpa,squeeze_force_n."),
+        friction: str = typer.Option(..., help="Friction CSV pressure_mpa,friction_n[,test]."),
+        model: str = typer.Option("proportional", help="proportional (F = gamma N, paper) or "
+                                  "affine (F = gamma N + F0)."),
+        ci: str = typer.Option("analytic", help="95% CI: analytic (t x HC3 robust standard "
+                               "error), ols (classical) or bootstrap (pairs, percentile)."),
+        seed: int = typer.Option(0, help="Bootstrap RNG seed."),
+        plot: str | None = typer.Option(None, help="Write a PNG of the fit and residuals."),
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Fit the equivalent coefficient gamma (Eq 7) to friction data. MPa, N."""
+        from ..friction_fit import fit_gamma
+
+        _choice("--model", model, ("proportional", "affine"))
+        _choice("--ci", ci, ("analytic", "ols", "bootstrap"))
+        ps, ns = read_squeeze_curve(squeeze)
+        pf, ff, tests, synthetic = read_friction_csv(friction)
+        fit = fit_gamma(pf, ff, ps, ns, model=model, ci=ci, seed=seed)  # type: ignore[arg-type]
+        d = fit.to_dict()
+        d["synthetic"] = synthetic
+        d["n_tests"] = int(np.unique(tests).size)
+        if plot:
+            from ..friction_plot import plot_gamma_fit
+            from ..plotting import save
+
+            title = "SYNTHETIC rig data" if synthetic else Path(friction).name
+            d["plot"] = str(save(plot_gamma_fit(fit, title), plot))
+
+        def render() -> None:
+            rows = [
+                ("model", fit.kind, ""),
+                ("gamma (Eq 7)", f"{fit.gamma:.5f}", ""),
+                ("gamma 95% CI", f"[{fit.gamma_ci95[0]:.5f}, {fit.gamma_ci95[1]:.5f}]",
+                 fit.ci_method),
+            ]
+            if fit.kind == "affine":
+                rows.append(("F0", f"{fit.model.f0_n:.3f}", "N"))
+            rows += [
+                ("mean |relative error|", f"{fit.relative_error_pct:.2f}", "%"),
+                ("max relative error", f"{fit.max_relative_error_pct:.2f}", "%"),
+                ("points used / dropped", f"{fit.n_points} / {fit.n_dropped}", ""),
+            ]
+            title = "Equivalent coefficient" + (" (SYNTHETIC data)" if synthetic else "")
+            console.print(kv_table(title, rows))
+
+        emit(d, as_json, render)
+
+
+def _measured_map(path: str, names: list[str]) -> dict[str, Any]:
+    from ..friction_predict import MeasuredCurve
+
+    pf, ff, tests, _ = read_friction_csv(path)
+    labels = [str(t) for t in np.unique(tests)]
+    if labels == [""]:
+        if len(names) != 1:
+            raise InputError(f"{Path(path).name}: needs a 'test' column naming the structure "
+                             f"({', '.join(names)})")
+        return {names[0]: MeasuredCurve.of(pf, ff)}
+    out = {}
+    for lab in labels:
+        name = lab if lab in names else (f"test {lab}" if f"test {lab}" in names else None)
+        if name is None:
+            raise InputError(f"{Path(path).name}: test {lab!r} matches no structure "
+                             f"({', '.join(names)})")
+        m = tests == lab
+        out[name] = MeasuredCurve.of(pf[m], ff[m])
+    return out
+
+
+def _register_predict(app: typer.Typer) -> None:
+    @app.command("predict")
+    def predict_cmd(
+        gamma: float = typer.Option(..., help="Equivalent coefficient gamma (paper: 0.7168)."),
+        f0: float = typer.Option(0.0, "--f0", help="Affine offset F0 in N (0: paper's model)."),
+        structures: str | None = typer.Option(None, help="Structures TOML file "
+                                              "(see examples/structures-paper.toml)."),
+        use_paper: bool = typer.Option(False, "--paper", help="The 7 structures of Table 3."),
+        measured: str | None = typer.Option(None, help="Measured friction CSV "
+                                            "pressure_mpa,friction_n,test."),
+        pressures: str = typer.Option("0.1,0.2,0.3,0.4,0.5,0.6", help="Pressures in MPa."),
+        shore: float = typer.Option(62.5, help="Tube Shore A hardness (material, Eqs 3-6)."),
+        threshold: float = typer.Option(20.0, help="Validated deviation in % (paper: 20)."),
+        arm_radius: float = typer.Option(0.10, help="Lever arm R in m for T = F R."),
+        torque_max: float = typer.Option(40.0, help="Required torque in Nm (knee: 40)."),
+        alpha: float = typer.Option(0.05, help="ANOVA significance level."),
+        plot: str | None = typer.Option(None, help="Write a PNG: predicted vs tested, errors."),
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Predict friction F = gamma N(P) for other structures via the FE (Sec. 4). MPa, N."""
+        import tomllib
+
+        from ..friction import FrictionModel
+        from ..friction_predict import paper_structures, predict, structures_from_dict
+        from ..geometry import BASE
+        from ..materials import MooneyRivlin
+
+        if use_paper == (structures is not None):
+            raise InputError("give exactly one of --structures FILE.toml or --paper")
+        model = FrictionModel(gamma, f0)
+        grid = parse_floats("--pressures", pressures)
+        base = BASE
+        if use_paper:
+            structs = paper_structures(BASE)
+        else:
+            sp = Path(str(structures))
+            if not sp.is_file():
+                raise InputError(f"{structures}: file not found")
+            try:
+                data = tomllib.loads(sp.read_text(encoding="utf-8"))
+            except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+                msg = str(exc).splitlines()[0]
+                raise InputError(f"{sp.name}: not valid TOML ({msg})") from None
+            structs, base = structures_from_dict(data, BASE)
+        names = [s.name for s in structs]
+        meas = _measured_map(measured, names) if measured else None
+        material = MooneyRivlin.from_shore(shore)
+        res = predict(structs, model, material, grid, measured=meas, base=base,
+                      threshold_pct=threshold, arm_radius_m=arm_radius,
+                      required_torque_nm=(0.0, torque_max), alpha=alpha)
+        d = res.to_dict()
+        if use_paper:
+            d["tube_id_note"] = "Table 3 prints no tube IDs: ID = base ID x d1 / base d1"
+        if plot:
+            from ..friction_plot import plot_predictions
+            from ..plotting import save
+
+            d["plot"] = str(save(plot_predictions(res.predictions), plot))
+
+        def render() -> None:
+            from rich.table import Table
+
+            t = Table(title=f"Friction prediction, gamma = {gamma:g} (N, MPa, %, Nm)")
+            for c in ("structure", "D/d1/ID/d2 (mm)", "F at max P (N)", "torque (Nm)",
+                      "deviation %", "paper dev %", "validated", "max rel. err %"):
+                t.add_column(c, justify="right")
+            for p in res.predictions:
+                s = p.structure
+                m = p.max_relative_error_pct
+                t.add_row(s.name, f"{s.hole_mm:g}/{s.tube_od_mm:g}/{s.tube_id_mm:.3g}/"
+                          f"{s.wire_mm:g}", f"{p.predicted_friction_n[-1]:.2f}",
+                          f"{p.torque.torque_nm:.2f}", f"{p.deviation.deviation_pct:.1f}",
+                          f"{p.deviation.paper_deviation_pct:.1f}",
+                          "yes" if p.deviation.in_validated_region else "NO",
+                          "-" if m is None else f"{m:.2f}")
+            console.print(t)
+            for a in res.anova:
+                console.print(f"ANOVA {a.name}: F = {a.f_stat:.3f}, {a.verdict}")
+
+        emit(d, as_json, render)
+
+
+def _register_invert(app: typer.Typer) -> None:
+    @app.command("invert")
+    def invert(
+        gamma: float = typer.Option(..., help="Equivalent coefficient gamma."),
+        target_friction: float = typer.Option(..., help="Required friction force in N."),
+        cubic: str | None = typer.Option(None, help="Cubic N(P) coefficients c3,c2,c1,c0 "
+                                         "(N, MPa), e.g. Eq 8."),
+        squeeze: str | None = typer.Option(None, help="Squeeze curve file: exact (PCHIP) "
+                                           "inverse, plus a cubic fitted over --range."),
+        p_range: str = typer.Option("0.2,0.6", "--range", help="Pressure range low,high in "
+                                    "MPa (paper: 0.2,0.6)."),
+        f0: float = typer.Option(0.0, "--f0", help="Affine offset F0 in N."),
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Pressure (MPa) that gives a target friction (N): inverse of Eq 9 (Sec. 5)."""
+        from ..friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction
+
+        if (cubic is None) == (squeeze is None):
+            raise InputError("give exactly one of --cubic c3,c2,c1,c0 or --squeeze FILE")
+        lo, hi = _two("--range", p_range)
+        model = FrictionModel(gamma, f0)
+        d: dict[str, Any] = {"target_friction_n": target_friction, "gamma": gamma, "f0_n": f0,
+                             "target_squeeze_force_n": model.squeeze(target_friction)}
+        if cubic is not None:
+            c = parse_floats("--cubic", cubic)
+            if len(c) != 4:
+                raise InputError(f"--cubic must be 4 numbers c3,c2,c1,c0, got {len(c)}")
+            fit = CubicFit((c[0], c[1], c[2], c[3]), lo, hi)
+            d["method"] = "cubic"
+            d["pressure_mpa"] = pressure_for_friction(target_friction, fit, model)
+        else:
+            ps, ns = read_squeeze_curve(str(squeeze))
+            inv = CurveInverse.from_curve(ps, ns)
+            d["method"] = "curve (PCHIP)"
+            d["pressure_mpa"] = inv.pressure_for_friction(target_friction, model)
+            fit = CubicFit.fit(ps, ns, (lo, hi))
+            try:
+                d["cubic_pressure_mpa"] = pressure_for_friction(target_friction, fit, model)
+            except InputError:
+                d["cubic_pressure_mpa"] = None
+        d["cubic"] = fit.to_dict()
+        d["p_min_mpa"], d["p_max_mpa"] = fit.p_min_mpa, fit.p_max_mpa
+
+        def render() -> None:
+            rows = [("target friction F", f"{target_friction:g}", "N"),
+                    ("squeezing force N = (F - F0)/gamma", f"{d['target_squeeze_force_n']:.4f}",
+                     "N"),
+                    (f"pressure ({d['method']})", f"{d['pressure_mpa']:.4f}", "MPa")]
+            if d.get("cubic_pressure_mpa") is not None:
+                rows.append(("pressure (fitted cubic)", f"{d['cubic_pressure_mpa']:.4f}", "MPa"))
+            console.print(kv_table("Inverse of Eq 9", rows))
+
+        emit(d, as_json, render)
+
+
+def _register_rig(app: typer.Typer) -> None:
+    @app.command("rig")
+    def rig(
+        squeeze: str = typer.Option(..., help="Squeeze curve N(P) (JSON or CSV)."),
+        gamma_true: float = typer.Option(..., help="Planted equivalent coefficient gamma."),
+        out: str = typer.Option(..., help="Output friction CSV (labelled SYNTHETIC)."),
+        pressures: str | None = typer.Option(None, help="Set points in MPa (default: the "
+                                             "curve's pressures with N > 0)."),
+        noise_pct: float = typer.Option(2.0, help="Load-cell noise, % of force (1 sigma)."),
+        noise_n: float = typer.Option(0.0, help="Load-cell noise in N (1 sigma)."),
+        offset_n: float = typer.Option(0.0, help="Load-cell zero offset in N (tared)."),
+        drift: float = typer.Option(0.0, help="Load-cell drift in N/s."),
+        drag_n: float = typer.Option(0.0, help="Pressure-independent drag F0 in N."),
+        pressure_noise: float = typer.Option(0.0, help="Pressure sensor noise in MPa."),
+        sample_rate: float = typer.Option(100.0, help="Logger rate in Hz."),
+        pull_speed: float = typer.Option(2.0, help="Wire speed in mm/s."),
+        repeats: int = typer.Option(1, help="Repeated tests (adds a test column)."),
+        seed: int = typer.Option(0, help="RNG seed (deterministic output)."),
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Virtual friction rig: SYNTHETIC friction data F = gamma_true N(P) + errors. MPa, N."""
+        from ..rig import RigConfig, simulate_rig
+
+        ps, ns = read_squeeze_curve(squeeze)
+        cfg = RigConfig(noise_pct=noise_pct, noise_n=noise_n, offset_n=offset_n,
+                        drift_n_per_s=drift, drag_n=drag_n, pressure_noise_mpa=pressure_noise,
+                        sample_rate_hz=sample_rate, pull_speed_mm_per_s=pull_speed)
+        sp = parse_floats("--pressures", pressures) if pressures else None
+        run = simulate_rig(ps, ns, gamma_true, sp, config=cfg, seed=seed, repeats=repeats)
+        op = Path(out)
+        try:
+            op.parent.mkdir(parents=True, exist_ok=True)
+            op.write_text(run.to_csv_text(), encoding="utf-8")
+        except OSError as exc:
+            raise InputError(f"--out {out}: cannot write ({exc.__class__.__name__})") from None
+        d = run.to_dict()
+        d["out"] = str(op)
+
+        def render() -> None:
+            console.print(kv_table("Virtual rig (SYNTHETIC)", [
+                ("gamma_true", f"{gamma_true:g}", ""),
+                ("points", str(len(run.pressure_mpa)), ""),
+                ("samples logged", str(d["n_samples"]), ""),
+                ("written", str(op), "")]))
+
+        emit(d, as_json, render)
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``fit-friction``, ``predict``, ``invert`` and ``rig`` to ``app``."""
+    _register_fit(app)
+    _register_predict(app)
+    _register_invert(app)
+    _register_rig(app)

@@ -1,0 +1,217 @@
+"""CLI: fit-friction, predict (error handling), invert, rig; bad files and options exit 2."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from exofric import paper
+from exofric.cli import run
+from exofric.friction import CubicFit
+
+EQ8 = CubicFit(paper.eq8(), 0.2, 0.6)
+CUBIC = "--cubic=-1957.4,2412.8,-251.95,-7.9531"
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def _run(capsys: pytest.CaptureFixture[str], *args: str) -> tuple[int, str, str]:
+    """In-process CLI run (same code path as the console script), for the many error cases."""
+    code = run(list(args))
+    cap = capsys.readouterr()
+    return code, cap.out, cap.err
+
+
+def _one_line_error(code: int, err: str, *needles: str) -> None:
+    assert code == 2
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("exofric: error:"), err
+    for n in needles:
+        assert n in lines[0], lines[0]
+
+
+@pytest.fixture
+def squeeze_csv(tmp_path: Path) -> Path:
+    p = np.linspace(0.2, 0.6, 17)
+    path = tmp_path / "squeeze.csv"
+    rows = "\n".join(f"{a:.6f},{EQ8(a):.8f}" for a in p)
+    path.write_text("pressure_mpa,squeeze_force_n\n" + rows + "\n")
+    return path
+
+
+@pytest.fixture
+def squeeze_json(tmp_path: Path) -> Path:
+    p = np.linspace(0.2, 0.6, 17)
+    path = tmp_path / "squeeze.json"
+    path.write_text(json.dumps({"pressure_mpa": p.tolist(), "squeeze_force_n": EQ8(p).tolist(),
+                                "squeeze_force_n_per_mm": (EQ8(p) / 116).tolist()}))
+    return path
+
+
+def test_invert_paper_example_subprocess(cli) -> None:  # type: ignore[no-untyped-def]
+    # Acceptance: Eq 9 inverse for 54.4 N is 0.293 MPa (within 0.001), not the printed 0.26.
+    r = cli(["invert", "--gamma", "0.7168", CUBIC, "--target-friction", "54.4", "--json"])
+    assert r.code == 0, r.err
+    d = r.json()
+    assert d["pressure_mpa"] == pytest.approx(0.293, abs=1e-3)
+    assert d["target_squeeze_force_n"] == pytest.approx(54.4 / 0.7168)
+    # outside the fitted range: exit 2 with one clear line
+    r2 = cli(["invert", "--gamma", "0.7168", CUBIC, "--target-friction", "250", "--json"])
+    _one_line_error(r2.code, r2.err, "outside the reachable range", "N")
+    assert r2.out == ""
+
+
+def test_invert_options(capsys: pytest.CaptureFixture[str], squeeze_csv: Path) -> None:
+    code, out, _ = _run(capsys, "invert", "--gamma", "0.7168", CUBIC, "--target-friction",
+                        "54.4", "--range", "0.2,0.6", "--json")
+    assert code == 0 and json.loads(out)["p_max_mpa"] == 0.6
+    # exact inverse through the tabulated curve, plus the cubic fitted over --range
+    code, out, _ = _run(capsys, "invert", "--gamma", "0.7168", "--squeeze", str(squeeze_csv),
+                        "--target-friction", "54.4", "--json")
+    d = json.loads(out)
+    assert code == 0 and d["method"].startswith("curve")
+    # the curve is Eq 8 sampled every 0.025 MPa; PCHIP vs the exact root: < 1e-3 MPa
+    assert d["pressure_mpa"] == pytest.approx(0.29265, abs=1e-3)
+    assert d["cubic_pressure_mpa"] == pytest.approx(0.2926454, abs=1e-6)
+    assert d["cubic"]["r2"] == pytest.approx(1.0, abs=1e-9)
+    code, out, _ = _run(capsys, "invert", "--gamma", "0.7168", CUBIC, "--target-friction",
+                        "54.4")
+    assert code == 0 and "0.2926" in out
+    _one_line_error(*_run(capsys, "invert", "--gamma", "0.7168", "--cubic", "1,2,3",
+                          "--target-friction", "5")[::2], "--cubic must be 4 numbers")
+    _one_line_error(*_run(capsys, "invert", "--gamma", "0.7168", "--target-friction", "5")[::2],
+                    "exactly one of --cubic")
+    _one_line_error(*_run(capsys, "invert", "--gamma", "0.7168", CUBIC, "--target-friction",
+                          "54.4", "--range", "0.6,0.2")[::2], "p_min < p_max")
+    _one_line_error(*_run(capsys, "invert", "--gamma", "0.7168", CUBIC, "--target-friction",
+                          "54.4", "--range", "0.2,0.9")[::2], "not monotonic")
+    _one_line_error(*_run(capsys, "invert", "--gamma", "0", CUBIC, "--target-friction",
+                          "54.4")[::2], "gamma")
+    _one_line_error(*_run(capsys, "invert", "--gamma", "0.7", CUBIC, "--target-friction",
+                          "x")[::2])
+
+
+def test_rig_then_fit_round_trip(cli, tmp_path: Path, squeeze_json: Path) -> None:  # type: ignore[no-untyped-def]
+    out = tmp_path / "f.csv"
+    r = cli(["rig", "--squeeze", str(squeeze_json), "--gamma-true", "0.7168", "--noise-pct", "2",
+             "--seed", "1", "--out", str(out), "--json"])
+    assert r.code == 0, r.err
+    assert r.json()["synthetic"] is True and out.read_text().startswith("# SYNTHETIC")
+    png = tmp_path / "fit.png"
+    r2 = cli(["fit-friction", "--squeeze", str(squeeze_json), "--friction", str(out),
+              "--plot", str(png), "--json"])
+    assert r2.code == 0, r2.err
+    d = r2.json()
+    assert abs(d["gamma"] / 0.7168 - 1) < 0.005
+    assert d["gamma_ci95"][0] <= 0.7168 <= d["gamma_ci95"][1]
+    assert d["n_points"] == 17 and d["synthetic"] is True and "f0_n" not in d
+    assert isinstance(d["relative_error_pct"], float)
+    assert png.stat().st_size > 10_000
+
+
+def test_fit_friction_affine_and_tests_column(capsys: pytest.CaptureFixture[str],
+                                              tmp_path: Path, squeeze_csv: Path) -> None:
+    out = tmp_path / "f.csv"
+    code, _, err = _run(capsys, "rig", "--squeeze", str(squeeze_csv), "--gamma-true", "0.7",
+                        "--drag-n", "6", "--repeats", "3", "--seed", "2", "--out", str(out))
+    assert code == 0, err
+    assert out.read_text().splitlines()[3] == "test,pressure_mpa,friction_n"
+    code, o, err = _run(capsys, "fit-friction", "--squeeze", str(squeeze_csv), "--friction",
+                        str(out), "--model", "affine", "--ci", "bootstrap", "--json")
+    d = json.loads(o)
+    assert code == 0 and d["n_tests"] == 3 and d["n_points"] == 51
+    assert d["f0_n"] == pytest.approx(6.0, abs=0.5)
+    assert d["f0_ci95_n"][0] <= 6.0 <= d["f0_ci95_n"][1]
+    code, o, _ = _run(capsys, "fit-friction", "--squeeze", str(squeeze_csv), "--friction",
+                      str(out))
+    assert code == 0 and "gamma" in o
+
+
+@pytest.mark.parametrize(
+    ("content", "needle"),
+    [
+        ("pressure_mpa,force_n\n0.2,1\n0.3,2\n", "missing column 'friction_n'"),
+        ("pressure_mpa,friction_n\n0.2,1\n0.3,abc\n", "data row 2, column 'friction_n'"),
+        ("pressure_mpa,friction_n\n0.2,1\n0.3,-2\n", "must be >= 0"),
+        ("pressure_mpa,friction_n\n0.2,1\n0.2,2\n", "duplicate pressure_mpa"),
+        ("pressure_kpa,friction_n\n200,1\n300,2\n", "wrong unit"),
+        ("pressure_mpa,friction_n\n0.2,1\n", "at least 2 data rows"),
+        ("", "no header row"),
+    ],
+)
+def test_bad_friction_csv(capsys: pytest.CaptureFixture[str], tmp_path: Path,
+                          squeeze_csv: Path, content: str, needle: str) -> None:
+    bad = tmp_path / "bad.csv"
+    bad.write_text(content)
+    code, out, err = _run(capsys, "fit-friction", "--squeeze", str(squeeze_csv), "--friction",
+                          str(bad), "--json")
+    _one_line_error(code, err, needle)
+    assert out == ""
+
+
+@pytest.mark.parametrize(
+    ("name", "content", "needle"),
+    [
+        ("s.json", '{"pressure_mpa": [0.2, 0.3]}', "missing key 'squeeze_force_n'"),
+        ("s.json", "{not json", "not valid JSON"),
+        ("s.json", '{"pressure_mpa": [0.2, 0.3], "squeeze_force_n": [1]}', "equal length"),
+        ("s.json", '{"pressure_mpa": [0.2, 0.2], "squeeze_force_n": [1, 2]}', "duplicate"),
+        ("s.json", '[1, 2]', "JSON object"),
+        ("s.csv", "pressure_mpa,squeeze_n\n0.2,1\n0.3,2\n", "missing column 'squeeze_force_n'"),
+    ],
+)
+def test_bad_squeeze_file(capsys: pytest.CaptureFixture[str], tmp_path: Path,
+                          name: str, content: str, needle: str) -> None:
+    bad = tmp_path / name
+    bad.write_text(content)
+    fr = tmp_path / "f.csv"
+    fr.write_text("pressure_mpa,friction_n\n0.3,20\n0.4,40\n")
+    _one_line_error(*_run(capsys, "fit-friction", "--squeeze", str(bad), "--friction",
+                          str(fr))[::2], needle)
+
+
+def test_bad_options(capsys: pytest.CaptureFixture[str], tmp_path: Path,
+                     squeeze_csv: Path) -> None:
+    fr = tmp_path / "f.csv"
+    fr.write_text("pressure_mpa,friction_n\n0.3,20\n0.4,40\n")
+    base = ["fit-friction", "--squeeze", str(squeeze_csv), "--friction", str(fr)]
+    _one_line_error(*_run(capsys, *base, "--model", "quadratic")[::2], "--model must be one of")
+    _one_line_error(*_run(capsys, *base, "--ci", "jackknife")[::2], "--ci must be one of")
+    _one_line_error(*_run(capsys, "fit-friction", "--squeeze", str(tmp_path / "no.csv"),
+                          "--friction", str(fr))[::2], "file not found")
+    _one_line_error(*_run(capsys, "rig", "--squeeze", str(squeeze_csv), "--gamma-true", "0.7",
+                          "--noise-pct", "-1", "--out", str(tmp_path / "o.csv"))[::2],
+                    "noise_pct")
+    _one_line_error(*_run(capsys, "rig", "--squeeze", str(squeeze_csv), "--gamma-true", "0.7",
+                          "--pressures", "0.1,0.3", "--out", str(tmp_path / "o.csv"))[::2],
+                    "outside the squeeze curve")
+    _one_line_error(*_run(capsys, "rig", "--squeeze", str(squeeze_csv), "--gamma-true",
+                          "0.7")[::2], "--out")
+
+
+def test_predict_error_handling(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    # All of these fail before any FE run.
+    _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168")[::2], "exactly one of")
+    _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168", "--paper", "--structures",
+                          "x.toml")[::2], "exactly one of")
+    _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168", "--structures",
+                          str(tmp_path / "none.toml"))[::2], "file not found")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[[structure]\nhole_mm = 10\n")
+    _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168", "--structures",
+                          str(bad))[::2], "not valid TOML")
+    bad.write_text("[[structure]]\nhole_mm = 10\ntube_od_mm = 8.3\n")
+    _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168", "--structures",
+                          str(bad))[::2], "missing 'wire_mm'")
+    meas = tmp_path / "m.csv"
+    meas.write_text("test,pressure_mpa,friction_n\n9,0.2,10\n9,0.3,20\n")
+    _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168", "--paper", "--measured",
+                          str(meas))[::2], "test '9' matches no structure")
+    _one_line_error(*_run(capsys, "predict", "--gamma", "-1", "--paper")[::2], "gamma")
+    _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168", "--paper", "--pressures",
+                          "0.3,0.2")[::2], "strictly increasing")
+    _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168",
+                          "--structures", str(EXAMPLES / "structures-paper.toml"),
+                          "--measured", str(meas))[::2], "matches no structure")
