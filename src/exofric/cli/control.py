@@ -1,0 +1,345 @@
+"""``exofric control``: friction force control by inflation pressure (paper §5, Fig 12).
+
+``exofric control`` simulates one case (PD/PI/PID, with or without the model feedforward);
+``exofric control compare`` the six cases of Fig 12 beside the paper's settling times;
+``exofric control identify STEP.csv`` fits the supply's lag and dead time to a step response.
+Units: friction N, pressure MPa, time s; gains kp MPa/N, ki MPa/(N s), kd MPa s/N.
+"""
+
+from __future__ import annotations
+
+import json
+import tomllib
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import typer
+
+from ..errors import InputError
+from ._common import JSON_OPTION, console, emit, kv_table
+
+if TYPE_CHECKING:
+    from ..control.cases import CaseResult, CompareResult, ControlSetup
+
+_COMMON_HELP = "Units: N, MPa, s."
+
+
+def _opt(default: Any, help_: str) -> Any:
+    return typer.Option(default, help=help_)
+
+
+# Options shared by the default action and `compare` (declared once, used twice).
+TARGET = _opt(54.40, "Target friction in N (paper: 54.40 N).")
+STRUCTURE = _opt("test5", "Friction map: 'test5' (Eq 9) or a JSON file from "
+                 "`exofric squeeze --json` (pressure_mpa, squeeze_force_n).")
+GAMMA = _opt(None, "Equivalent coefficient gamma of the model (default: the paper's 0.7168).")
+PLANT = _opt(None, "Plant TOML file with a plant table (see data/examples/plant-default.toml).")
+STEP_CSV = _opt(None, "Step-response CSV (time_s, pressure_mpa[, command_mpa]): use the "
+                "identified gain, lag and delay.")
+MISMATCH = _opt(None, "Model mismatch: true gamma = (1 + mismatch) x model gamma, in (-0.9, 10).")
+TAU_C = _opt(None, "Closed-loop time constant of the IMC/SIMC rule in s (default tau + theta).")
+FF_MODE = _opt("2dof", "Feedforward structure: 2dof (feedback on the deviation from the "
+               "model-predicted friction) or static (P_ff added to the PID output).")
+ANTIWINDUP = _opt("back-calculation", "Anti-windup: back-calculation, clamping or none.")
+DT = _opt(None, "Sample time in s (default 0.01 s, or the plant's PWM period).")
+DURATION = _opt(15.0, "Simulated time in s.")
+BAND = _opt(2.0, "Settling band in % of the step.")
+PLOT = _opt(None, "Write a PNG plot of the response(s) to this path.")
+
+
+def _plant_from_file(path: str) -> dict[str, Any]:
+    p = Path(path)
+    if not p.is_file():
+        raise InputError(f"--plant {path}: file not found")
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(f"--plant {p.name}: not valid TOML ({exc})") from None
+    extra = sorted(set(data) - {"plant"})
+    if extra:
+        raise InputError(f"--plant {p.name}: unknown table(s) {', '.join(extra)}; expected [plant]")
+    table = data.get("plant", {})
+    if not isinstance(table, dict):
+        raise InputError(f"--plant {p.name}: [plant] must be a table")
+    return dict(table)
+
+
+def _structure_map(structure: str, gamma: float) -> Any:
+    from .. import paper
+    from ..control.plant import CubicFrictionMap, CurveFrictionMap
+    from ..friction import CubicFit
+
+    if structure.lower() == "test5":
+        lo, hi = paper.load()["eq8"]["fit_range_mpa"]
+        return CubicFrictionMap(CubicFit(paper.eq8(), lo, hi), gamma)
+    p = Path(structure)
+    if not p.is_file():
+        raise InputError(f"--structure must be 'test5' or an existing JSON file, got {structure!r}")
+    try:
+        data = json.loads(p.read_text(encoding="utf-8"))
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(
+            f"--structure {p.name}: not valid JSON ({exc.__class__.__name__})"
+        ) from None
+    if not isinstance(data, dict) or not all(
+        isinstance(data.get(k), list) for k in ("pressure_mpa", "squeeze_force_n")
+    ):
+        raise InputError(f"--structure {p.name}: needs lists 'pressure_mpa' and 'squeeze_force_n'")
+    try:
+        pres = tuple(float(v) for v in data["pressure_mpa"])
+        force = tuple(float(v) for v in data["squeeze_force_n"])
+    except (TypeError, ValueError):
+        raise InputError(f"--structure {p.name}: pressure_mpa and squeeze_force_n must be "
+                         "numbers") from None
+    return CurveFrictionMap(pres, force, gamma)
+
+
+def _identify_csv(path: str) -> Any:
+    from ..control.identify import identify_step
+    from ..io import read_table
+
+    df = read_table(path, ["time_s", "pressure_mpa"], ["command_mpa"],
+                    nonnegative=["pressure_mpa", "command_mpa"], unique_within=("time_s", None),
+                    min_rows=10)
+    cmd = df["command_mpa"].to_numpy() if "command_mpa" in df.columns else None
+    return identify_step(df["time_s"].to_numpy(), df["pressure_mpa"].to_numpy(), cmd)
+
+
+def _setup(target: float, structure: str, gamma: float | None, plant: str | None,
+           step_csv: str | None, mismatch: float | None, tau_c: float | None, ff_mode: str,
+           antiwindup: str, dt: float | None, duration: float, band_pct: float) -> ControlSetup:
+    from .. import paper
+    from ..control.cases import ControlSetup
+    from ..control.plant import PlantParams
+    from ..errors import check_range
+
+    params = _plant_from_file(plant) if plant else {}
+    if step_csv:
+        ident = _identify_csv(step_csv)
+        params.update(gain=ident.gain, time_constant_s=ident.time_constant_s,
+                      delay_s=ident.delay_s)
+    if mismatch is not None:
+        params["mismatch"] = mismatch
+    pp = PlantParams.from_mapping(params)
+    if ff_mode not in ("2dof", "static"):
+        raise InputError(f"--ff-mode must be 2dof or static, got {ff_mode!r}")
+    if antiwindup not in ("back-calculation", "clamping", "none"):
+        raise InputError(f"--antiwindup must be back-calculation, clamping or none, got "
+                         f"{antiwindup!r}")
+    if dt is None:
+        dt = pp.pwm_period_s if pp.pwm_period_s > 0 else 0.01
+    band = check_range("--band (settling band, %)", band_pct, 0.0, 50.0, lo_open=True) / 100.0
+    g = paper.scalar("gamma") if gamma is None else gamma
+    setup = ControlSetup(pp, _structure_map(structure, g), target_n=target, dt=dt,
+                         duration_s=duration, ff_mode=ff_mode,  # type: ignore[arg-type]
+                         tau_c_s=tau_c, band=band, antiwindup=antiwindup)  # type: ignore[arg-type]
+    p_ff = setup.feedforward_pressure()
+    if p_ff > pp.p_max_mpa:
+        raise InputError(f"--target-friction {target:g} N needs {p_ff:.3f} MPa, above the plant's "
+                         f"p_max_mpa {pp.p_max_mpa:g} MPa")
+    return setup
+
+
+def _plot_cases(cases: list[CaseResult], path: str, title: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    kinds = list(dict.fromkeys(c.controller for c in cases))
+    fig, axes = plt.subplots(2, len(kinds), figsize=(4.2 * len(kinds), 6), squeeze=False,
+                             sharex=True)
+    for j, kind in enumerate(kinds):
+        ax, axp = axes[0][j], axes[1][j]
+        for c in (c for c in cases if c.controller == kind):
+            s = c.simulation
+            lab = "with model" if c.feedforward else "without model"
+            col = "tab:blue" if c.feedforward else "tab:red"
+            ts = c.metrics.settling_time_s
+            ax.plot(s.time_s, s.friction_n, color=col,
+                    label=f"{lab} (ts {ts:.2f} s)" if ts is not None else f"{lab} (not settled)")
+            axp.plot(s.time_s, s.pressure_mpa, color=col)
+            axp.plot(s.time_s, s.command_mpa, color=col, ls=":", lw=0.8)
+        tgt = cases[0].metrics.reference
+        band = cases[0].metrics.band * tgt
+        ax.axhline(tgt, color="k", lw=1)
+        ax.axhspan(tgt - band, tgt + band, color="0.85")
+        ref = {c.feedforward: c.paper_settling_time_s for c in cases if c.controller == kind}
+        paper_txt = ", ".join(f"{'with' if ff else 'without'} {_fmt(v, '.2f')} s"
+                              for ff, v in sorted(ref.items()) if v is not None)
+        ax.set_title(f"{kind.upper()}  {title}" + (f"\npaper: {paper_txt}" if paper_txt else ""),
+                     fontsize=10)
+        ax.set_ylabel("friction (N)")
+        ax.legend(fontsize=8)
+        axp.set_xlabel("time (s)")
+        axp.set_ylabel("pressure (MPa); command dotted")
+    fig.tight_layout()
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+
+
+def _fmt(v: float | None, spec: str) -> str:
+    return "-" if v is None else format(v, spec)
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``control`` command group to ``app``."""
+    ctl = typer.Typer(help="Friction force control by inflation pressure (paper Section 5, "
+                      "Fig 12): PD/PI/PID with and without the model feedforward. "
+                      + _COMMON_HELP, no_args_is_help=False)
+
+    @ctl.callback(invoke_without_command=True)
+    def control(
+        ctx: typer.Context,
+        controller: str = _opt("pid", "Controller: pd, pi or pid."),
+        kp: float | None = _opt(None, "Proportional gain in MPa/N (default: IMC/SIMC rule)."),
+        ki: float | None = _opt(None, "Integral gain in MPa/(N s) (default: rule; 0 for PD)."),
+        kd: float | None = _opt(None, "Derivative gain in MPa s/N (default: rule; 0 for PI)."),
+        feedforward: bool = typer.Option(False, "--feedforward",
+                                         help="Add the model feedforward P_ff = g^-1(F)."),
+        tuning: str = _opt("rule", "Gains: rule (IMC/SIMC) or itae (optimised, saturated loop)."),
+        target_friction: float = TARGET, structure: str = STRUCTURE,
+        gamma: float | None = GAMMA, plant: str | None = PLANT, step_csv: str | None = STEP_CSV,
+        mismatch: float | None = MISMATCH, tau_c: float | None = TAU_C, ff_mode: str = FF_MODE,
+        antiwindup: str = ANTIWINDUP, dt: float | None = DT, duration: float = DURATION,
+        band: float = BAND, plot: str | None = PLOT, as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Simulate one friction step (default: PID without the model, 54.40 N, test 5)."""
+        if ctx.invoked_subcommand is not None:
+            given = [p for p in ctx.params
+                     if getattr(ctx.get_parameter_source(p), "name", "") == "COMMANDLINE"]
+            if given:
+                raise InputError(f"options {', '.join('--' + g.replace('_', '-') for g in given)}"
+                                 f" go after '{ctx.invoked_subcommand}', not before it")
+            return
+        from dataclasses import replace
+
+        from ..control.cases import run_case
+        from ..control.pid import PIDGains
+        from ..control.tuning import CONTROLLERS, itae_gains
+
+        kind = controller.lower()
+        if kind not in CONTROLLERS:
+            raise InputError(f"--controller must be pd, pi or pid, got {controller!r}")
+        setup = _setup(target_friction, structure, gamma, plant, step_csv, mismatch, tau_c,
+                       ff_mode, antiwindup, dt, duration, band)
+        rule = setup.tuning(kind)
+        if tuning == "itae":
+            rule = itae_gains(rule, replace(setup.plant, mismatch=0.0), setup.model_map,
+                              setup.target_n, duration_s=setup.duration_s, dt=setup.dt)
+        elif tuning != "rule":
+            raise InputError(f"--tuning must be rule or itae, got {tuning!r}")
+        g = rule.gains
+        if kind == "pd" and ki:
+            raise InputError("--ki must be 0 for a PD controller")
+        if kind == "pi" and kd:
+            raise InputError("--kd must be 0 for a PI controller")
+        gains = PIDGains(g.kp if kp is None else kp, g.ki if ki is None else ki,
+                         g.kd if kd is None else kd)
+        res = run_case(setup, kind, feedforward=feedforward,
+                       gains=None if gains == rule.gains and tuning == "rule" else gains)
+        if tuning == "itae":
+            res = replace(res, tuning=replace(rule, gains=gains))
+        if plot:
+            _plot_cases([res], plot, f"target {setup.target_n:g} N")
+        d = res.to_dict()
+
+        def render() -> None:
+            gd = d["gains"]
+            console.print(kv_table(
+                f"{kind.upper()} {'with' if feedforward else 'without'} the model, target "
+                f"{setup.target_n:g} N (mismatch {setup.plant.mismatch:g})",
+                [("settling time (2% band)" if band == 2.0 else "settling time",
+                  _fmt(d["settling_time_s"], ".2f"), "s"),
+                 ("rise time (10-90%)", _fmt(d["rise_time_s"], ".2f"), "s"),
+                 ("overshoot", f"{d['overshoot_pct']:.1f}", "%"),
+                 ("steady-state error", f"{d['steady_state_error_n']:.3f}", "N"),
+                 ("final friction", f"{d['final_friction_n']:.2f}", "N"),
+                 ("final pressure", f"{d['final_pressure_mpa']:.4f}", "MPa"),
+                 ("kp", f"{gd['kp_mpa_per_n']:.5g}", "MPa/N"),
+                 ("ki", f"{gd['ki_mpa_per_n_s']:.5g}", "MPa/(N s)"),
+                 ("kd", f"{gd['kd_mpa_s_per_n']:.5g}", "MPa s/N"),
+                 ("paper settling time", _fmt(d["paper_settling_time_s"], ".2f"), "s")]))
+
+        emit(d, as_json, render)
+
+    @ctl.command("compare")
+    def compare_cmd(
+        target_friction: float = TARGET, structure: str = STRUCTURE,
+        gamma: float | None = GAMMA, plant: str | None = PLANT, step_csv: str | None = STEP_CSV,
+        mismatch: float | None = MISMATCH, tau_c: float | None = TAU_C, ff_mode: str = FF_MODE,
+        antiwindup: str = ANTIWINDUP, dt: float | None = DT, duration: float = DURATION,
+        band: float = BAND, plot: str | None = PLOT, as_json: bool = JSON_OPTION,
+    ) -> None:
+        """The six cases of Fig 12 (PD, PI, PID; without/with the model) beside the paper."""
+        from ..control.cases import compare
+
+        setup = _setup(target_friction, structure, gamma, plant, step_csv, mismatch, tau_c,
+                       ff_mode, antiwindup, dt, duration, band)
+        res: CompareResult = compare(setup)
+        if plot:
+            _plot_cases(list(res.cases), plot, f"target {setup.target_n:g} N")
+        d = res.to_dict()
+
+        def render() -> None:
+            from rich.table import Table
+
+            t = Table(title=f"Fig 12: target {setup.target_n:g} N, mismatch "
+                      f"{setup.plant.mismatch:g}, feedforward {setup.ff_mode}")
+            for col in ("case", "settling s", "paper s", "overshoot %", "ss error N",
+                        "final F N", "final P MPa"):
+                t.add_column(col, justify="right" if col != "case" else "left",
+                             no_wrap=col == "case")
+            for c in d["cases"]:
+                t.add_row(f"{c['controller'].upper()} {'+ model' if c['feedforward'] else ''}",
+                          _fmt(c["settling_time_s"], ".2f"),
+                          _fmt(c["paper_settling_time_s"], ".2f"),
+                          f"{c['overshoot_pct']:.1f}", f"{c['steady_state_error_n']:.3f}",
+                          f"{c['final_friction_n']:.2f}", f"{c['final_pressure_mpa']:.4f}")
+            console.print(t)
+            red, pred = d["settling_reduction_pct"], d["paper_settling_reduction_pct"]
+            for k in ("pi", "pid"):
+                console.print(f"{k.upper()}: settling reduced by {_fmt(red[k], '.1f')} % with "
+                              f"the model (paper: {pred[k]:g} %)")
+
+        emit(d, as_json, render)
+
+    @ctl.command("identify")
+    def identify_cmd(
+        csv: str = typer.Argument(..., help="Step response CSV: time_s, pressure_mpa"
+                                  "[, command_mpa] (step at t = 0 without command_mpa)."),
+        target_friction: float = TARGET, structure: str = STRUCTURE,
+        gamma: float | None = GAMMA, tau_c: float | None = TAU_C, as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Fit gain, lag and dead time to a pressure step response; print the rule's gains."""
+        from .. import paper
+        from ..control.plant import local_slope
+        from ..control.tuning import CONTROLLERS, rule_gains
+
+        ident = _identify_csv(csv)
+        fmap = _structure_map(structure, paper.scalar("gamma") if gamma is None else gamma)
+        slope = local_slope(fmap, fmap.inverse(target_friction)) * ident.gain
+        gains = {k: rule_gains(k, slope, ident.time_constant_s, ident.delay_s,
+                               tau_c_s=tau_c).to_dict() for k in CONTROLLERS}
+        d = {"plant": ident.to_dict(), "target_friction_n": target_friction, "tuning": gains}
+
+        def render() -> None:
+            i = d["plant"]
+            console.print(kv_table(f"Identified supply from {Path(csv).name}", [
+                ("gain", f"{i['gain']:.4g}" + (" (assumed)" if i["gain_assumed"] else ""),
+                 "MPa/MPa"),
+                ("time constant", f"{i['time_constant_s']:.4g} +/- "
+                 f"{i['stderr_time_constant_s']:.2g}", "s"),
+                ("dead time", f"{i['delay_s']:.4g} +/- {i['stderr_delay_s']:.2g}", "s"),
+                ("R^2", f"{i['r2']:.5f}", ""), ("RMSE", f"{i['rmse_mpa']:.3g}", "MPa")]))
+            for k, v in gains.items():
+                g = v["gains"]
+                console.print(f"{k.upper()}: kp {g['kp_mpa_per_n']:.5g} MPa/N, ki "
+                              f"{g['ki_mpa_per_n_s']:.5g} MPa/(N s), kd "
+                              f"{g['kd_mpa_s_per_n']:.5g} MPa s/N (tau_c {v['tau_c_s']:.3g} s)")
+
+        emit(d, as_json, render)
+
+    app.add_typer(ctl, name="control")

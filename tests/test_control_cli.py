@@ -1,0 +1,146 @@
+"""CLI: `exofric control`, `control compare`, `control identify` (JSON contract, errors)."""
+
+from __future__ import annotations
+
+import json
+import tomllib
+from importlib.resources import files
+
+import numpy as np
+import pytest
+
+from exofric import paper
+from exofric.cli import run
+from exofric.control.plant import PlantParams
+
+CASE_KEYS = {"settling_time_s", "rise_time_s", "overshoot_pct", "steady_state_error_n",
+             "final_friction_n", "final_pressure_mpa", "gains", "controller", "feedforward"}
+
+
+def test_default_action_json_contract(cli):
+    r = cli(["control", "--controller", "pd", "--feedforward", "--target-friction", "54.4",
+             "--json"])
+    assert r.code == 0, r.err
+    d = json.loads(r.out)                      # exactly one JSON object
+    assert CASE_KEYS <= set(d)
+    assert d["controller"] == "pd" and d["feedforward"] is True
+    assert set(d["gains"]) == {"kp_mpa_per_n", "ki_mpa_per_n_s", "kd_mpa_s_per_n"}
+    assert d["gains"]["ki_mpa_per_n_s"] == 0.0
+    assert abs(d["steady_state_error_n"]) < 0.005 * 54.4
+    assert d["final_pressure_mpa"] == pytest.approx(0.2926, abs=1e-3)
+    assert d["settling_time_s"] == pytest.approx(d["settling_time_s"])      # a number
+
+
+def test_compare_json_contract_and_plot(cli, tmp_path):
+    png = tmp_path / "fig12.png"
+    r = cli(["control", "compare", "--mismatch", "0.1", "--plot", str(png), "--json"])
+    assert r.code == 0, r.err
+    d = json.loads(r.out)
+    cases = d["cases"]
+    assert len(cases) == 6
+    assert {(c["controller"], c["feedforward"]) for c in cases} == {
+        (k, f) for k in ("pd", "pi", "pid") for f in (False, True)}
+    for c in cases:
+        assert CASE_KEYS <= set(c)
+    assert d["mismatch"] == 0.1 and set(d["settling_reduction_pct"]) == {"pi", "pid"}
+    assert d["paper_settling_reduction_pct"] == {"pi": 26.0, "pid": 29.0}
+    assert png.stat().st_size > 10_000 and png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_structure_json_and_identify_csv(cli, tmp_path):
+    # A squeeze curve sampled from Eq 8 gives nearly the test5 result (PCHIP vs the cubic).
+    p = np.linspace(0.2, 0.6, 17)
+    sq = tmp_path / "squeeze.json"
+    sq.write_text(json.dumps({"pressure_mpa": p.tolist(),
+                              "squeeze_force_n": np.polyval(paper.eq8(), p).tolist()}))
+    # A planted step response (tau 0.6 s, theta 0.15 s) to identify the supply from.
+    t = np.arange(-0.2, 5.0, 0.01)
+    pr = 0.3 * (1 - np.exp(-np.clip(t - 0.15, 0, None) / 0.6))
+    pr += np.random.default_rng(5).normal(0, 0.002, t.size)
+    t, pr = t[t >= 0], np.clip(pr[t >= 0], 0, None)            # rig files start at 0 s
+    csv = tmp_path / "step.csv"
+    csv.write_text("time_s,pressure_mpa\n" + "\n".join(f"{a:.3f},{b:.5f}" for a, b in
+                                                         zip(t, pr, strict=True)))
+    r = cli(["control", "identify", str(csv), "--json"])
+    assert r.code == 0, r.err
+    d = r.json()
+    assert d["plant"]["time_constant_s"] == pytest.approx(0.6, rel=0.05)
+    assert d["plant"]["delay_s"] == pytest.approx(0.15, rel=0.05)
+    assert set(d["tuning"]) == {"pd", "pi", "pid"}
+    r = cli(["control", "--controller", "pi", "--feedforward", "--structure", str(sq),
+             "--step-csv", str(csv), "--json"])
+    assert r.code == 0, r.err
+    d = r.json()
+    assert abs(d["steady_state_error_n"]) < 0.005 * 54.4
+    assert d["tuning"]["time_constant_s"] == pytest.approx(0.6, rel=0.05)
+
+
+def test_shipped_plant_file_equals_code_defaults(tmp_path, capsys):
+    path = files("exofric") / "data" / "examples" / "plant-default.toml"
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    assert PlantParams.from_mapping(data["plant"]) == PlantParams()
+    code = run(["control", "--plant", str(path), "--json"])
+    assert code == 0
+    assert json.loads(capsys.readouterr().out)["controller"] == "pid"
+
+
+def _bad_files(tmp_path):
+    bad_key = tmp_path / "bad.toml"
+    bad_key.write_text("[plant]\ntau = 1.0\n")
+    bad_toml = tmp_path / "broken.toml"
+    bad_toml.write_text("[plant\n")
+    bad_struct = tmp_path / "s.json"
+    bad_struct.write_text(json.dumps({"pressure_mpa": [0.1, 0.2]}))
+    return bad_key, bad_toml, bad_struct
+
+
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["control", "--controller", "pdq"], "--controller"),
+        (["control", "--target-friction", "-5"], "target"),
+        (["control", "--target-friction", "300", "--feedforward"], "300"),
+        (["control", "--mismatch", "20"], "mismatch"),
+        (["control", "--controller", "pd", "--ki", "0.1"], "--ki"),
+        (["control", "--kp", "-1"], "kp"),
+        (["control", "--tuning", "magic"], "--tuning"),
+        (["control", "--ff-mode", "x"], "--ff-mode"),
+        (["control", "--dt", "0"], "dt"),
+        (["control", "--band", "0"], "band"),
+        (["control", "--plant", "missing.toml"], "missing.toml"),
+        (["control", "--plant", "BADKEY"], "tau"),
+        (["control", "--plant", "BROKEN"], "TOML"),
+        (["control", "--structure", "BADSTRUCT"], "squeeze_force_n"),
+        (["control", "--structure", "nofile.json"], "--structure"),
+        (["control", "--mismatch", "0.1", "compare"], "compare"),
+        (["control", "compare", "--target-friction", "abc"], "target-friction"),
+        (["control", "identify", "nofile.csv"], "nofile.csv"),
+    ],
+)
+def test_bad_options_exit_2_with_one_line(args, needle, tmp_path, capsys):
+    bad_key, bad_toml, bad_struct = _bad_files(tmp_path)
+    swap = {"BADKEY": str(bad_key), "BROKEN": str(bad_toml), "BADSTRUCT": str(bad_struct)}
+    code = run([swap.get(a, a) for a in args])
+    out, err = capsys.readouterr()
+    assert code == 2
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and needle in lines[0] and "Traceback" not in err
+
+
+def test_itae_tuning_and_pwm_plant_in_process(tmp_path, capsys):
+    code = run(["control", "--controller", "pi", "--tuning", "itae", "--duration", "6", "--json"])
+    d = json.loads(capsys.readouterr().out)
+    assert code == 0 and d["tuning"]["method"] == "itae"
+    rule = run(["control", "--controller", "pi", "--duration", "6", "--json"])
+    r = json.loads(capsys.readouterr().out)
+    assert rule == 0 and d["tuning"]["itae_n_s2"] > 0
+    assert d["gains"] != r["gains"]
+    pwm = tmp_path / "pwm.toml"
+    pwm.write_text("[plant]\npwm_period_s = 0.02\nnoise_n = 0.3\nseed = 4\n")
+    code = run(["control", "--plant", str(pwm), "--feedforward", "--controller", "pi", "--json"])
+    d = json.loads(capsys.readouterr().out)
+    assert code == 0 and abs(d["steady_state_error_n"]) < 0.005 * 54.4
+    code = run(["control", "--plant", str(pwm), "--dt", "0.01"])
+    out, err = capsys.readouterr()
+    assert code == 2 and out == "" and "pwm_period_s" in err and len(err.strip().splitlines()) == 1
