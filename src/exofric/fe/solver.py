@@ -117,8 +117,11 @@ def _newton(
     free = problem.free
     fscale, lscale = problem.scales(load)
     du_norm = np.inf
+    cached: tuple[float, np.ndarray, sp.csc_matrix | None] | None = None
     for it in range(1, s.max_iter + 1):
-        out = problem.evaluate(u, load, True)
+        # the accepted full-step trial of the previous iteration already has the tangent
+        out = cached if cached is not None else problem.evaluate(u, load, True)
+        cached = None
         if out is None:
             return None
         energy, R, K = out
@@ -150,13 +153,14 @@ def _newton(
         alpha = 1.0
         for _ in range(s.line_search_halvings + 1):
             trial = u + alpha * step
-            t = problem.evaluate(trial, load, False)
+            t = problem.evaluate(trial, load, alpha == 1.0)
             if t is None:
                 alpha *= 0.5
                 continue
             e_t, R_t, _ = t
             r_t = float(np.max(np.abs(R_t[free]))) if rf.size else 0.0
             if np.isfinite(r_t) and (r_t < rnorm or e_t < energy or rnorm <= s.tol_r * fscale):
+                cached = t if t[2] is not None else None
                 break
             s_t = float(R_t[free] @ d)
             if s0 < 0.0 < s_t:
