@@ -32,7 +32,7 @@ demo: setup
 	$(BIN)/exofric paper
 
 test: setup browser
-	$(BIN)/python -m pytest -q -n 2 --durations=15
+	$(BIN)/python -m pytest -q -n 2 --durations=15 tests src/exofric --doctest-modules
 
 lint: setup
 	$(BIN)/ruff check src tests benchmarks examples

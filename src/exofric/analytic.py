@@ -112,7 +112,7 @@ def incompressible_inflation(
     --------
     >>> c = incompressible_inflation(8.3, 4.97, 1.33444, [0.1, 0.4])
     >>> [round(float(x), 3) for x in c.outer_diameter_mm]
-    [8.47, 9.499]
+    [8.495, 9.576]
     """
     A, B = _radii(tube_od_mm, tube_id_mm)
     mu = check_positive("mu_mpa", mu_mpa, "MPa")
@@ -201,7 +201,7 @@ def compressible_inflation(
     >>> from exofric.materials import MooneyRivlin
     >>> c = compressible_inflation(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.4])
     >>> round(float(c.outer_diameter_mm[0]), 3)
-    9.49
+    9.584
     """
     A, B = _radii(tube_od_mm, tube_id_mm)
     p_req = check_pressures("pressures_mpa", pressures_mpa)

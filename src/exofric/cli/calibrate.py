@@ -1,0 +1,107 @@
+"""``exofric calibrate``: Shore hardness (and tube ID) from an inflation test (paper §3.3)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from ..errors import InputError
+from ._common import JSON_OPTION, console, emit, kv_table, parse_floats
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``calibrate`` command to ``app``."""
+
+    @app.command("calibrate")
+    def calibrate_cmd(
+        data: Path = typer.Option(
+            ..., "--data", help="CSV with pressure_mpa,outer_diameter_mm[,shore] (MPa, mm); "
+            "with a shore column only the tube ID is fitted (known hardness).",
+        ),
+        tube_od: float = typer.Option(
+            ..., "--tube-od", help="Undeformed tube outer diameter (mm)."
+        ),
+        tube_id: float | None = typer.Option(
+            None, "--tube-id", help="Tube inner diameter (mm): fixed for bisection/bounded, "
+            "start value for joint/known hardness.",
+        ),
+        fit_tube_id: bool = typer.Option(
+            False, "--fit-tube-id", help="Fit the tube inner diameter too (method joint)."
+        ),
+        method: str | None = typer.Option(
+            None, "--method", help="bisection (paper), bounded, joint or known-hardness "
+            "(default: known-hardness with a shore column, joint with --fit-tube-id, else "
+            "bisection).",
+        ),
+        bracket: str = typer.Option("60,70", "--bracket", help="Shore A bracket lo,hi."),
+        tol_pct: float = typer.Option(
+            0.5, "--tol-pct", help="Bisection stop: average relative diameter error (%)."
+        ),
+        model: str = typer.Option(
+            "fe", "--model", help="Forward model: fe (2D FE), 1d (radial BVP) or paper-table1 "
+            "(the paper's ANSYS columns, no simulation).",
+        ),
+        c10_convention: str = typer.Option(
+            "eq4", "--c10-convention", help="eq4 (C10 = G/2/1.05) or paper-slip (the printed "
+            "Table 2 value C10 = G/2/1.005).",
+        ),
+        correlation: str = typer.Option(
+            "paper", "--correlation", help="Shore -> E0 correlation: paper (Eq 3), gent, qi, "
+            "astm-log10.",
+        ),
+        plot: Path | None = typer.Option(
+            None, "--plot", help="Write Fig 5b (diameter vs pressure with trial curves) here."
+        ),
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Identify Shore A hardness (and tube ID, mm) from inflation data. MPa, mm, %."""
+        from ..calibrate import InflationData, calibrate
+
+        lohi = parse_floats("--bracket", bracket)
+        if len(lohi) != 2:
+            raise InputError(f"--bracket must be two Shore A values lo,hi, got {bracket!r}")
+        if c10_convention not in ("eq4", "paper-slip"):
+            raise InputError(f"--c10-convention must be eq4 or paper-slip, got {c10_convention!r}")
+        d = InflationData.from_csv(data)
+        res = calibrate(
+            d, tube_od, tube_id_mm=tube_id, method=method, fit_tube_id=fit_tube_id,
+            bracket=(lohi[0], lohi[1]), tol_pct=tol_pct, model=model, correlation=correlation,
+            c10_convention=c10_convention,  # type: ignore[arg-type]
+        )
+        out = res.to_dict()
+        if plot is not None:
+            out["plot_path"] = str(res.plot(plot))
+
+        def render() -> None:
+            def pm(v: float | None, se: float | None, fmt: str) -> str:
+                if v is None:
+                    return "known"
+                return format(v, fmt) + ("" if se is None else f" ± {se:{fmt}}")
+
+            rows = [
+                ("method / model", f"{res.method} / {res.model}", ""),
+                ("Shore A hardness", pm(res.shore, res.shore_stderr, ".3f"), "Shore A"),
+                ("tube inner diameter", pm(res.tube_id_mm, res.tube_id_stderr_mm, ".4f"), "mm"),
+                ("average error", f"{res.average_error_pct:.3f}", "%"),
+                ("max error", f"{res.max_error_pct:.3f}", "%"),
+                ("converged", str(res.converged), ""),
+                ("model evaluations", str(res.n_model_calls), f"in {res.elapsed_s:.2f} s"),
+            ]
+            if res.correlation is not None:
+                rows.append(("correlation(Shore, ID)", f"{res.correlation:.4f}", ""))
+            if res.material is not None:
+                m = res.material
+                rows.append(("C10 / C01 / d", f"{m.c10:.5f} / {m.c01:.6f} / {m.d:.6f}",
+                             "MPa / MPa / 1/MPa"))
+            console.print(kv_table("Calibration from inflation test", rows))
+            hist = [(f"{i + 1}", f"Shore {'-' if t.shore is None else format(t.shore, '.4g')}, "
+                     f"ID {t.tube_id_mm:.4f} mm", f"{t.average_error_pct:.3f} %")
+                    for i, t in enumerate(res.history)]
+            console.print(kv_table("History (trial, average error)", hist))
+            for note in res.notes:
+                console.print(f"note: {note}")
+            if plot is not None:
+                console.print(f"plot: {out['plot_path']}")
+
+        emit(out, as_json, render)
