@@ -106,7 +106,7 @@ def test_cached_model_memoises_and_1d_factory_matches_reference() -> None:
 # ---------------------------------------------------- known hardness: the paper's ANSYS tube ID
 @pytest.mark.parametrize(
     ("convention", "tube_id", "max_err"),
-    # documented in docs/paper-notes-calibration.md (tolerances: 1e-3 mm, 0.005 %-points)
+    # documented in docs/paper-notes.md (tolerances: 1e-3 mm, 0.005 %-points)
     [("eq4", ID_EQ4, 0.422), ("paper-slip", 5.0539, 0.403)],
 )
 def test_known_hardness_reproduces_paper_columns(convention, tube_id, max_err) -> None:

@@ -2,7 +2,7 @@
 
 Paper (54.40 N, test-5 structure): PD without the model keeps a steady-state error, with it
 none (4.41 s); PI 5.73 -> 4.20 s (-26 %); PID 6.17 -> 4.39 s (-29 %). The plant and gains are
-exofric's documented defaults (docs/paper-notes-control.md), not fitted to these numbers
+exofric's documented defaults (docs/paper-notes.md), not fitted to these numbers
 except where that note says so.
 """
 
@@ -53,7 +53,7 @@ def test_model_shortens_settling_by_at_least_20pct(nominal, kind):
 @pytest.mark.parametrize("kind", ["pi", "pid"])
 def test_with_10pct_mismatch_integral_action_removes_the_error(mismatched, kind):
     # The feedforward benefit under mismatch is *reported*, whatever its value: it must be a
-    # number in the JSON, and is documented in docs/paper-notes-control.md (about -37 % /
+    # number in the JSON, and is documented in docs/paper-notes.md (about -37 % /
     # -34 % for +10 %; the value is not asserted).
     d = mismatched.to_dict()
     assert d["mismatch"] == 0.1

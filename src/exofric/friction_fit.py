@@ -8,7 +8,7 @@ gamma = sum N_i F_i / sum N_i^2. The affine variant F = gamma N + F0 (for rigs w
 pressure-independent drag) is ordinary least squares on [N, 1]; it is never the default.
 
 Relative error measures (the paper's "relative error of 10.68 %" in Sec. 3.5 is called an
-"average error" in Sec. 6; see docs/paper-notes-friction.md):
+"average error" in Sec. 6; see docs/paper-notes.md):
 
 * ``relative_error_pct`` (primary) = mean_i |F^_i - F_i| / F_i x 100, the mean absolute
   relative error, in line with the "average error" of Table 1 and Sec. 6;

@@ -14,7 +14,7 @@ Applicability. With scale factors s_D, s_d1, s_d2 (structure / base diameters):
   9.1, 1.7, 13.7, 10.8, 23.0, 45.5 % for tests 2-7, ordered like the paper's findings.
 * ``paper_deviation_pct`` = 100 max |s - 1| (matches the printed column for tests 4-7);
   ``tube_ref_deviation_pct`` = 100 max |s - s_d1| (matches tests 2-5 and 7). The paper
-  does not define its column; see docs/paper-notes-friction.md.
+  does not define its column; see docs/paper-notes.md.
 * ``clearance_change_pct`` = 100 (c / d1 - c_b / d1_b), c = D - d1 - d2 (mm): the gap that
   decides when contact starts, which the paper ignores (percentage points of the tube OD).
 

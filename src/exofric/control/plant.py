@@ -52,7 +52,7 @@ class PlantParams:
     """Pneumatic supply and sensor parameters (defaults: a small pneumatic supply).
 
     The defaults are assumptions, not measurements (the paper prints no plant parameters):
-    see ``docs/paper-notes-control.md`` for the reasoning.
+    see ``docs/paper-notes.md`` for the reasoning.
 
     Parameters
     ----------

@@ -16,7 +16,7 @@ none, so exofric uses documented rules:
 The single tuning knob is the desired closed-loop time constant tau_c (s). Default:
 tau_c = tau + theta, a smooth "lambda tuning" (closed loop about as fast as the supply's own
 step response), consistent with the 4-6 s settling times of the paper's rig; SIMC's tight
-setting is tau_c = theta. See ``docs/paper-notes-control.md`` for how the feedforward benefit
+setting is tau_c = theta. See ``docs/paper-notes.md`` for how the feedforward benefit
 depends on this choice.
 
 Units: gains kp MPa/N, ki MPa/(N s), kd MPa s/N; times s; process gain N/MPa.
