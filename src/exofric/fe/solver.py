@@ -90,7 +90,7 @@ class NewtonSettings:
 
     tol_r: float = 1e-9
     tol_u: float = 1e-10
-    max_iter: int = 30
+    max_iter: int = 15
     max_cutbacks: int = 12
     max_step: float = 0.05
     min_step: float = 1e-6
@@ -109,6 +109,22 @@ class PathPoint:
     iterations: int
     steps: int
     info: dict[str, float] = field(default_factory=dict)
+
+
+def _accept(e_t: float, r_t: float, e0: float, r0: float, slope: float, r_tol: float) -> bool:
+    """Line-search acceptance.
+
+    For a descent direction (``slope = alpha R.d < 0``) the energy must decrease (Armijo,
+    c = 1e-4): the energy then is a Lyapunov function and Newton cannot cycle between
+    contact active sets. Where energy differences drown in round-off (converged states), or
+    the direction is not a descent direction, a decrease of the residual norm is accepted.
+    """
+    if r0 <= r_tol:
+        return True
+    noise = 1e-13 * max(1.0, abs(e0))
+    if slope < 0.0 and abs(slope) > noise:
+        return e_t <= e0 + 1e-4 * slope
+    return r_t < r0
 
 
 def _newton(
@@ -159,7 +175,7 @@ def _newton(
                 continue
             e_t, R_t, _ = t
             r_t = float(np.max(np.abs(R_t[free]))) if rf.size else 0.0
-            if np.isfinite(r_t) and (r_t < rnorm or e_t < energy or rnorm <= s.tol_r * fscale):
+            if np.isfinite(r_t) and _accept(e_t, r_t, energy, rnorm, alpha * s0, s.tol_r * fscale):
                 cached = t if t[2] is not None else None
                 break
             s_t = float(R_t[free] @ d)
@@ -215,6 +231,9 @@ def solve_path(
             if s.extrapolate and u_prev is not None and lam > lam_prev:
                 # secant predictor (a Newton failure from it is retried from the last state)
                 guess = u + (u - u_prev) * (h / (lam - lam_prev))
+                limit = getattr(problem, "limit_predictor", None)
+                if limit is not None:  # e.g. stop the predictor where a new contact begins
+                    guess = limit(u, guess)
             res = _newton(problem, guess, trial_lam, s)
             if res is None and guess is not u:
                 res = _newton(problem, u, trial_lam, s)

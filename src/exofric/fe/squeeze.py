@@ -134,6 +134,21 @@ class SqueezeProblem:
             K = self.assembler.matrix([st.ke, -load * self.H.data, ch.blocks + cw.blocks])
         return energy, R, K
 
+    def limit_predictor(self, u: np.ndarray, guess: np.ndarray) -> np.ndarray:
+        """Shorten a load-step predictor so that no node newly crosses into the wire.
+
+        A secant predictor that jumps past the first touch of the wire starts Newton far
+        inside the stiff penalty; stopping it at the touch (the whole increment scaled, so
+        the mesh stays consistent) lets Newton engage the contact gradually.
+        """
+        g0 = self.contact(u)[1].gap
+        g1 = self.contact(guess)[1].gap
+        cross = (g0 > 0.0) & (g1 < 0.0)
+        if not np.any(cross):
+            return guess
+        t = float(np.min(g0[cross] / (g0[cross] - g1[cross])))
+        return u + t * (guess - u)
+
     def scales(self, load: float) -> tuple[float, float]:
         """Force scale (N/mm) with a floor for P -> 0, and length scale (mm)."""
         return max(load, 0.01) * self.B, self.B
