@@ -28,8 +28,8 @@ browser:
 	  else echo "warning: chromium not installed and cannot apt-get; the browser test will be skipped"; fi; }
 
 demo: setup
-	$(BIN)/exofric material --shore 62.5
-	$(BIN)/exofric paper
+	$(BIN)/exofric reproduce --out exofric-report
+	@echo "report: $(CURDIR)/exofric-report/report.html"
 
 test: setup browser
 	$(BIN)/python -m pytest -q -n 2 --durations=15 tests src/exofric --doctest-modules
