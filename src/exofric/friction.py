@@ -8,8 +8,9 @@ tube length), torque in Nm, arm radius in m.
   bracketed inverse (Brent) that refuses targets outside the fitted range or non-monotonic fits.
 * :func:`pressure_for_friction` -- the paper's Section 5 inverse: the pressure that gives a
   target friction, via N = (F - F0) / gamma and the cubic inverse.
-* :class:`CurveInverse` -- the exact inverse of a tabulated (FE) curve N(P) by monotone
-  (PCHIP) interpolation of P against N, which the paper lacked.
+* :class:`~exofric.friction_inverse.CurveInverse` -- the exact inverse of a tabulated (FE)
+  curve N(P) by monotone (PCHIP) interpolation of P against N, which the paper lacked; in
+  :mod:`exofric.friction_inverse`, imported here (``from exofric.friction import CurveInverse``).
 * :func:`~exofric.friction_torque.torque` -- T = F R and a requirement check (knee 0-40 Nm),
   in :mod:`exofric.friction_torque`.
 
@@ -37,6 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError, check_finite, check_positive
+from .friction_inverse import CurveInverse
 
 __all__ = [
     "CubicFit",
@@ -333,86 +335,6 @@ def pressure_for_friction(target_n: float, cubic: CubicFit, model: FrictionModel
             f"target friction {f:g} N is outside the reachable range [{flo:.4g}, {fhi:.4g}] N "
             f"over [{cubic.p_min_mpa:g}, {cubic.p_max_mpa:g}] MPa"
         ) from None
-
-
-@dataclass(frozen=True)
-class CurveInverse:
-    """Exact inverse P(N) of a tabulated squeeze curve by monotone (PCHIP) interpolation.
-
-    Built with :meth:`from_curve` from FE output; leading points with N <= 0 (before
-    contact) are dropped except the last one, which brackets the contact onset.
-
-    Attributes
-    ----------
-    squeeze_force_n, pressure_mpa : tuple of float
-        The interpolation nodes (N strictly increasing, N and MPa).
-
-    Examples
-    --------
-    >>> inv = CurveInverse.from_curve([0.2, 0.3, 0.4], [10.0, 40.0, 90.0])
-    >>> inv.pressure(40.0)
-    0.3
-    """
-
-    squeeze_force_n: tuple[float, ...]
-    pressure_mpa: tuple[float, ...]
-
-    @classmethod
-    def from_curve(cls, pressure_mpa: ArrayLike, squeeze_force_n: ArrayLike) -> CurveInverse:
-        """Check that N(P) is strictly increasing (after contact) and build the inverse."""
-        p = np.asarray(pressure_mpa, dtype=float).ravel()
-        n = np.asarray(squeeze_force_n, dtype=float).ravel()
-        if p.shape != n.shape or p.size < 2:
-            raise InputError(
-                f"squeeze curve needs >= 2 (pressure, force) pairs of equal length, "
-                f"got {p.size} and {n.size}"
-            )
-        if not (np.all(np.isfinite(p)) and np.all(np.isfinite(n))):
-            raise InputError("squeeze curve must be finite numbers (no NaN/inf)")
-        if np.any(np.diff(p) <= 0):
-            raise InputError("squeeze curve pressures must be strictly increasing (MPa)")
-        nonpos = np.flatnonzero(n <= 0.0)
-        start = int(nonpos[-1]) if nonpos.size else 0
-        p, n = p[start:], n[start:]
-        bad = np.flatnonzero(np.diff(n) <= 0.0)
-        if bad.size or p.size < 2:
-            at = p[bad[0] + 1] if bad.size else p[0]
-            raise InputError(
-                f"squeeze force is not strictly increasing in pressure (at {at:g} MPa); "
-                "the inverse P(N) is not unique"
-            )
-        return cls(tuple(n.tolist()), tuple(p.tolist()))
-
-    def pressure(self, squeeze_force_n: float) -> float:
-        """Pressure (MPa) at which the curve reaches squeezing force N (N)."""
-        from scipy.interpolate import PchipInterpolator
-
-        v = check_finite("target squeezing force (N)", squeeze_force_n)
-        lo, hi = self.squeeze_force_n[0], self.squeeze_force_n[-1]
-        if not lo <= v <= hi:
-            raise InputError(
-                f"target squeezing force {v:g} N is outside the curve's range "
-                f"[{lo:.4g}, {hi:.4g}] N"
-            )
-        pch = PchipInterpolator(np.array(self.squeeze_force_n), np.array(self.pressure_mpa))
-        return float(pch(v))
-
-    def pressure_for_friction(self, target_n: float, model: FrictionModel) -> float:
-        """Pressure (MPa) for friction ``target_n`` (N): P(N = (F - F0) / gamma)."""
-        f = check_finite("target friction (N)", target_n)
-        n = model.squeeze(f)
-        lo, hi = self.squeeze_force_n[0], self.squeeze_force_n[-1]
-        if not lo <= n <= hi:
-            flo, fhi = model.friction(max(lo, 0.0)), model.friction(hi)
-            raise InputError(
-                f"target friction {f:g} N is outside the curve's range [{flo:.4g}, {fhi:.4g}] N"
-            )
-        return self.pressure(n)
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready nodes: ``squeeze_force_n`` (N), ``pressure_mpa`` (MPa)."""
-        return {"squeeze_force_n": list(self.squeeze_force_n),
-                "pressure_mpa": list(self.pressure_mpa)}
 
 
 _LAZY = {

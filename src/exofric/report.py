@@ -2,7 +2,8 @@
 
 :func:`write_report` takes a :class:`~exofric.reproduce.ReproduceResult`, draws every figure
 (matplotlib, Agg), writes them as PNG, embeds them as base64 in ``report.html`` (no network
-needed; responsive and printable, see :mod:`exofric.report_html`) and writes
+needed; responsive and printable, see :mod:`exofric.report_html`; the stylesheet
+:data:`REPORT_CSS` is in :mod:`exofric.report_style` and importable from here) and writes
 ``results.json`` with every number of the report, the stage wall times and the software
 versions. The paper's inconsistencies are read from ``docs/paper-notes*.md``.
 
@@ -30,72 +31,13 @@ from . import paper
 from .friction_plot import plot_gamma_fit, plot_predictions
 from .io import jsonable, write_json
 from .plotting import plot_squeeze, save
+from .report_style import REPORT_CSS
 from .reproduce import ReproduceResult
 
 __all__ = ["FigureFile", "ReportFiles", "write_report", "find_notes_dir", "read_notes",
            "make_figures", "REPORT_CSS"]
 
 _KNEE = "knee 0-40 Nm"
-
-#: The report's stylesheet (inline in report.html): responsive, with a print style.
-REPORT_CSS = """
-:root{--fg:#1b1f24;--muted:#57606a;--line:#d0d7de;--accent:#0a58ca;--synth:#f4ecff;
---synthb:#6f42c1;--warn:#fff8e6;--head:#f6f8fa}
-*{box-sizing:border-box}
-html{-webkit-text-size-adjust:100%}
-body{margin:0;color:var(--fg);background:#fff;
-font:16px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,"Helvetica Neue",Arial,sans-serif}
-main{max-width:1100px;margin:0 auto;padding:1rem 1.2rem 3rem}
-h1{font-size:1.6rem;line-height:1.25;margin:.4rem 0}
-h2{font-size:1.3rem;margin:2.2rem 0 .6rem;padding-top:.6rem;border-top:2px solid var(--line)}
-h3{font-size:1.08rem;margin:1.4rem 0 .4rem}
-h4,h5{font-size:1rem;margin:1rem 0 .3rem}
-p,li{max-width:75ch}
-a{color:var(--accent)}
-.muted{color:var(--muted);font-size:.9rem}
-.scroll{overflow-x:auto;-webkit-overflow-scrolling:touch;margin:.5rem 0 1rem;
-border:1px solid var(--line);border-radius:6px}
-table{border-collapse:collapse;width:100%;font-size:.88rem}
-th,td{padding:.32rem .55rem;border-bottom:1px solid var(--line);text-align:left;
-vertical-align:top}
-th{background:var(--head);font-weight:600}
-td.long{min-width:15rem}
-td.n{text-align:right;white-space:nowrap;font-variant-numeric:tabular-nums}
-tr.synthetic td{background:var(--synth)}
-tr:last-child td{border-bottom:none}
-.badge{display:inline-block;font-size:.72rem;font-weight:700;letter-spacing:.03em;
-padding:.05rem .4rem;border-radius:4px;background:var(--synthb);color:#fff;vertical-align:middle}
-.box{background:var(--warn);border-left:4px solid #d4a72c;padding:.6rem .9rem;margin:1rem 0;
-border-radius:4px}
-.box.synthetic{background:var(--synth);border-left-color:var(--synthb)}
-figure{margin:1.2rem 0}
-figure img{display:block;max-width:100%;height:auto;border:1px solid var(--line);
-border-radius:4px;background:#fff}
-figcaption{font-size:.86rem;color:var(--muted);margin-top:.3rem}
-nav.toc{background:var(--head);border:1px solid var(--line);border-radius:6px;
-padding:.5rem 1rem;margin:1rem 0}
-nav.toc ol{margin:.3rem 0;padding-left:1.4rem}
-.notes{border-left:3px solid var(--line);padding-left:.9rem}
-.notes pre,pre{overflow-x:auto;background:var(--head);padding:.5rem;border-radius:4px;
-font-size:.8rem}
-code{font-size:.88em;overflow-wrap:anywhere}
-p,li,h2,h3,h4,figcaption{overflow-wrap:anywhere}
-.time{float:right;font-size:.8rem;color:var(--muted);font-weight:400}
-@media (max-width:640px){body{font-size:15px}main{padding:.6rem .7rem 2rem}
-h1{font-size:1.3rem}h2{font-size:1.15rem}th,td{padding:.25rem .4rem}
-.time{float:none;display:block}
-table.cards thead{display:none}
-table.cards tr{display:block;border-bottom:2px solid var(--line);padding:.35rem 0}
-table.cards td{display:grid;grid-template-columns:6.8rem 1fr;gap:.5rem;border:none;
-padding:.1rem .55rem;text-align:left;white-space:normal;min-width:0}
-table.cards td::before{content:attr(data-label);font-weight:600;color:var(--muted)}
-table.cards td:first-child{display:block;font-weight:600}
-table.cards td:first-child::before{content:none}}
-@media print{nav.toc{display:none}body{font-size:10.5pt}main{max-width:none;padding:0}
-.scroll{overflow:visible;border:none}table{font-size:8.5pt}
-figure,tr,.box{break-inside:avoid}h2,h3{break-after:avoid}a{color:inherit;
-text-decoration:none}}
-"""
 
 
 def _plt() -> Any:
