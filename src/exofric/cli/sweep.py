@@ -1,0 +1,187 @@
+"""``exofric sweep`` (design-space sweeps on Dask) and ``exofric design`` (target torque search)."""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import typer
+
+from ._common import JSON_OPTION, console, emit, kv_table
+
+WORKERS = typer.Option(None, "--workers", help="LocalCluster worker processes (default: CPUs).")
+SCHEDULER = typer.Option(None, "--scheduler",
+                         help="Address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786.")
+SERIAL = typer.Option(False, "--serial", help="Plain in-process loop, no Dask.")
+TIMEOUT = typer.Option(60.0, "--timeout",
+                       help="Seconds to wait for --scheduler and its first worker.")
+RETRY = typer.Option(False, "--retry-failed", help="Solve designs recorded as failed again.")
+
+
+@contextlib.contextmanager
+def _progress(quiet: bool) -> Iterator[Callable[[int, int, str], None] | None]:
+    """A rich progress bar on stderr (None when ``quiet``)."""
+    if quiet:
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    with Progress(TextColumn("[bold]solving designs"), BarColumn(), MofNCompleteColumn(),
+                  TimeElapsedColumn(), TimeRemainingColumn(), TextColumn("{task.description}"),
+                  console=Console(stderr=True), transient=False) as bar:
+        task = bar.add_task("", total=None)
+
+        def update(done: int, total: int, label: str) -> None:
+            bar.update(task, completed=done, total=total, description=label, visible=total > 0)
+
+        yield update
+
+
+def _run(config: Path | None, out: Path | None, workers: int | None, scheduler: str | None,
+         serial: bool, retry: bool, quiet: bool, timeout: float) -> Any:
+    from ..sweep import run_sweep
+    from ..sweep_config import parse_sweep
+    from ..sweep_store import load_sweep
+
+    if config is None:
+        from ..design import DEFAULT_SPACE
+
+        spec = parse_sweep(DEFAULT_SPACE)
+    else:
+        spec = load_sweep(config)
+    out = out or Path(".exofric-sweeps") / spec.name
+    with _progress(quiet) as progress:
+        return run_sweep(spec, out, workers=workers, scheduler=scheduler, serial=serial,
+                         retry_failed=retry, progress=progress, timeout_s=timeout)
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``sweep`` and ``design`` commands."""
+
+    @app.command("sweep")
+    def sweep_cmd(
+        config: Path = typer.Argument(..., help="Sweep definition (TOML), see examples/."),
+        out: Path = typer.Option(..., "--out", help="Result directory (Parquet dataset, cache)."),
+        workers: int = WORKERS,
+        scheduler: str = SCHEDULER,
+        serial: bool = SERIAL,
+        retry_failed: bool = RETRY,
+        timeout: float = TIMEOUT,
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Solve N(P) for every design of a sweep on Dask; rows go to Parquet (mm, MPa, N, Nm).
+
+        Finished designs in OUT are reused (cache keyed by inputs + solver settings), so a
+        killed sweep resumes where it stopped.
+        """
+        run = _run(config, out, workers, scheduler, serial, retry_failed, as_json, timeout)
+        d = run.to_dict()
+
+        def render() -> None:
+            s = run.summary
+            console.print(kv_table(f"Sweep {config.name}", [
+                ("designs", str(s.designs), ""), ("computed now", str(s.computed), ""),
+                ("cached", str(s.cached), ""), ("skipped (impossible)", str(s.skipped), ""),
+                ("failed", str(s.failed), ""), ("rows", str(d["rows"]), ""),
+                ("scheduler", s.scheduler, ""), ("wall time", f"{s.wall_time_s:.2f}", "s"),
+                ("dataset", s.out, "")]))
+            for x in d["skipped_designs"]:
+                console.print(f"skipped {x['name']}: {x['reason']}")
+            for x in d["failures"]:
+                console.print(f"[red]failed[/red] {x['name']}: {x['error']}")
+
+        emit(d, as_json, render)
+
+    @app.command("design")
+    def design_cmd(
+        config: Path = typer.Argument(None, help="Sweep definition (TOML); default: d1 x d2 "
+                                      "around the base group."),
+        target_torque: float = typer.Option(40.0, "--target-torque",
+                                            help="Required joint torque (Nm)."),
+        arm: float = typer.Option(None, "--arm", help="Lever arm R (m); default the sweep's."),
+        pmax: float = typer.Option(0.6, "--pmax", help="Highest allowed pressure (MPa)."),
+        gamma: float = typer.Option(None, "--gamma", help="Equivalent coefficient; default "
+                                    "the sweep's (0.7168)."),
+        f0: float = typer.Option(None, "--f0", help="Friction offset F0 (N)."),
+        objective: str = typer.Option("pressure", "--objective",
+                                      help="'pressure' (least P reaching the torque) or "
+                                      "'margin' (most torque margin at pmax)."),
+        validated_only: bool = typer.Option(False, "--validated-only",
+                                            help="Rank only designs inside the validated region."),
+        top: int = typer.Option(10, "--top", help="Candidates to list."),
+        out: Path = typer.Option(None, "--out", help="Sweep result directory (cache); default "
+                                 ".exofric-sweeps/<sweep name>."),
+        plot: Path = typer.Option(None, "--plot",
+                                  help="Design map PNG (default OUT/design-map.png)."),
+        no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the design map."),
+        workers: int = WORKERS,
+        scheduler: str = SCHEDULER,
+        serial: bool = SERIAL,
+        timeout: float = TIMEOUT,
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Find swept designs reaching a target torque with the least pressure (Nm, MPa, mm)."""
+        from ..design import search_designs
+
+        run = _run(config, out, workers, scheduler, serial, False, as_json, timeout)
+        frame = run.frame
+        search = search_designs(frame, target_torque, arm if arm is not None else
+                                float(frame["arm_radius_m"].iloc[0]), pmax, gamma=gamma,
+                                f0_n=f0, objective=objective, validated_only=validated_only)
+        d = search.to_dict(top=top)
+        d["sweep"] = run.summary.to_dict()
+        if not no_plot:
+            from ..design_plot import plot_design_map
+
+            skipped = frame[frame["status"] == "skipped"]
+            d["plot"] = str(plot_design_map(search, plot or Path(run.summary.out) /
+                                            "design-map.png", skipped=skipped))
+
+        emit(d, as_json, lambda: _render_design(d))
+
+
+def _render_design(d: dict[str, Any]) -> None:
+    """Rich table of the ranked (or, if none reaches, the closest) designs."""
+    from rich.table import Table
+
+    reach = bool(d["candidates"])
+    cands = d["candidates"] or d["closest"]
+    title = (f"{'Designs reaching' if reach else 'None reaches; closest to'} "
+             f"{d['target_torque_nm']:g} Nm by {d['pmax_mpa']:g} MPa (R = {d['arm_radius_m']:g} m,"
+             f" gamma = {d['gamma']:g}; {d['reaching']} of {d['evaluated']}; "
+             f"ranked by {d['objective']})")
+    cols = [("D mm", "hole_mm", "g"), ("d1 mm", "tube_od_mm", "g"),
+            ("ID mm", "tube_id_mm", ".3g"), ("d2 mm", "wire_mm", "g"),
+            ("Shore", "shore", "g"), ("L mm", "length_mm", "g")]
+    cols = [c for c in cols if len({x[c[1]] for x in cands}) > 1 or c[1] in
+            ("hole_mm", "tube_od_mm", "wire_mm")]
+    cols += [("P* MPa", "required_pressure_mpa", ".3f")] if reach else []
+    cols += [("T(pmax) Nm", "torque_at_pmax_nm", ".1f"), ("dev. %", "deviation_pct", ".1f")]
+    t = Table(title=title)
+    t.add_column("design", max_width=22)
+    for label, _, _ in cols:
+        t.add_column(label, justify="right")
+    t.add_column("validated")
+    for c in cands:
+        t.add_row(c["name"], *(format(c[k], f) for _, k, f in cols),
+                  "yes" if c["in_validated_region"] else "[red]NO[/red]")
+    console.print(t)
+    if not reach:
+        console.print(f"no design reaches {d['target_torque_nm']:g} Nm by {d['pmax_mpa']:g} MPa")
+    elif not d["best"]["in_validated_region"]:
+        bv = d["best_validated"]
+        console.print("[yellow]the best design is outside the validated region: its friction "
+                      "prediction is an extrapolation[/yellow]; best validated: "
+                      + (bv["name"] if bv else "none"))
+    if "plot" in d:
+        console.print(f"wrote {d['plot']}")
