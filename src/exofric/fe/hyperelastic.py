@@ -39,7 +39,6 @@ __all__ = ["HyperelasticBody", "mooney_rivlin_plane_strain", "DCOF"]
 DCOF = np.zeros((2, 2, 2, 2))
 DCOF[0, 0, 1, 1] = DCOF[1, 1, 0, 0] = 1.0
 DCOF[0, 1, 1, 0] = DCOF[1, 0, 0, 1] = -1.0
-_I4 = np.einsum("ik,jl->ijkl", np.eye(2), np.eye(2))
 
 
 def _cof(F: np.ndarray) -> np.ndarray:
@@ -47,6 +46,13 @@ def _cof(F: np.ndarray) -> np.ndarray:
     c[..., 0, 0], c[..., 1, 1] = F[..., 1, 1], F[..., 0, 0]
     c[..., 0, 1], c[..., 1, 0] = -F[..., 1, 0], -F[..., 0, 1]
     return c
+
+
+#: cof F as a signed permutation of the flattened F = [F00, F01, F10, F11].
+_COF_PERM = np.array([3, 2, 1, 0])
+_COF_SIGN = np.array([1.0, -1.0, -1.0, 1.0])
+_DCOF4 = DCOF.reshape(4, 4)
+_I4F = np.eye(4)
 
 
 def mooney_rivlin_plane_strain(
@@ -67,35 +73,39 @@ def mooney_rivlin_plane_strain(
     -------
     W, P, A
         Energy density (MPa = N mm/mm^3), stress (MPa), tangent (MPa).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> W, P, A = mooney_rivlin_plane_strain(np.eye(2)[None], 0.6, 0.03)
+    >>> float(W[0]), float(abs(P).max()) < 1e-14
+    (0.0, True)
     """
-    J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
-    s = np.einsum("...ij,...ij->...", F, F)
-    cof = _cof(F)
-    j23, j43 = J ** (-2.0 / 3.0), J ** (-4.0 / 3.0)
-    W = c10 * (j23 * (s + 1.0) - 3.0) + c01 * (j43 * s + J ** (2.0 / 3.0) - 3.0)
+    shape = F.shape[:-2]
+    f = F.reshape(-1, 4)
+    c = f[:, _COF_PERM] * _COF_SIGN  # cof F, flattened
+    J = f[:, 0] * f[:, 3] - f[:, 1] * f[:, 2]
+    s = np.einsum("pi,pi->p", f, f)
+    jm13 = 1.0 / np.cbrt(J)  # J^-1/3
+    j23 = jm13 * jm13  # J^-2/3
+    j43 = j23 * j23  # J^-4/3
+    W = c10 * (j23 * (s + 1.0) - 3.0) + c01 * (j43 * s + J * jm13 - 3.0)
     Ws = c10 * j23 + c01 * j43
-    WJ = (
-        -2.0 / 3.0 * c10 * j23 / J * (s + 1.0)
-        - 4.0 / 3.0 * c01 * j43 / J * s
-        + 2.0 / 3.0 * c01 * J ** (-1.0 / 3.0)
-    )
-    P = 2.0 * Ws[..., None, None] * F + WJ[..., None, None] * cof
+    iJ = 1.0 / J
+    WJ = (-2.0 / 3.0 * c10 * j23 * iJ * (s + 1.0) - 4.0 / 3.0 * c01 * j43 * iJ * s
+          + 2.0 / 3.0 * c01 * jm13)
+    P = 2.0 * Ws[:, None] * f + WJ[:, None] * c
     if not tangent:
-        return W, P, None
-    WsJ = -2.0 / 3.0 * c10 * j23 / J - 4.0 / 3.0 * c01 * j43 / J
-    WJJ = (
-        10.0 / 9.0 * c10 * j23 / J**2 * (s + 1.0)
-        + 28.0 / 9.0 * c01 * j43 / J**2 * s
+        return W.reshape(shape), P.reshape(*shape, 2, 2), None
+    WsJ = (-2.0 / 3.0 * c10 * j23 - 4.0 / 3.0 * c01 * j43) * iJ
+    WJJ = (10.0 / 9.0 * c10 * j23 * (s + 1.0) + 28.0 / 9.0 * c01 * j43 * s) * iJ * iJ \
         - 2.0 / 9.0 * c01 * j43
-    )
-    Fc = np.einsum("...ij,...kl->...ijkl", F, cof)
-    A = (
-        WsJ[..., None, None, None, None] * 2.0 * (Fc + np.swapaxes(np.swapaxes(Fc, -4, -2), -3, -1))
-        + WJJ[..., None, None, None, None] * np.einsum("...ij,...kl->...ijkl", cof, cof)
-        + 2.0 * Ws[..., None, None, None, None] * _I4
-        + WJ[..., None, None, None, None] * DCOF
-    )
-    return W, P, A
+    fc = f[:, :, None] * c[:, None, :]
+    A = (2.0 * WsJ[:, None, None] * (fc + fc.transpose(0, 2, 1))
+         + WJJ[:, None, None] * (c[:, :, None] * c[:, None, :])
+         + 2.0 * Ws[:, None, None] * _I4F
+         + WJ[:, None, None] * _DCOF4)
+    return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
 
 
 @dataclass
@@ -145,13 +155,17 @@ class HyperelasticBody:
         d = self.ref.dNdX  # (e, q, n, 2)
         ne, nq = d.shape[:2]
         self._dN_nqj = np.ascontiguousarray(d.transpose(0, 2, 1, 3).reshape(ne, n, 2 * nq))
-        self._dN_t = np.ascontiguousarray(d.transpose(0, 1, 3, 2))  # (e, q, 2, n)
-        self._wdN = np.ascontiguousarray(
-            (d * self.ref.w[:, :, None, None]).transpose(0, 2, 1, 3).reshape(ne, n, 2 * nq)
-        )
+        # Constant B-matrix (total Lagrangian): dF[2i+j] = sum_{b,k} B[2i+j, 2b+k] du[2b+k]
+        # with B[2i+j, 2b+k] = delta_ik dN_b/dX_j; wBT carries the quadrature weights.
+        B = np.zeros((ne, nq, 4, 2 * n))
+        for i in range(2):
+            for j in range(2):
+                B[:, :, 2 * i + j, i::2] = d[:, :, :, j]
+        self._B = B
+        self._wBT = np.ascontiguousarray(
+            (B * self.ref.w[:, :, None, None]).transpose(0, 3, 1, 2).reshape(ne, 2 * n, 4 * nq))
         self._wNp = np.ascontiguousarray(
-            (self.ref.w[:, :, None] * self.ref.Np[None]).transpose(0, 2, 1)
-        )  # (e, m, q)
+            (self.ref.w[:, :, None] * self.ref.Np[None]).transpose(0, 2, 1))  # (e, m, q)
 
     def deformation_gradient(self, u: np.ndarray) -> np.ndarray:
         """F at every element and quadrature point, shape (e, q, 2, 2)."""
@@ -181,8 +195,8 @@ class HyperelasticBody:
             if tangent:
                 assert A is not None
                 A = A + p[..., None, None, None, None] * DCOF
-                C = (cof @ self._dN_t).transpose(0, 1, 3, 2)  # (e, q, b, k)
-                G = self._wNp @ C.reshape(ne, C.shape[1], -1)  # (e, m, 2n)
+                cofB = cof.reshape(ne, -1, 1, 4) @ self._B  # (e, q, 1, 2n): dJ/du
+                G = self._wNp @ cofB[:, :, 0, :]  # (e, m, 2n)
                 ke = self.K * (G.transpose(0, 2, 1) @ (r.Minv @ G))
         else:
             e_vol = float(np.einsum("eq,eq->", r.w, 0.5 * self.K * (J - 1.0) ** 2))
@@ -194,21 +208,12 @@ class HyperelasticBody:
                     + (J - 1.0)[..., None, None, None, None] * DCOF
                 )
         energy = float(np.einsum("eq,eq->", r.w, W)) + e_vol
-        n = self.n_local
         nq = P.shape[1]
-        # fe[e, a, i] = sum_{q,j} w dN[e,q,a,j] P[e,q,i,j]
-        fe = (self._wdN @ P.transpose(0, 1, 3, 2).reshape(ne, 2 * nq, 2)).reshape(ne, -1)
+        fe = (self._wBT @ P.reshape(ne, 4 * nq, 1))[..., 0]  # sum_q w B^T P
         if tangent:
             assert A is not None
-            # T[e,q,i,j,k,b] = sum_l A[e,q,i,j,k,l] dN[e,q,b,l]
-            T = A.reshape(ne, nq, 8, 2) @ self._dN_t  # (e, q, (i,j,k), b)
-            T = T.reshape(ne, nq, 2, 2, 2, n).transpose(0, 1, 3, 2, 4, 5).reshape(ne, 2 * nq, 4 * n)
-            kk = (
-                (self._wdN @ T)
-                .reshape(ne, n, 2, 2, n)
-                .transpose(0, 1, 2, 4, 3)
-                .reshape(ne, 2 * n, 2 * n)
-            )
+            BD = (A.reshape(ne, nq, 4, 4) @ self._B).reshape(ne, 4 * nq, -1)
+            kk = self._wBT @ BD  # sum_q w B^T A B
             ke = kk if ke is None else ke + kk
         return ElementState(energy, fe, ke, True)
 
