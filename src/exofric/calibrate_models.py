@@ -31,8 +31,8 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
-from .errors import InputError, check_positive, check_pressures, check_range
-from .materials import MooneyRivlin, shore_to_modulus
+from .errors import InputError, check_positive, check_pressures
+from .materials import MooneyRivlin
 
 if TYPE_CHECKING:
     from .fe.inflation import MeshSpec
@@ -152,13 +152,8 @@ def material_for(
         return MooneyRivlin.from_shore(shore, correlation, c01_ratio=c01_ratio, poisson=poisson)
     if c10_convention != "paper-slip":
         raise InputError(f"c10_convention must be 'eq4' or 'paper-slip', got {c10_convention!r}")
-    ratio = check_range("c01_ratio", c01_ratio, 0.0, 1.0)
-    nu = check_range("poisson", poisson, 0.0, 0.5, lo_open=True, hi_open=True)
-    g = shore_to_modulus(shore, correlation) / 3.0
-    c10 = g / 2.0 / _SLIP_DIVISOR
-    c01 = ratio * c10
-    d = (1.0 - 2.0 * nu) / (c10 + c01)
-    return MooneyRivlin(c10=c10, c01=c01, d=d, shore=float(shore), correlation=correlation)
+    return MooneyRivlin.from_shore(shore, correlation, c01_ratio=c01_ratio, poisson=poisson,
+                                   c10_divisor=_SLIP_DIVISOR)
 
 
 def paper_table1_model() -> CachedModel:

@@ -198,6 +198,7 @@ class MooneyRivlin:
         correlation: str = "paper",
         c01_ratio: float = 0.05,
         poisson: float = 0.498,
+        c10_divisor: float | None = None,
     ) -> MooneyRivlin:
         """Build the material from Shore A hardness by the paper's Eqs 3-6.
 
@@ -211,6 +212,9 @@ class MooneyRivlin:
             C01 / C10 (Eq 5; default 0.05), in [0, 1].
         poisson : float
             Poisson's ratio nu in (0, 0.5) (Eq 6; default 0.498).
+        c10_divisor : float, optional
+            ``C10 = (G/2) / c10_divisor``; default ``1 + c01_ratio`` (Eq 4 exactly). The
+            paper's printed Table 2 corresponds to 1.005 (a slip for 1.05, see the notes).
 
         Returns
         -------
@@ -221,7 +225,8 @@ class MooneyRivlin:
         nu = check_range("poisson", poisson, 0.0, 0.5, lo_open=True, hi_open=True)
         e0 = shore_to_modulus(shore, correlation)
         g = e0 / 3.0
-        c10 = g / 2.0 / (1.0 + ratio)
+        div = 1.0 + ratio if c10_divisor is None else check_positive("c10_divisor", c10_divisor)
+        c10 = g / 2.0 / div
         c01 = ratio * c10
         d = (1.0 - 2.0 * nu) / (c10 + c01)
         return cls(c10=c10, c01=c01, d=d, shore=float(shore), correlation=correlation)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import typer
@@ -51,3 +52,26 @@ def kv_table(title: str, rows: list[tuple[str, str, str]]) -> Table:
     for r in rows:
         t.add_row(*r)
     return t
+
+
+def write_outputs(
+    res: Any, plot: Path | None, vtu: Path | None, plotter: Callable[[Any, Path], Path]
+) -> dict[str, str]:
+    """Write the optional PNG (``plotter(res, path)``) and the VTU of the last state of an FE
+    result (``nodes``, ``elements``, ``displacements``, ``von_mises_mpa``); return their paths."""
+    out: dict[str, str] = {}
+    if plot is not None:
+        out["plot"] = str(plotter(res, plot))
+    if vtu is not None:
+        from ..export import write_vtu
+
+        out["vtu"] = str(
+            write_vtu(
+                vtu,
+                res.nodes,
+                res.elements,
+                res.displacements[-1],
+                {"von_mises_mpa": res.von_mises_mpa[-1]},
+            )
+        )
+    return out

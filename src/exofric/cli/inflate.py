@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from ..materials import MooneyRivlin
-from ._common import JSON_OPTION, console, emit, parse_floats
+from ._common import JSON_OPTION, console, emit, parse_floats, write_outputs
 
 
 def material_from_options(
@@ -19,6 +19,7 @@ def material_from_options(
 ) -> MooneyRivlin:
     """MooneyRivlin from --shore, with --c10/--c01/--d overriding the derived constants."""
     from ..errors import InputError
+
     if shore is None and None in (c10, c01, d):
         raise InputError("give --shore, or all of --c10, --c01 and --d")
     base = MooneyRivlin.from_shore(shore, correlation) if shore is not None else None
@@ -58,22 +59,9 @@ def register(app: typer.Typer) -> None:
         p = parse_floats("--pressures", pressures)
         res = inflate(tube_od, tube_id, mat, p, mesh=MeshSpec(n_radial, n_circ))
         out = res.to_dict()
-        if plot is not None:
-            from ..plotting import plot_inflation
+        from ..plotting import plot_inflation
 
-            out["plot"] = str(plot_inflation(res, plot))
-        if vtu is not None:
-            from ..export import write_vtu
-
-            out["vtu"] = str(
-                write_vtu(
-                    vtu,
-                    res.nodes,
-                    res.elements,
-                    res.displacements[-1],
-                    {"von_mises_mpa": res.von_mises_mpa[-1]},
-                )
-            )
+        out.update(write_outputs(res, plot, vtu, plot_inflation))
 
         def render() -> None:
             from rich.table import Table

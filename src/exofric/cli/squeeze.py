@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from ._common import JSON_OPTION, console, emit, parse_floats
+from ._common import JSON_OPTION, console, emit, parse_floats, write_outputs
 from .inflate import material_from_options
 
 DEFAULT_P = ",".join(f"{0.05 * i:.2f}" for i in range(1, 13))
@@ -44,22 +44,9 @@ def register(app: typer.Typer) -> None:
         p = parse_floats("--pressures", pressures)
         res = squeeze(st, mat, p, mesh=MeshSpec(n_radial, n_circ, grading=grading), penalty=penalty)
         out = res.to_dict()
-        if plot is not None:
-            from ..plotting import plot_squeeze
+        from ..plotting import plot_squeeze
 
-            out["plot"] = str(plot_squeeze(res, plot))
-        if vtu is not None:
-            from ..export import write_vtu
-
-            out["vtu"] = str(
-                write_vtu(
-                    vtu,
-                    res.nodes,
-                    res.elements,
-                    res.displacements[-1],
-                    {"von_mises_mpa": res.von_mises_mpa[-1]},
-                )
-            )
+        out.update(write_outputs(res, plot, vtu, plot_squeeze))
 
         def render() -> None:
             from rich.table import Table
