@@ -370,7 +370,7 @@ def squeeze(
         xo = (prob.X + pt.u).reshape(-1, 2)[prob.outer]
         rows.append(
             (
-                -2.0 * cw.force[:, 1].sum(),
+                -2.0 * cw.force[:, 1].sum() + 0.0,  # + 0.0: no negative zero
                 2.0 * ch.force[:, 1].sum(),
                 wire_halfwidth(xo, cw.gap, prob.wire.center, prob.wire.radius),
                 wall_arc(xo, ch.active, prob.hole.radius),

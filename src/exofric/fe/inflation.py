@@ -8,7 +8,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..materials import MooneyRivlin
-from .hyperelastic import HyperelasticBody
+from .hyperelastic import ElementState, HyperelasticBody
 from .loads import area_hessian
 from .mesh import TubeMesh, polar_mesh
 from .solver import Assembler
@@ -57,7 +57,61 @@ def scatter(edofs: np.ndarray, fe: np.ndarray, n: int) -> np.ndarray:
     return np.bincount(edofs.ravel(), weights=fe.ravel(), minlength=n)
 
 
-class InflationProblem:
+class PressurizedTube:
+    """A meshed tube under internal follower pressure: what both FE problems share.
+
+    Holds the hyperelastic body, the symmetry constraints (``fixed`` dofs), the
+    cavity-area Hessian of the pressure potential ``-P * A_cavity`` and the assembler
+    (element blocks, the pressure Hessian, then any ``extra_patterns``).
+    """
+
+    def __init__(
+        self,
+        mesh: TubeMesh,
+        material: MooneyRivlin,
+        spec: MeshSpec,
+        fixed: np.ndarray,
+        extra_patterns: tuple[tuple[np.ndarray, np.ndarray], ...] = (),
+    ) -> None:
+        self.mesh = mesh
+        self.body = HyperelasticBody(mesh, material, spec.formulation)
+        n = mesh.n_nodes
+        self.n_dofs = 2 * n
+        self.free = np.ones(self.n_dofs, dtype=bool)
+        self.free[fixed] = False
+        self.H = area_hessian(mesh.boundary_edges("inner"), n).tocoo()
+        self.X = mesh.nodes.ravel()
+        ed = self.body.edofs
+        k = ed.shape[1]
+        self.assembler = Assembler(
+            self.n_dofs,
+            self.free,
+            [
+                (np.repeat(ed, k, axis=1), np.tile(ed, (1, k))),
+                (self.H.row, self.H.col),
+                *extra_patterns,
+            ],
+        )
+
+    def pressurized(
+        self, u: np.ndarray, load: float, tangent: bool
+    ) -> tuple[ElementState, float, np.ndarray] | None:
+        """Body state, energy (N mm per mm) and residual (N per mm) under pressure ``load``."""
+        st = self.body.evaluate(u, tangent)
+        if not st.valid:
+            return None
+        x = self.X + u
+        Hx = self.H @ x
+        R = scatter(self.body.edofs, st.fe, self.n_dofs) - load * Hx
+        return st, st.energy - 0.5 * load * float(x @ Hx), R
+
+    def tangent(self, st: ElementState, load: float, *extra_blocks: np.ndarray) -> sp.csc_matrix:
+        """Reduced tangent: element blocks, ``-P H`` and the extra blocks (pattern order)."""
+        assert st.ke is not None
+        return self.assembler.matrix([st.ke, -load * self.H.data, *extra_blocks])
+
+
+class InflationProblem(PressurizedTube):
     """Quarter tube (0 <= theta <= 90 deg) under internal follower pressure.
 
     Symmetry: ``u_y = 0`` on theta = 0 and ``u_x = 0`` on theta = 90 deg. The pressure
@@ -68,7 +122,7 @@ class InflationProblem:
         self, tube_od_mm: float, tube_id_mm: float, material: MooneyRivlin, spec: MeshSpec
     ) -> None:
         self.A, self.B = 0.5 * tube_id_mm, 0.5 * tube_od_mm
-        self.mesh: TubeMesh = polar_mesh(
+        mesh = polar_mesh(
             self.A,
             self.B,
             spec.n_radial,
@@ -77,41 +131,23 @@ class InflationProblem:
             theta1=0.5 * np.pi,
             kind=spec.kind,
         )
-        self.body = HyperelasticBody(self.mesh, material, spec.formulation)
-        n = self.mesh.n_nodes
-        self.n_dofs = 2 * n
-        self.free = np.ones(self.n_dofs, dtype=bool)
-        self.free[2 * self.mesh.grid[:, 0] + 1] = False  # theta = 0: u_y = 0
-        self.free[2 * self.mesh.grid[:, -1]] = False  # theta = 90: u_x = 0
-        self.H = area_hessian(self.mesh.boundary_edges("inner"), n).tocoo()
-        self.X = self.mesh.nodes.ravel()
-        ed = self.body.edofs
-        k = ed.shape[1]
-        self.assembler = Assembler(
-            self.n_dofs,
-            self.free,
+        fixed = np.concatenate(
             [
-                (np.repeat(ed, k, axis=1), np.tile(ed, (1, k))),
-                (self.H.row, self.H.col),
-            ],
-        )
+                2 * mesh.grid[:, 0] + 1,  # theta = 0: u_y = 0
+                2 * mesh.grid[:, -1],
+            ]
+        )  # theta = 90 deg: u_x = 0
+        super().__init__(mesh, material, spec, fixed)
 
     def evaluate(
         self, u: np.ndarray, load: float, tangent: bool
     ) -> tuple[float, np.ndarray, sp.csc_matrix | None] | None:
         """Energy (N mm per mm depth), residual (N/mm) and reduced tangent at pressure ``load``."""
-        st = self.body.evaluate(u, tangent)
-        if not st.valid:
+        out = self.pressurized(u, load, tangent)
+        if out is None:
             return None
-        x = self.X + u
-        Hx = self.H @ x
-        R = scatter(self.body.edofs, st.fe, self.n_dofs) - load * Hx
-        energy = st.energy - 0.5 * load * float(x @ Hx)
-        K = None
-        if tangent:
-            assert st.ke is not None
-            K = self.assembler.matrix([st.ke, -load * self.H.data])
-        return energy, R, K
+        st, energy, R = out
+        return energy, R, (self.tangent(st, load) if tangent else None)
 
     def scales(self, load: float) -> tuple[float, float]:
         """Force scale P*B (N/mm) with a floor, and length scale B (mm)."""

@@ -15,18 +15,15 @@ import scipy.sparse as sp
 from ..geometry import Structure
 from ..materials import MooneyRivlin
 from .contact import ContactState, RigidCircle, evaluate_contact, nodal_weights
-from .hyperelastic import HyperelasticBody
-from .inflation import MeshSpec, scatter
-from .loads import area_hessian
+from .inflation import MeshSpec, PressurizedTube
 from .mesh import polar_mesh
-from .solver import Assembler
 
 __all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "wire_halfwidth", "wall_arc"]
 
 GRAVITY_MM_S2 = 9810.0
 
 
-class SqueezeProblem:
+class SqueezeProblem(PressurizedTube):
     """Discretised squeeze problem (see module docstring).
 
     Parameters
@@ -54,7 +51,7 @@ class SqueezeProblem:
         s = structure
         self.structure = s
         self.A, self.B = 0.5 * s.tube_id_mm, 0.5 * s.tube_od_mm
-        self.mesh = polar_mesh(
+        mesh = polar_mesh(
             self.A,
             self.B,
             spec.n_radial,
@@ -66,43 +63,25 @@ class SqueezeProblem:
             kind=spec.kind,
             center=s.tube_center_mm,
         )
-        self.body = HyperelasticBody(self.mesh, material, spec.formulation)
-        n = self.mesh.n_nodes
-        self.n_dofs = 2 * n
-        self.free = np.ones(self.n_dofs, dtype=bool)
-        self.free[2 * self.mesh.grid[:, 0]] = False  # theta = -90 deg: on x = 0
-        self.free[2 * self.mesh.grid[:, -1]] = False  # theta = +90 deg: on x = 0
-        self.H = area_hessian(self.mesh.boundary_edges("inner"), n).tocoo()
-        self.X = self.mesh.nodes.ravel()
-        self.outer = self.mesh.outer_nodes
-        self.w_outer = nodal_weights(self.mesh.boundary_edges("outer"), self.mesh.nodes, n)[
-            self.outer
-        ]
+        n = mesh.n_nodes
+        self.outer = mesh.outer_nodes
+        cd = 2 * self.outer[:, None] + np.arange(2)  # (m, 2) contact dofs
+        self.contact_dofs = cd
+        fixed = np.concatenate([2 * mesh.grid[:, 0], 2 * mesh.grid[:, -1]])  # on x = 0
+        super().__init__(
+            mesh, material, spec, fixed, ((np.repeat(cd, 2, axis=1), np.tile(cd, (1, 2))),)
+        )
+        self.w_outer = nodal_weights(mesh.boundary_edges("outer"), mesh.nodes, n)[self.outer]
         self.hole = RigidCircle((0.0, 0.0), 0.5 * s.hole_mm, inside=True, name="hole")
         self.wire = RigidCircle(s.wire_center_mm, 0.5 * s.wire_mm, inside=False, name="wire")
         self.penalty = float(penalty)
         # self-weight: f_a = int N_a b dV with b = (0, -rho g) (N/mm^3)
         r = self.body.ref
         nodal_vol = np.bincount(
-            self.mesh.elements.ravel(),
-            weights=np.einsum("eq,qa->ea", r.w, r.N).ravel(),
-            minlength=n,
+            mesh.elements.ravel(), weights=np.einsum("eq,qa->ea", r.w, r.N).ravel(), minlength=n
         )
         self.f_body = np.zeros(self.n_dofs)
         self.f_body[1::2] = -density * GRAVITY_MM_S2 * nodal_vol
-        ed = self.body.edofs
-        k = ed.shape[1]
-        cd = 2 * self.outer[:, None] + np.arange(2)  # (m, 2)
-        self.contact_dofs = cd
-        self.assembler = Assembler(
-            self.n_dofs,
-            self.free,
-            [
-                (np.repeat(ed, k, axis=1), np.tile(ed, (1, k))),
-                (self.H.row, self.H.col),
-                (np.repeat(cd, 2, axis=1), np.tile(cd, (1, 2))),
-            ],
-        )
 
     def contact(self, u: np.ndarray, tangent: bool = False) -> tuple[ContactState, ContactState]:
         """Contact states (hole, wire) of the outer nodes at displacement ``u``."""
@@ -116,22 +95,15 @@ class SqueezeProblem:
         self, u: np.ndarray, load: float, tangent: bool
     ) -> tuple[float, np.ndarray, sp.csc_matrix | None] | None:
         """Energy (N mm per mm), residual (N per mm) and reduced tangent at pressure ``load``."""
-        st = self.body.evaluate(u, tangent)
-        if not st.valid:
+        out = self.pressurized(u, load, tangent)
+        if out is None:
             return None
-        x = self.X + u
-        Hx = self.H @ x
+        st, energy, R = out
         ch, cw = self.contact(u, tangent)
-        R = scatter(self.body.edofs, st.fe, self.n_dofs) - load * Hx - self.f_body
-        fc = ch.force + cw.force
-        np.subtract.at(R, self.contact_dofs.ravel(), fc.ravel())
-        energy = (
-            st.energy - 0.5 * load * float(x @ Hx) - float(self.f_body @ u) + ch.energy + cw.energy
-        )
-        K = None
-        if tangent:
-            assert st.ke is not None
-            K = self.assembler.matrix([st.ke, -load * self.H.data, ch.blocks + cw.blocks])
+        R -= self.f_body
+        np.subtract.at(R, self.contact_dofs.ravel(), (ch.force + cw.force).ravel())
+        energy += ch.energy + cw.energy - float(self.f_body @ u)
+        K = self.tangent(st, load, ch.blocks + cw.blocks) if tangent else None
         return energy, R, K
 
     def limit_predictor(self, u: np.ndarray, guess: np.ndarray) -> np.ndarray:
