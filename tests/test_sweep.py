@@ -93,7 +93,7 @@ def test_local_cluster_matches_plain_serial_loop(spec, cluster_run):
                       keep_fields=False)
         rows = ok[ok["key"] == d.key]
         np.testing.assert_allclose(rows["pressure_mpa"], P, rtol=0, atol=0)
-        for col in ("squeeze_force_n", "wall_force_n", "max_penetration_mm"):
+        for col in ("squeeze_force_n", "wall_force_n", "max_penetration_mm", "max_stretch"):
             np.testing.assert_allclose(rows[col], getattr(ref, col), rtol=1e-12, atol=1e-12)
         np.testing.assert_array_equal(rows["newton_iterations"], ref.newton_iterations)
         assert rows["contact_onset_pressure_mpa"].iloc[0] == pytest.approx(

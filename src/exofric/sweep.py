@@ -156,6 +156,9 @@ def solve_design(
         for k in ("pressure_mpa", "squeeze_force_n", "squeeze_force_n_per_mm", "wall_force_n",
                   "max_penetration_mm", "newton_iterations"):
             out[k] = np.asarray(getattr(res, k)).tolist()
+        # largest principal stretch (> 2.5: beyond the model's validated strain range)
+        out["max_stretch"] = np.asarray(
+            getattr(res, "max_stretch", np.full(len(out["pressure_mpa"]), np.nan))).tolist()
         onset = res.contact_onset_pressure_mpa
         out.update(contact_onset_pressure_mpa=np.nan if onset is None else float(onset),
                    dofs=int(res.dofs), solve_time_s=float(res.solve_time_s))
@@ -190,7 +193,7 @@ def _rows(d: Design, status: str, res: Mapping[str, Any], run_id: str,
         "gamma": nan, "f0_n": nan, "arm_radius_m": nan, "deviation_pct": nan,
         "in_validated_region": [False] * n,
         "contact_onset_pressure_mpa": col("contact_onset_pressure_mpa"),
-        "max_penetration_mm": col("max_penetration_mm"),
+        "max_penetration_mm": col("max_penetration_mm"), "max_stretch": col("max_stretch"),
         "newton_iterations": col("newton_iterations", 0), "dofs": col("dofs", 0),
         "solve_time_s": col("solve_time_s"), "task_time_s": col("task_time_s"),
         "worker": col("worker", ""), "blas_threads": col("blas_threads", ""),

@@ -48,6 +48,7 @@ SCHEMA = pa.schema([
     ("gamma", pa.float64()), ("f0_n", pa.float64()), ("arm_radius_m", pa.float64()),
     ("deviation_pct", pa.float64()), ("in_validated_region", pa.bool_()),
     ("contact_onset_pressure_mpa", pa.float64()), ("max_penetration_mm", pa.float64()),
+    ("max_stretch", pa.float64()),
     ("newton_iterations", pa.int64()), ("dofs", pa.int64()),
     ("solve_time_s", pa.float64()), ("task_time_s", pa.float64()),
     ("worker", pa.string()), ("blas_threads", pa.string()),

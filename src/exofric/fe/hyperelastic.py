@@ -217,6 +217,19 @@ class HyperelasticBody:
             ke = kk if ke is None else ke + kk
         return ElementState(energy, fe, ke, True)
 
+    def max_stretch(self, u: np.ndarray) -> float:
+        """Largest in-plane principal stretch over all quadrature points at ``u``.
+
+        From the eigenvalues of C = F^T F (2x2, closed form): lambda^2 = (tr C + sqrt(tr C^2
+        - 4 det C)) / 2 with det C = J^2.
+        """
+        F = self.deformation_gradient(u)
+        C = np.einsum("...ki,...kj->...ij", F, F)
+        tr = C[..., 0, 0] + C[..., 1, 1]
+        det = C[..., 0, 0] * C[..., 1, 1] - C[..., 0, 1] * C[..., 1, 0]
+        lam2 = 0.5 * (tr + np.sqrt(np.maximum(tr * tr - 4.0 * det, 0.0)))
+        return float(np.sqrt(lam2.max()))
+
     def element_pressure(self, u: np.ndarray) -> np.ndarray:
         """Hydrostatic pressure field p (MPa, tension positive) at quadrature points (e, q)."""
         F = self.deformation_gradient(u)
