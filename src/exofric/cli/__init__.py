@@ -93,6 +93,10 @@ def run(argv: Sequence[str] | None = None) -> int:
     except InputError as exc:
         print(f"exofric: error: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:  # files the user named: missing, unwritable, not a directory...
+        where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
+        print(f"exofric: error:{where} {exc.strerror or exc}", file=sys.stderr)
+        return 2
     except ConvergenceError as exc:
         print(f"exofric: did not converge: {exc}", file=sys.stderr)
         return 3

@@ -41,6 +41,10 @@ def register(app: typer.Typer) -> None:
             raise InputError(f"--notes-dir {notes_dir}: not a directory")
         if out.exists() and not out.is_dir():
             raise InputError(f"--out {out}: exists and is not a directory")
+        try:  # fail before the 20 s of computing, not after
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise InputError(f"--out {out}: cannot create the directory ({exc.strerror})") from None
         t0 = time.perf_counter()
         cfg = ReproduceConfig.for_mode(fast)
         if as_json:

@@ -132,7 +132,17 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Find swept designs reaching a target torque with the least pressure (Nm, MPa, mm)."""
         from ..design import search_designs
+        from ..errors import InputError, check_positive
 
+        # validate the search before running (or loading) the sweep
+        check_positive("--target-torque", target_torque, "Nm")
+        check_positive("--pmax", pmax, "MPa")
+        if arm is not None:
+            check_positive("--arm", arm, "m")
+        if gamma is not None:
+            check_positive("--gamma", gamma)
+        if objective not in ("pressure", "margin"):
+            raise InputError(f"--objective must be 'pressure' or 'margin', got {objective!r}")
         run = _run(config, out, workers, scheduler, serial, False, as_json, timeout)
         frame = run.frame
         search = search_designs(frame, target_torque, arm if arm is not None else

@@ -1,0 +1,47 @@
+"""The CLI contract across all commands: --json everywhere; bad input -> one line, exit 2, fast."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+
+from exofric.cli import run
+
+COMMANDS = ["material", "paper", "inflate", "squeeze", "calibrate", "fit-friction", "predict",
+            "invert", "rig", "control", "control compare", "control identify", "sweep", "design",
+            "reproduce"]
+
+
+@pytest.mark.parametrize("cmd", COMMANDS)
+def test_every_command_offers_json(cmd, capsys):
+    assert run([*cmd.split(), "--help"]) == 0
+    assert "--json" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["calibrate", "--data", "nope.csv", "--tube-od", "8.3"], "nope.csv"),
+        (["sweep", "nope.toml", "--out", "/tmp/exofric-x"], "nope.toml"),
+        (["control", "--controller", "xyz", "--target-friction", "54.4"], "--controller"),
+        (["invert", "--gamma", "0.7168", "--cubic", "1,2", "--target-friction", "54.4"], "--cubic"),
+        (["design", "--target-torque", "-4"], "--target-torque"),
+        (["design", "--objective", "foo"], "--objective"),
+        (["reproduce", "--out", "/dev/null/x"], "--out"),
+        (["predict", "--gamma", "-1", "--paper"], "gamma"),
+        (["squeeze", "--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire", "1.6",
+          "--shore", "62.5", "--length", "-5"], "length_mm"),
+        (["inflate", "--shore", "62.5", "--tube-od", "8.3", "--tube-id", "4.97", "--pressures",
+          "0.1,nan"], "pressures_mpa"),
+    ],
+)
+def test_bad_input_is_one_line_exit_2_before_any_work(args, needle, capsys):
+    t0 = time.perf_counter()
+    code = run(args)
+    dt = time.perf_counter() - t0
+    out, err = capsys.readouterr()
+    assert code == 2 and out == ""
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert len(lines) == 1 and needle in lines[0] and "Traceback" not in err
+    assert dt < 5.0  # validated up front, not after a solve or a sweep
