@@ -12,8 +12,6 @@ import os
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ[_var] = "1"
 
-import argparse  # noqa: E402
-import json  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
@@ -26,6 +24,7 @@ from exofric.materials import MooneyRivlin  # noqa: E402
 from exofric.simulate import inflate  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _fe_bench import cli_main, target_line  # noqa: E402
 
 OD_MM, ID_MM, SHORE = 8.3, 4.97, 62.5
 PRESSURES_MPA = np.linspace(0.05, 0.6, 12)
@@ -112,25 +111,14 @@ def render(out: dict[str, Any]) -> str:
             f"median solve {f['median_solve_time_s'] * 1e3:.1f} ms (wall "
             f"{f['median_wall_time_s'] * 1e3:.1f} ms, {f['runs']} runs), max OD difference "
             f"{f['max_rel_od_difference_vs_exofric']:.1e}",
-            f"  ratio felupe/exofric = {out['ratio_felupe_over_exofric']:.1f}x "
-            f"(targets: exofric <= {out['target_time_s']} s, >= {out['target_ratio']:g}x): "
-            f"{'met' if out['meets_targets'] else 'NOT met'}",
+            target_line(out),
         ]
     return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:
     """Command-line entry point; prints the summary and returns it."""
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--runs", type=int, default=7, help="exofric repetitions (median)")
-    ap.add_argument("--felupe-runs", type=int, default=3, help="FElupe repetitions (median)")
-    ap.add_argument("--json", action="store_true", help="print one JSON object")
-    ap.add_argument("--quiet", action="store_true", help="print nothing (return only)")
-    args = ap.parse_args(argv)
-    out = run(args.runs, args.felupe_runs)
-    if not args.quiet:
-        print(json.dumps(out) if args.json else render(out))
-    return out
+    return cli_main(run, render, __doc__, 3, argv)
 
 
 if __name__ == "__main__":

@@ -12,8 +12,6 @@ import os
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ[_var] = "1"
 
-import argparse  # noqa: E402
-import json  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
@@ -25,6 +23,7 @@ from exofric.geometry import BASE  # noqa: E402
 from exofric.materials import MooneyRivlin  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _fe_bench import cli_main, target_line  # noqa: E402
 
 SHORE = 62.5
 PRESSURES_MPA = np.linspace(0.05, 0.6, 12)
@@ -120,25 +119,14 @@ def render(out: dict[str, Any]) -> str:
             f"median solve {f['median_solve_time_s']:.2f} s (wall {f['median_wall_time_s']:.2f}"
             f" s, {f['runs']} runs), N(0.6 MPa) = {f['squeeze_force_n_per_mm'][-1]:.4f} N/mm, "
             f"max N difference (N > 0.1 N/mm) {f['max_rel_n_difference_vs_exofric']:.2%}",
-            f"  ratio felupe/exofric = {out['ratio_felupe_over_exofric']:.1f}x "
-            f"(targets: exofric <= {out['target_time_s']} s, >= {out['target_ratio']:g}x): "
-            f"{'met' if out['meets_targets'] else 'NOT met'}",
+            target_line(out),
         ]
     return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:
     """Command-line entry point; prints the summary and returns it."""
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--runs", type=int, default=7, help="exofric repetitions (median)")
-    ap.add_argument("--felupe-runs", type=int, default=1, help="FElupe repetitions (median)")
-    ap.add_argument("--json", action="store_true", help="print one JSON object")
-    ap.add_argument("--quiet", action="store_true", help="print nothing (return only)")
-    args = ap.parse_args(argv)
-    out = run(args.runs, args.felupe_runs)
-    if not args.quiet:
-        print(json.dumps(out) if args.json else render(out))
-    return out
+    return cli_main(run, render, __doc__, 1, argv)
 
 
 if __name__ == "__main__":
