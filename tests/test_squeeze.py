@@ -33,6 +33,13 @@ def test_equilibrium_wall_minus_wire_equals_weight(base):
     )
 
 
+def test_equilibrium_at_zero_pressure():
+    # at P = 0 the tube rests on the wall under its weight alone: wall force = weight, no wire
+    r = squeeze(BASE, MAT, [0.0, 0.05], keep_fields=False)
+    assert r.wall_force_n_per_mm[0] == pytest.approx(r.weight_n_per_mm, rel=1e-6)
+    assert r.squeeze_force_n_per_mm[0] == 0.0 and r.newton_iterations[0] >= 1
+
+
 def test_penetration_within_requirement(base):
     # default penalty must keep penetration below max(0.1% of the clearance, 1e-4 mm)
     allowed = max(1e-3 * BASE.clearance_mm, 1e-4)

@@ -252,8 +252,16 @@ def solve_path(
     lam_prev = lam
     step = s.max_step
     out: list[PathPoint] = []
+    # equilibrium at the starting load first (e.g. the squeezed tube under its own weight at
+    # P = 0): a requested load equal to it must not return an unsolved state
+    start = _newton(problem, u, lam, s)
+    if start is None:
+        raise ConvergenceError(
+            f"Newton failed at the starting {s.load_name} {lam:.6g} {s.load_unit}", reached=None)
+    u, iters_start = start
     for target in loads:
-        iters = 0
+        iters = iters_start
+        iters_start = 0
         nsteps = 0
         cut = 0
         while lam < target - 1e-15:
