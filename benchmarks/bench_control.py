@@ -9,8 +9,8 @@ from __future__ import annotations
 import time
 import timeit
 
-from exofric.control.cases import ControlSetup, compare, run_case
-from exofric.control.pid import Controller
+from exofric.control import Controller
+from exofric.reproduce import ControlSetup, compare, run_case
 
 
 def _per_call_us(fn: object, number: int = 20000, repeat: int = 5) -> float:

@@ -19,9 +19,11 @@ from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from exofric.analytic import compressible_inflation  # noqa: E402
-from exofric.materials import MooneyRivlin  # noqa: E402
-from exofric.simulate import inflate  # noqa: E402
+from exofric.material import MooneyRivlin  # noqa: E402
+from exofric.simulate import (  # noqa: E402
+    compressible_inflation,
+    inflate,
+)
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _fe_bench import cli_main, target_line  # noqa: E402

@@ -20,7 +20,7 @@ from typing import Any  # noqa: E402
 import numpy as np  # noqa: E402
 
 from exofric.geometry import BASE  # noqa: E402
-from exofric.materials import MooneyRivlin  # noqa: E402
+from exofric.material import MooneyRivlin  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _fe_bench import cli_main, target_line  # noqa: E402

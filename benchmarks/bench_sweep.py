@@ -4,7 +4,7 @@ per-design overhead of Dask against a plain in-process loop.
 Run: ``.venv/bin/python benchmarks/bench_sweep.py [--designs 12] [--small]``.
 
 * ``plain loop``: :func:`exofric.simulate.squeeze` called design after design (no I/O).
-* ``serial sweep``: :func:`exofric.sweep.run_sweep` with ``serial=True`` (adds the Parquet
+* ``serial sweep``: :func:`exofric.design.run_sweep` with ``serial=True`` (adds the Parquet
   writes, the cache bookkeeping and the post-processing).
 * ``dask k``: a warm ``LocalCluster`` with k processes x 1 thread (workers have already
   imported exofric and solved designs), reached through ``scheduler=``, so cluster
@@ -25,9 +25,8 @@ import time
 from dataclasses import replace
 from typing import Any
 
+from exofric.design import BLAS_ENV, SweepSpec, parse_sweep, run_sweep
 from exofric.simulate import squeeze
-from exofric.sweep import BLAS_ENV, run_sweep
-from exofric.sweep_config import SweepSpec, parse_sweep
 
 
 def make_spec(n_designs: int, small: bool) -> SweepSpec:

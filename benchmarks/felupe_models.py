@@ -290,7 +290,7 @@ def felupe_inflate(
 
     Examples
     --------
-    >>> from exofric.fe.mesh import polar_mesh  # doctest: +SKIP
+    >>> from exofric.fe import polar_mesh  # doctest: +SKIP
     >>> m = polar_mesh(2.485, 4.15, 2, 6)  # doctest: +SKIP
     >>> felupe_inflate(m.nodes, m.elements, (0.635, 0.0318, 0.006), [0.1]).outer_diameter_mm
     array([8.496...])  # doctest: +SKIP

@@ -2,7 +2,7 @@
 # Material calibration from the paper's inflation test (Ma et al. 2021, §3.3, Table 1).
 # Units: MPa, mm, %. Run from the repository root.
 set -e
-DATA=src/exofric/data/paper
+DATA=src/exofric/paper/data
 OUT=${OUT:-.}   # where the figures go
 
 # 1. Replay the paper's bisection with its own ANSYS columns as the model (no simulation):

@@ -87,7 +87,7 @@ def test_paper_slip_convention_matches_printed_table2() -> None:
 
 
 def test_cached_model_memoises_and_1d_factory_matches_reference() -> None:
-    from exofric.analytic import compressible_inflation
+    from exofric.simulate import compressible_inflation
 
     m = make_model("1d", 8.3)
     p = np.array([0.1, 0.3])

@@ -11,7 +11,7 @@ import pytest
 
 from exofric import paper
 from exofric.cli import run
-from exofric.control.plant import PlantParams
+from exofric.control import PlantParams
 
 CASE_KEYS = {"settling_time_s", "rise_time_s", "overshoot_pct", "steady_state_error_n",
              "final_friction_n", "final_pressure_mpa", "gains", "controller", "feedforward"}

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import pytest
 
-from exofric.control.cases import ControlSetup, compare
-from exofric.control.plant import PlantParams
+from exofric.control import PlantParams
+from exofric.reproduce import ControlSetup, compare
 
 TARGET = 54.40
 

@@ -5,8 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exofric.control.identify import fopdt_response, identify_step
-from exofric.control.plant import PlantParams, PressurePlant
+from exofric.control import PlantParams, PressurePlant, fopdt_response, identify_step
 from exofric.errors import InputError
 
 TAU, THETA = 0.8, 0.2

@@ -8,10 +8,9 @@ import control as ct
 import numpy as np
 import pytest
 
-from exofric.control.cases import ControlSetup, run_case
-from exofric.control.metrics import itae, step_metrics
-from exofric.control.plant import PlantParams
+from exofric.control import PlantParams, itae, step_metrics
 from exofric.errors import InputError
+from exofric.reproduce import ControlSetup, run_case
 
 
 @pytest.mark.parametrize(

@@ -6,10 +6,9 @@ import control as ct
 import numpy as np
 import pytest
 
-from exofric.control.cases import ControlSetup
-from exofric.control.pid import Controller, ModelFeedforward, PIDGains
-from exofric.control.simulate import setpoint_profile, simulate
+from exofric.control import Controller, ModelFeedforward, PIDGains, setpoint_profile, simulate
 from exofric.errors import InputError
+from exofric.reproduce import ControlSetup
 
 DT = 0.01
 
@@ -141,7 +140,7 @@ def test_antiwindup_limits_overshoot_after_unreachable_target(kind):
 
 @pytest.mark.parametrize("kind", ["pi", "pid"])
 def test_antiwindup_shortens_recovery_from_saturation(kind):
-    from exofric.control.metrics import step_metrics
+    from exofric.control import step_metrics
 
     res = {}
     for aw in ("none", "back-calculation", "clamping"):

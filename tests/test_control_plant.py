@@ -8,14 +8,14 @@ import numpy as np
 import pytest
 
 from exofric import paper
-from exofric.control.plant import (
+from exofric.control import (
     CubicFrictionMap,
     CurveFrictionMap,
     PlantParams,
     PressurePlant,
     local_slope,
+    simulate,
 )
-from exofric.control.simulate import simulate
 from exofric.errors import InputError
 from exofric.friction import CubicFit
 
@@ -73,7 +73,7 @@ def test_pwm_loop_requires_period_equal_to_dt():
 
 
 def _const_controller(u: float):
-    from exofric.control.pid import Controller, PIDGains
+    from exofric.control import Controller, PIDGains
 
     return Controller(PIDGains(0.0), bias_mpa=u)
 

@@ -8,12 +8,9 @@ import control as ct
 import numpy as np
 import pytest
 
-from exofric.control.cases import ControlSetup
-from exofric.control.metrics import itae
-from exofric.control.pid import Controller
-from exofric.control.simulate import simulate
-from exofric.control.tuning import itae_gains, rule_gains
+from exofric.control import Controller, itae, itae_gains, rule_gains, simulate
 from exofric.errors import InputError
+from exofric.reproduce import ControlSetup
 
 K, TAU, THETA = 471.0, 0.8, 0.2
 

@@ -6,11 +6,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from exofric.design import DEFAULT_SPACE, search_designs
+from exofric.design import DEFAULT_SPACE, parse_sweep, run_sweep, search_designs
 from exofric.errors import InputError
 from exofric.simulate import squeeze
-from exofric.sweep import run_sweep
-from exofric.sweep_config import parse_sweep
 
 P = np.round(np.arange(1, 13) * 0.05, 2)   # 0.05 ... 0.6 MPa
 

@@ -11,8 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exofric.fe.elements import reference_data
-from exofric.fe.mesh import polar_mesh
+from exofric.fe import polar_mesh, reference_data
 
 skfem = pytest.importorskip("skfem")
 

@@ -26,10 +26,12 @@ from felupe_models import (  # noqa: E402
     mooney_rivlin_iso_stress,
 )
 
-from exofric.analytic import compressible_inflation  # noqa: E402
-from exofric.fe.mesh import polar_mesh  # noqa: E402
-from exofric.materials import MooneyRivlin  # noqa: E402
-from exofric.simulate import inflate  # noqa: E402
+from exofric.fe import polar_mesh  # noqa: E402
+from exofric.material import MooneyRivlin  # noqa: E402
+from exofric.simulate import (
+    compressible_inflation,  # noqa: E402
+    inflate,  # noqa: E402
+)
 
 MAT = MooneyRivlin.from_shore(62.5)
 OD, ID = 8.3, 4.97

@@ -7,13 +7,7 @@ import pytest
 
 from exofric import paper
 from exofric.errors import InputError
-from exofric.friction import (
-    CubicFit,
-    CurveInverse,
-    FrictionModel,
-    pressure_for_friction,
-)
-from exofric.friction_torque import torque
+from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction, torque
 
 EQ8 = paper.eq8()
 

@@ -9,9 +9,14 @@ from scipy import stats
 
 from exofric import paper
 from exofric.errors import InputError
-from exofric.friction import CubicFit
-from exofric.friction_fit import fit_gamma, match_squeeze, relative_errors
-from exofric.rig import RigConfig, simulate_rig
+from exofric.friction import (
+    CubicFit,
+    RigConfig,
+    fit_gamma,
+    match_squeeze,
+    relative_errors,
+    simulate_rig,
+)
 
 GAMMA = 0.7168
 EQ8 = CubicFit(paper.eq8(), 0.2, 0.6)

@@ -10,16 +10,16 @@ import pytest
 
 from exofric import paper
 from exofric.errors import InputError
-from exofric.friction import FrictionModel
-from exofric.friction_predict import (
+from exofric.friction import (
     ApplicabilityWarning,
+    FrictionModel,
     MeasuredCurve,
     deviation,
+    one_way_anova,
     paper_structures,
     predict,
     structures_from_dict,
 )
-from exofric.friction_stats import one_way_anova
 from exofric.geometry import BASE, Structure
 
 
@@ -183,8 +183,7 @@ def test_example_structures_file_is_table3() -> None:
 
 
 def test_prediction_plot_renders(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    from exofric.friction_plot import plot_predictions
-    from exofric.plotting import save
+    from exofric.plots import plot_predictions, save
 
     meas = {"test 1": MeasuredCurve.of([0.2, 0.4], [25.0, 64.0])}
     with pytest.warns(ApplicabilityWarning):

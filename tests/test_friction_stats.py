@@ -8,7 +8,7 @@ import pytest
 from scipy import stats
 
 from exofric.errors import InputError
-from exofric.friction_stats import anova_vs_base, one_way_anova
+from exofric.friction import anova_vs_base, one_way_anova
 
 # Textbook example (Wikipedia, "One-way analysis of variance", worked example):
 # a1 = 6 8 4 5 3 4, a2 = 8 12 9 11 6 8, a3 = 13 9 11 8 7 12.

@@ -9,7 +9,7 @@ import pytest
 
 from exofric import paper
 from exofric.errors import InputError
-from exofric.materials import CORRELATIONS, MaterialRangeWarning, MooneyRivlin, shore_to_modulus
+from exofric.material import CORRELATIONS, MaterialRangeWarning, MooneyRivlin, shore_to_modulus
 
 
 def test_eq3_at_table1_hardness_values():

@@ -7,8 +7,7 @@ import pytest
 
 from exofric import paper
 from exofric.errors import InputError
-from exofric.friction import CubicFit
-from exofric.rig import RigConfig, simulate_rig
+from exofric.friction import CubicFit, RigConfig, simulate_rig
 
 EQ8 = CubicFit(paper.eq8(), 0.2, 0.6)
 P = np.linspace(0.2, 0.6, 41)

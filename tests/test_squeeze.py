@@ -7,10 +7,10 @@ import pytest
 
 from exofric import paper
 from exofric.errors import InputError
-from exofric.fe.solver import NewtonSettings
+from exofric.fe import MeshSpec, NewtonSettings
 from exofric.geometry import BASE, Structure
-from exofric.materials import MooneyRivlin
-from exofric.simulate import MeshSpec, squeeze
+from exofric.material import MooneyRivlin
+from exofric.simulate import squeeze
 
 MAT = MooneyRivlin.from_shore(62.5)
 P12 = np.linspace(0.05, 0.6, 12)

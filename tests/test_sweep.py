@@ -18,10 +18,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from exofric.design import SweepSpec, parse_sweep, run_sweep, sweep
 from exofric.errors import ConvergenceError
 from exofric.simulate import squeeze
-from exofric.sweep import run_sweep, sweep
-from exofric.sweep_config import SweepSpec, parse_sweep
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SOLVER = {"n_radial": 1, "n_circ": 12, "grading": 6.0}

@@ -7,9 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from exofric.design import load_sweep, parse_sweep
 from exofric.errors import InputError
-from exofric.sweep_config import parse_sweep
-from exofric.sweep_store import load_sweep
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 P = [0.2, 0.4, 0.6]

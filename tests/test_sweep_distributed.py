@@ -19,8 +19,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from exofric.sweep import run_sweep
-from exofric.sweep_config import parse_sweep
+from exofric.design import parse_sweep, run_sweep
 
 DASK = Path(sys.executable).parent / "dask"
 CONFIG = """

@@ -1,14 +1,82 @@
-"""exofric: friction modelling, prediction and control for friction-based
-variable-stiffness structures (Ma et al., Actuators 2021).
+"""exofric: friction modelling, prediction and control for friction-based variable-stiffness
+structures (Ma et al., Actuators 2021).
+
+The package reads as the paper's pipeline, one subpackage per stage:
+:mod:`~exofric.paper` (the paper as data) -> :mod:`~exofric.material` (Shore to Mooney-Rivlin),
+:mod:`~exofric.geometry` -> :mod:`~exofric.fe` (discretisation and solver) ->
+:mod:`~exofric.simulate` (inflate, squeeze) -> :mod:`~exofric.calibrate`,
+:mod:`~exofric.friction` -> :mod:`~exofric.control` -> :mod:`~exofric.design`,
+:mod:`~exofric.reproduce` -> :mod:`~exofric.report` -> :mod:`~exofric.cli`, with files in
+:mod:`~exofric.io`, pictures in :mod:`~exofric.plots` and defaults in :mod:`~exofric.defaults`.
+
+The names a researcher reaches for first are importable from here; each has one home in its
+stage's subpackage (``ef.squeeze is exofric.simulate.squeeze``).
 
 Units everywhere: mm, N, MPa, s (Nm for torque).
+
+Examples
+--------
+>>> import exofric as ef
+>>> r = ef.squeeze(ef.BASE, ef.MooneyRivlin.from_shore(62.5), [0.6])
+>>> round(float(r.squeeze_force_n[0]))
+240
 """
 
-from importlib.metadata import PackageNotFoundError, version
+from exofric._version import __version__
+from exofric.calibrate import CalibrationResult, InflationData, calibrate
+from exofric.control import Controller, PIDGains, PlantParams
+from exofric.design import SweepSpec, parse_sweep, run_sweep, search_designs
+from exofric.errors import ConvergenceError, InputError
+from exofric.fe import MeshSpec
+from exofric.friction import (
+    CubicFit,
+    CurveInverse,
+    FrictionModel,
+    GammaFit,
+    fit_gamma,
+    predict,
+    pressure_for_friction,
+    simulate_rig,
+    torque,
+)
+from exofric.geometry import BASE, Structure
+from exofric.material import MooneyRivlin, shore_to_modulus
+from exofric.reproduce import ReproduceConfig, ReproduceResult, reproduce
+from exofric.simulate import InflationResult, SqueezeResult, inflate, squeeze
 
-try:
-    __version__ = version("exofric")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0.0.0+unknown"
-
-__all__ = ["__version__"]
+__all__ = [
+    "BASE",
+    "CalibrationResult",
+    "Controller",
+    "ConvergenceError",
+    "CubicFit",
+    "CurveInverse",
+    "FrictionModel",
+    "GammaFit",
+    "InflationData",
+    "InflationResult",
+    "InputError",
+    "MeshSpec",
+    "MooneyRivlin",
+    "PIDGains",
+    "PlantParams",
+    "ReproduceConfig",
+    "ReproduceResult",
+    "Structure",
+    "SqueezeResult",
+    "SweepSpec",
+    "__version__",
+    "calibrate",
+    "fit_gamma",
+    "inflate",
+    "parse_sweep",
+    "predict",
+    "pressure_for_friction",
+    "reproduce",
+    "run_sweep",
+    "search_designs",
+    "shore_to_modulus",
+    "simulate_rig",
+    "squeeze",
+    "torque",
+]

@@ -1,5 +1,5 @@
 """``python -m exofric`` runs the CLI."""
 
-from .cli import main
+from exofric.cli import main
 
 main()

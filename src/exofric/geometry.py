@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
-from .errors import InputError, check_positive
+from exofric.errors import InputError, check_positive
 
 __all__ = ["Structure", "BASE"]
 

@@ -17,8 +17,8 @@ from collections.abc import Sequence
 
 import typer
 
-from .. import __version__
-from ..errors import ConvergenceError, InputError
+from exofric._version import __version__
+from exofric.errors import ConvergenceError, InputError
 
 app = typer.Typer(
     name="exofric",

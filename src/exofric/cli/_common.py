@@ -11,8 +11,8 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from ..errors import InputError
-from ..io import jsonable
+from exofric.errors import InputError
+from exofric.io import jsonable
 
 JSON_OPTION = typer.Option(False, "--json", help="Print exactly one JSON object on stdout.")
 
@@ -63,7 +63,7 @@ def write_outputs(
     if plot is not None:
         out["plot"] = str(plotter(res, plot))
     if vtu is not None:
-        from ..export import write_vtu
+        from exofric.io import write_vtu
 
         out["vtu"] = str(
             write_vtu(

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import typer
 
-from ..errors import InputError
-from ._common import JSON_OPTION, console, emit, kv_table, parse_floats
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats
+from exofric.errors import InputError
 
 
 def register(app: typer.Typer) -> None:
@@ -56,7 +56,7 @@ def register(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Identify Shore A hardness (and tube ID, mm) from inflation data. MPa, mm, %."""
-        from ..calibrate import InflationData, calibrate
+        from exofric.calibrate import InflationData, calibrate
 
         lohi = parse_floats("--bracket", bracket)
         if len(lohi) != 2:

@@ -15,11 +15,11 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 
-from ..errors import InputError
-from ._common import JSON_OPTION, console, emit, kv_table
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table
+from exofric.errors import InputError
 
 if TYPE_CHECKING:
-    from ..control.cases import CaseResult, CompareResult, ControlSetup
+    from exofric.reproduce import CaseResult, CompareResult, ControlSetup
 
 _COMMON_HELP = "Units: N, MPa, s."
 
@@ -65,9 +65,9 @@ def _plant_from_file(path: str) -> dict[str, Any]:
 
 
 def _structure_map(structure: str, gamma: float) -> Any:
-    from .. import paper
-    from ..control.plant import CubicFrictionMap, CurveFrictionMap
-    from ..friction import CubicFit
+    from exofric import paper
+    from exofric.control import CubicFrictionMap, CurveFrictionMap
+    from exofric.friction import CubicFit
 
     if structure.lower() == "test5":
         lo, hi = paper.load()["eq8"]["fit_range_mpa"]
@@ -95,8 +95,8 @@ def _structure_map(structure: str, gamma: float) -> Any:
 
 
 def _identify_csv(path: str) -> Any:
-    from ..control.identify import identify_step
-    from ..io import read_table
+    from exofric.control import identify_step
+    from exofric.io import read_table
 
     df = read_table(path, ["time_s", "pressure_mpa"], ["command_mpa"],
                     nonnegative=["pressure_mpa", "command_mpa"], unique_within=("time_s", None),
@@ -108,10 +108,10 @@ def _identify_csv(path: str) -> Any:
 def _setup(target: float, structure: str, gamma: float | None, plant: str | None,
            step_csv: str | None, mismatch: float | None, tau_c: float | None, ff_mode: str,
            antiwindup: str, dt: float | None, duration: float, band_pct: float) -> ControlSetup:
-    from .. import paper
-    from ..control.cases import ControlSetup
-    from ..control.plant import PlantParams
-    from ..errors import check_range
+    from exofric import paper
+    from exofric.control import PlantParams
+    from exofric.errors import check_range
+    from exofric.reproduce import ControlSetup
 
     params = _plant_from_file(plant) if plant else {}
     if step_csv:
@@ -216,9 +216,8 @@ def register(app: typer.Typer) -> None:
             return
         from dataclasses import replace
 
-        from ..control.cases import run_case
-        from ..control.pid import PIDGains
-        from ..control.tuning import CONTROLLERS, itae_gains
+        from exofric.control import CONTROLLERS, PIDGains, itae_gains
+        from exofric.reproduce import run_case
 
         kind = controller.lower()
         if kind not in CONTROLLERS:
@@ -274,7 +273,7 @@ def register(app: typer.Typer) -> None:
         band: float = BAND, plot: str | None = PLOT, as_json: bool = JSON_OPTION,
     ) -> None:
         """The six cases of Fig 12 (PD, PI, PID; without/with the model) beside the paper."""
-        from ..control.cases import compare
+        from exofric.reproduce import compare
 
         setup = _setup(target_friction, structure, gamma, plant, step_csv, mismatch, tau_c,
                        ff_mode, antiwindup, dt, duration, band)
@@ -314,9 +313,8 @@ def register(app: typer.Typer) -> None:
         gamma: float | None = GAMMA, tau_c: float | None = TAU_C, as_json: bool = JSON_OPTION,
     ) -> None:
         """Fit gain, lag and dead time to a pressure step response; print the rule's gains."""
-        from .. import paper
-        from ..control.plant import local_slope
-        from ..control.tuning import CONTROLLERS, rule_gains
+        from exofric import paper
+        from exofric.control import CONTROLLERS, local_slope, rule_gains
 
         ident = _identify_csv(csv)
         fmap = _structure_map(structure, paper.scalar("gamma") if gamma is None else gamma)

@@ -14,8 +14,8 @@ from typing import Any
 import numpy as np
 import typer
 
-from ..errors import InputError
-from ._common import JSON_OPTION, console, emit, kv_table, parse_floats
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats
+from exofric.errors import InputError
 
 __all__ = ["register", "read_squeeze_curve", "read_friction_csv"]
 
@@ -27,7 +27,7 @@ def read_squeeze_curve(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     ``exofric squeeze --json``). CSV: columns ``pressure_mpa,squeeze_force_n``. Pressures
     must be strictly increasing after sorting (no repeats).
     """
-    from ..io import read_table
+    from exofric.io import read_table
 
     p = Path(path)
     if p.suffix.lower() == ".json":
@@ -75,7 +75,7 @@ def read_friction_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndar
     file; pressures may repeat across tests, not within one). ``synthetic`` is True when a
     comment line says SYNTHETIC (files written by ``exofric rig``).
     """
-    from ..io import read_table
+    from exofric.io import read_table
 
     df = read_table(path, ["pressure_mpa", "friction_n"], optional=["test"],
                     text_columns=["test"], unique_within=("pressure_mpa", "test"))
@@ -118,7 +118,7 @@ def _register_fit(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Fit the equivalent coefficient gamma (Eq 7) to friction data. MPa, N."""
-        from ..friction_fit import fit_gamma
+        from exofric.friction import fit_gamma
 
         _choice("--model", model, ("proportional", "affine"))
         _choice("--ci", ci, ("analytic", "ols", "bootstrap"))
@@ -129,8 +129,7 @@ def _register_fit(app: typer.Typer) -> None:
         d["synthetic"] = synthetic
         d["n_tests"] = int(np.unique(tests).size)
         if plot:
-            from ..friction_plot import plot_gamma_fit
-            from ..plotting import save
+            from exofric.plots import plot_gamma_fit, save
 
             title = "SYNTHETIC rig data" if synthetic else Path(friction).name
             d["plot"] = str(save(plot_gamma_fit(fit, title), plot))
@@ -156,7 +155,7 @@ def _register_fit(app: typer.Typer) -> None:
 
 
 def _measured_map(path: str, names: list[str]) -> dict[str, Any]:
-    from ..friction_predict import MeasuredCurve
+    from exofric.friction import MeasuredCurve
 
     pf, ff, tests, _ = read_friction_csv(path)
     labels = [str(t) for t in np.unique(tests)]
@@ -198,10 +197,9 @@ def _register_predict(app: typer.Typer) -> None:
         """Predict friction F = gamma N(P) for other structures via the FE (Sec. 4). MPa, N."""
         import tomllib
 
-        from ..friction import FrictionModel
-        from ..friction_predict import paper_structures, predict, structures_from_dict
-        from ..geometry import BASE
-        from ..materials import MooneyRivlin
+        from exofric.friction import FrictionModel, paper_structures, predict, structures_from_dict
+        from exofric.geometry import BASE
+        from exofric.material import MooneyRivlin
 
         if use_paper == (structures is not None):
             raise InputError("give exactly one of --structures FILE.toml or --paper")
@@ -230,8 +228,7 @@ def _register_predict(app: typer.Typer) -> None:
         if use_paper:
             d["tube_id_note"] = "Table 3 prints no tube IDs: ID = base ID x d1 / base d1"
         if plot:
-            from ..friction_plot import plot_predictions
-            from ..plotting import save
+            from exofric.plots import plot_predictions, save
 
             d["plot"] = str(save(plot_predictions(res.predictions), plot))
 
@@ -273,7 +270,7 @@ def _register_invert(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Pressure (MPa) that gives a target friction (N): inverse of Eq 9 (Sec. 5)."""
-        from ..friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction
+        from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction
 
         if (cubic is None) == (squeeze is None):
             raise InputError("give exactly one of --cubic c3,c2,c1,c0 or --squeeze FILE")
@@ -334,7 +331,7 @@ def _register_rig(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Virtual friction rig: SYNTHETIC friction data F = gamma_true N(P) + errors. MPa, N."""
-        from ..rig import RigConfig, simulate_rig
+        from exofric.friction import RigConfig, simulate_rig
 
         ps, ns = read_squeeze_curve(squeeze)
         cfg = RigConfig(noise_pct=noise_pct, noise_n=noise_n, offset_n=offset_n,

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import typer
 
-from ..materials import MooneyRivlin
-from ._common import JSON_OPTION, console, emit, parse_floats, write_outputs
+from exofric.cli._common import JSON_OPTION, console, emit, parse_floats, write_outputs
+from exofric.material import MooneyRivlin
 
 
 def material_from_options(
@@ -18,7 +18,7 @@ def material_from_options(
     correlation: str = "paper",
 ) -> MooneyRivlin:
     """MooneyRivlin from --shore, with --c10/--c01/--d overriding the derived constants."""
-    from ..errors import InputError
+    from exofric.errors import InputError
 
     if shore is None and None in (c10, c01, d):
         raise InputError("give --shore, or all of --c10, --c01 and --d")
@@ -53,13 +53,14 @@ def register(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Free plane-strain inflation (FE, quarter model): diameters vs pressure (mm, MPa)."""
-        from ..simulate import MeshSpec, inflate
+        from exofric.fe import MeshSpec
+        from exofric.simulate import inflate
 
         mat = material_from_options(shore, c10, c01, d)
         p = parse_floats("--pressures", pressures)
         res = inflate(tube_od, tube_id, mat, p, mesh=MeshSpec(n_radial, n_circ))
         out = res.to_dict()
-        from ..plotting import plot_inflation
+        from exofric.plots import plot_inflation
 
         out.update(write_outputs(res, plot, vtu, plot_inflation))
 

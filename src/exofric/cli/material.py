@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import JSON_OPTION, console, emit, kv_table
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table
 
 
 def register(app: typer.Typer) -> None:
@@ -21,7 +21,7 @@ def register(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Mooney-Rivlin constants from Shore A hardness (paper Eqs 3-6). MPa, 1/MPa."""
-        from ..materials import MooneyRivlin
+        from exofric.material import MooneyRivlin
 
         m = MooneyRivlin.from_shore(shore, correlation, c01_ratio=c01_ratio, poisson=poisson)
         d = m.to_dict()

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from ._common import JSON_OPTION, console, emit, kv_table
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table
 
 
 def register(app: typer.Typer) -> None:
@@ -13,7 +13,7 @@ def register(app: typer.Typer) -> None:
     @app.command("paper")
     def paper_cmd(as_json: bool = JSON_OPTION) -> None:
         """The numbers printed in Ma et al. 2021 (tables, scalars, Eq 8), with provenance."""
-        from .. import paper
+        from exofric import paper
 
         data = paper.to_dict()
 

@@ -13,7 +13,7 @@ from typing import Any
 
 import typer
 
-from ._common import JSON_OPTION, console
+from exofric.cli._common import JSON_OPTION, console
 
 
 def register(app: typer.Typer) -> None:
@@ -32,10 +32,10 @@ def register(app: typer.Typer) -> None:
         """Redo the paper (Tables 1-4, Figs 4-12) and write report.html, PNGs, results.json."""
         import time
 
-        from ..errors import InputError
-        from ..io import jsonable
-        from ..report import write_report
-        from ..reproduce import STAGES, ReproduceConfig, reproduce
+        from exofric.errors import InputError
+        from exofric.io import jsonable
+        from exofric.report import write_report
+        from exofric.reproduce import STAGES, ReproduceConfig, reproduce
 
         if notes_dir is not None and not notes_dir.is_dir():
             raise InputError(f"--notes-dir {notes_dir}: not a directory")

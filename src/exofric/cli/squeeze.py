@@ -6,8 +6,8 @@ from pathlib import Path
 
 import typer
 
-from ._common import JSON_OPTION, console, emit, parse_floats, write_outputs
-from .inflate import material_from_options
+from exofric.cli._common import JSON_OPTION, console, emit, parse_floats, write_outputs
+from exofric.cli.inflate import material_from_options
 
 DEFAULT_P = ",".join(f"{0.05 * i:.2f}" for i in range(1, 13))
 
@@ -36,15 +36,16 @@ def register(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Squeezing force between tube and wire vs pressure (N, N/mm, MPa, mm)."""
-        from ..geometry import Structure
-        from ..simulate import MeshSpec, squeeze
+        from exofric.fe import MeshSpec
+        from exofric.geometry import Structure
+        from exofric.simulate import squeeze
 
         mat = material_from_options(shore, c10, c01, d)
         st = Structure(hole, tube_od, tube_id, wire, length)
         p = parse_floats("--pressures", pressures)
         res = squeeze(st, mat, p, mesh=MeshSpec(n_radial, n_circ, grading=grading), penalty=penalty)
         out = res.to_dict()
-        from ..plotting import plot_squeeze
+        from exofric.plots import plot_squeeze
 
         out.update(write_outputs(res, plot, vtu, plot_squeeze))
 

@@ -9,7 +9,7 @@ from typing import Any
 
 import typer
 
-from ._common import JSON_OPTION, console, emit, kv_table
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table
 
 WORKERS = typer.Option(None, "--workers", help="LocalCluster worker processes (default: CPUs).")
 SCHEDULER = typer.Option(None, "--scheduler",
@@ -49,12 +49,10 @@ def _progress(quiet: bool) -> Iterator[Callable[[int, int, str], None] | None]:
 
 def _run(config: Path | None, out: Path | None, workers: int | None, scheduler: str | None,
          serial: bool, retry: bool, quiet: bool, timeout: float) -> Any:
-    from ..sweep import run_sweep
-    from ..sweep_config import parse_sweep
-    from ..sweep_store import load_sweep
+    from exofric.design import load_sweep, parse_sweep, run_sweep
 
     if config is None:
-        from ..design import DEFAULT_SPACE
+        from exofric.design import DEFAULT_SPACE
 
         spec = parse_sweep(DEFAULT_SPACE)
     else:
@@ -131,8 +129,8 @@ def register(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Find swept designs reaching a target torque with the least pressure (Nm, MPa, mm)."""
-        from ..design import search_designs
-        from ..errors import InputError, check_positive
+        from exofric.design import search_designs
+        from exofric.errors import InputError, check_positive
 
         # validate the search before running (or loading) the sweep
         check_positive("--target-torque", target_torque, "Nm")
@@ -151,7 +149,7 @@ def register(app: typer.Typer) -> None:
         d = search.to_dict(top=top)
         d["sweep"] = run.summary.to_dict()
         if not no_plot:
-            from ..design_plot import plot_design_map
+            from exofric.plots import plot_design_map
 
             skipped = frame[frame["status"] == "skipped"]
             d["plot"] = str(plot_design_map(search, plot or Path(run.summary.out) /

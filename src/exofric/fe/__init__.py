@@ -1,7 +1,67 @@
 """exofric's finite-element solver: plane-strain hyperelasticity with rigid contact.
 
-Modules: ``mesh`` (graded polar quad9/quad4 meshes), ``elements`` (shape functions,
-quadrature), ``hyperelastic`` (vectorised mixed u/p Mooney-Rivlin), ``loads``
-(follower pressure as a cavity-area potential), ``solver`` (sparse assembly,
-Newton with line search, load stepping with cutback).
+Discretisation and solver only; the problems users ask for (inflate, squeeze) and their results
+are in :mod:`exofric.simulate`.
+
+* :class:`MeshSpec`, :func:`polar_mesh` -- graded polar quad9/quad4 meshes of the tube section.
+* :class:`InflationProblem`, :class:`SqueezeProblem` -- the two boundary-value problems (mixed
+  u/p Mooney-Rivlin, follower pressure as a cavity-area potential, rigid circles as penalty
+  contact).
+* :class:`NewtonSettings`, :func:`solve_path` -- Newton with line search along a load path,
+  with cutback.
+
+Units: mm, N, MPa; forces per unit depth in N/mm.
+
+Examples
+--------
+>>> from exofric.fe import MeshSpec
+>>> MeshSpec(2, 24, grading=6.0).n_circ
+24
 """
+
+from exofric.fe._contact import ContactState, RigidCircle, evaluate_contact, nodal_weights
+from exofric.fe._elements import (
+    ReferenceData,
+    lagrange_1d,
+    pressure_basis,
+    reference_data,
+    shape_2d,
+)
+from exofric.fe._hyperelastic import HyperelasticBody, mooney_rivlin_plane_strain, von_mises
+from exofric.fe._inflation import InflationProblem, MeshSpec, PressurizedTube
+from exofric.fe._loads import area_hessian, enclosed_area
+from exofric.fe._mesh import TubeMesh, graded_angles, polar_mesh
+from exofric.fe._solver import Assembler, NewtonSettings, PathPoint, Problem, solve_path
+from exofric.fe._squeeze import GRAVITY_MM_S2, SqueezeProblem, wall_arc, wire_halfwidth
+
+__all__ = [
+    "GRAVITY_MM_S2",
+    "Assembler",
+    "ContactState",
+    "HyperelasticBody",
+    "InflationProblem",
+    "MeshSpec",
+    "NewtonSettings",
+    "PathPoint",
+    "PressurizedTube",
+    "Problem",
+    "ReferenceData",
+    "RigidCircle",
+    "SqueezeProblem",
+    "TubeMesh",
+    "area_hessian",
+    "enclosed_area",
+    "evaluate_contact",
+    "graded_angles",
+    "lagrange_1d",
+    "mooney_rivlin_plane_strain",
+    "nodal_weights",
+    "polar_mesh",
+    "pressure_basis",
+    "reference_data",
+    "shape_2d",
+    "solve_path",
+    "von_mises",
+    "wall_arc",
+    "wire_halfwidth",
+]

@@ -1,0 +1,43 @@
+"""Material calibration from air-tube inflation tests (paper §3.3, Eqs 2-6, Table 1, Fig 5).
+
+The paper identified the silicone's Shore A hardness by simulating the tube's
+outer diameter at the tested pressures for trial hardnesses (Eqs 3-6 give the
+Mooney-Rivlin constants) and stopping when the average relative diameter error
+fell below 0.5% (60 -> 1.47%, 65 -> 0.87%, 70 -> 2.47%, 62.5 -> 0.46%). The tube's
+inner diameter is not printed, so exofric can identify it too.
+
+:func:`calibrate` is the entry point; the methods live in
+:mod:`exofric.calibrate`, the forward models (FE, 1D, the paper's own
+columns) in :mod:`exofric.calibrate`, data and results in
+:mod:`exofric.calibrate`.
+
+Units: mm, MPa, errors in %, time in s.
+
+Examples
+--------
+>>> from exofric.calibrate import InflationData, calibrate
+>>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97, model="paper-table1")
+>>> [t.shore for t in r.history], r.shore, round(r.average_error_pct, 2)
+([60.0, 65.0, 70.0, 62.5], 62.5, 0.46)
+"""
+
+from exofric.calibrate._api import METHODS, calibrate
+from exofric.calibrate._methods import Evaluator, Fit, bisection, bounded, joint, known_hardness
+from exofric.calibrate._models import (
+    DEFAULT_MODEL,
+    MODEL_KINDS,
+    C10Convention,
+    CachedModel,
+    ModelFn,
+    make_model,
+    material_for,
+    paper_table1_model,
+)
+from exofric.calibrate._result import CalibrationResult, InflationData, Trial, relative_errors_pct
+
+__all__ = [
+    "bisection", "bounded", "C10Convention", "CachedModel", "calibrate", "CalibrationResult",
+    "DEFAULT_MODEL", "Evaluator", "Fit", "InflationData", "joint", "known_hardness", "make_model",
+    "material_for", "METHODS", "MODEL_KINDS", "ModelFn", "paper_table1_model",
+    "relative_errors_pct", "Trial",
+]

@@ -1,0 +1,163 @@
+"""The calibrate() entry point: pick a method, build the forward model, run, time it."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from exofric.calibrate._methods import Evaluator, bisection, bounded, joint, known_hardness
+from exofric.calibrate._models import (
+    DEFAULT_MODEL,
+    C10Convention,
+    CachedModel,
+    ModelFn,
+    make_model,
+    material_for,
+)
+from exofric.calibrate._result import CalibrationResult, InflationData
+from exofric.errors import InputError, check_positive, check_range
+
+__all__ = ["METHODS", "calibrate"]
+
+METHODS = ("bisection", "bounded", "joint", "known-hardness")
+
+
+def _check_bracket(bracket: tuple[float, float]) -> tuple[float, float]:
+    if len(bracket) != 2:
+        raise InputError(f"bracket must be two Shore A values lo,hi, got {list(bracket)}")
+    lo = check_range("bracket lo", bracket[0], 0.0, 100.0, lo_open=True, hi_open=True)
+    hi = check_range("bracket hi", bracket[1], 0.0, 100.0, lo_open=True, hi_open=True)
+    if not lo < hi:
+        raise InputError(f"bracket must have lo < hi (Shore A), got {lo:g},{hi:g}")
+    return lo, hi
+
+
+def calibrate(
+    data: InflationData,
+    tube_od_mm: float,
+    *,
+    tube_id_mm: float | None = None,
+    method: str | None = None,
+    fit_tube_id: bool = False,
+    bracket: tuple[float, float] = (60.0, 70.0),
+    tol_pct: float = 0.5,
+    model: str | ModelFn = DEFAULT_MODEL,
+    correlation: str = "paper",
+    c01_ratio: float = 0.05,
+    poisson: float = 0.498,
+    c10_convention: C10Convention = "eq4",
+    xtol: float = 0.01,
+) -> CalibrationResult:
+    """Identify Shore A hardness and/or tube inner diameter from inflation data.
+
+    Parameters
+    ----------
+    data : InflationData
+        Measured pressures (MPa) and outer diameters (mm); with a ``shore`` column
+        the hardness is known and only the tube ID is fitted (``known-hardness``).
+    tube_od_mm : float
+        Undeformed tube outer diameter (mm), e.g. 8.3.
+    tube_id_mm : float, optional
+        Tube inner diameter (mm): fixed for ``bisection``/``bounded``, the starting
+        guess for ``joint``/``known-hardness`` (default 0.6 ``tube_od_mm``).
+    method : {'bisection', 'bounded', 'joint', 'known-hardness'}, optional
+        Default: ``known-hardness`` with a shore column, ``joint`` when
+        ``fit_tube_id``, else ``bisection``.
+    fit_tube_id : bool
+        Fit the tube ID as well (``joint``).
+    bracket : (float, float)
+        Shore A bracket (default (60, 70), the paper's); ``joint`` starts at its middle.
+    tol_pct : float
+        Stopping criterion of the bisection: average absolute relative error (%).
+    model : str or callable
+        ``'fe'``, ``'1d'`` or ``'paper-table1'`` (see :func:`make_model`), or any
+        ``model(shore, tube_id_mm, pressures_mpa) -> OD (mm)``; memoised.
+    correlation, c01_ratio, poisson, c10_convention
+        Material construction from hardness (Eqs 3-6; see :func:`material_for`).
+    xtol : float
+        Shore A resolution of ``bisection``/``bounded``.
+
+    Returns
+    -------
+    CalibrationResult
+
+    Examples
+    --------
+    >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=5.0, model="paper-table1",
+    ...               method="bounded")
+    >>> 62 < r.shore < 64
+    True
+    """
+    t0 = time.perf_counter()
+    od = check_positive("tube_od_mm", tube_od_mm, "mm")
+    tol = check_positive("tol_pct", tol_pct, "%")
+    lo, hi = _check_bracket(tuple(bracket))  # type: ignore[arg-type]
+    if tube_id_mm is not None:
+        tid = check_positive("tube_id_mm", tube_id_mm, "mm")
+        if tid >= od:
+            raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {tid:g}")
+    known = data.shore is not None
+    if method is None:
+        method = "known-hardness" if known else ("joint" if fit_tube_id else "bisection")
+    if method not in METHODS:
+        raise InputError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    if known and method != "known-hardness":
+        raise InputError(f"the data have a shore column (known hardness): only the tube ID can be "
+                         f"fitted, so method must be 'known-hardness', got {method!r}")
+    if method == "known-hardness" and not known:
+        raise InputError("method 'known-hardness' needs a 'shore' column in the data")
+    if method in ("bisection", "bounded"):
+        if fit_tube_id:
+            raise InputError(f"fit_tube_id (--fit-tube-id) needs method 'joint', got {method!r}")
+        if tube_id_mm is None:
+            raise InputError(f"method {method!r} needs tube_id_mm (--tube-id, mm) or "
+                             "fit_tube_id (--fit-tube-id)")
+    if isinstance(model, CachedModel):
+        cm = model
+    elif isinstance(model, str):
+        cm = make_model(model, od, correlation=correlation, c01_ratio=c01_ratio, poisson=poisson,
+                        c10_convention=c10_convention)
+    else:
+        cm = CachedModel(model, getattr(model, "__name__", "custom"))
+    calls0 = cm.calls
+    ev = Evaluator(cm, data)
+    id0 = 0.6 * od if tube_id_mm is None else float(tube_id_mm)
+    stderr_s = stderr_id = corr = None
+    if method == "bisection":
+        best, ok, notes = bisection(ev, id0, (lo, hi), tol, xtol=xtol)
+    elif method == "bounded":
+        best, ok, notes = bounded(ev, id0, (lo, hi), tol, xtol=xtol)
+    elif method == "joint":
+        fit = joint(ev, 0.5 * (lo + hi), id0, od)
+        best, ok, notes = fit.trial, fit.converged, fit.notes
+        stderr_s, stderr_id, corr = float(fit.stderr[0]), float(fit.stderr[1]), fit.corr
+    else:
+        fit = known_hardness(ev, id0, od)
+        best, ok, notes = fit.trial, fit.converged, fit.notes
+        stderr_id = float(fit.stderr[0])
+    shore = best.shore
+    mat = None
+    if shore is not None:
+        mat = material_for(shore, correlation=correlation, c01_ratio=c01_ratio, poisson=poisson,
+                           c10_convention=c10_convention)
+    return CalibrationResult(
+        method=method,
+        model=cm.name,
+        tube_od_mm=od,
+        tube_id_mm=best.tube_id_mm,
+        shore=shore,
+        material=mat,
+        data=data,
+        simulated_mm=np.asarray(best.outer_diameter_mm, dtype=float),
+        history=tuple(ev.history),
+        converged=ok,
+        notes=tuple(notes),
+        tol_pct=tol,
+        bracket=(lo, hi),
+        shore_stderr=stderr_s,
+        tube_id_stderr_mm=stderr_id,
+        correlation=corr,
+        n_model_calls=cm.calls - calls0,
+        elapsed_s=time.perf_counter() - t0,
+    )

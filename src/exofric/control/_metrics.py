@@ -1,0 +1,156 @@
+"""Step-response metrics: rise time, settling time, overshoot, steady-state error, ITAE.
+
+Conventions (identical to python-control's ``step_info`` when the response starts at 0 and
+the reference is its ``yfinal``, so the two can be compared sample for sample):
+
+* reference ``ref`` (the target, e.g. 54.40 N) and start value ``y0`` (first sample);
+* rise time: first sample at or beyond 90 % of the change minus the first sample at or beyond
+  10 % (``rise_limits``);
+* settling time: the first sample after the last one with |y - ref| >= band |ref - y0|
+  (2 % band by default); None if the last sample is still outside (never settled);
+* overshoot: largest excursion beyond ``ref`` in the direction of the change, in % of
+  |ref - y0| (0 if none);
+* steady-state error: ref - mean of y over the final ``tail_s`` seconds.
+
+Units: time in s, response in its own unit (N for friction).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from exofric.errors import InputError, check_range
+
+__all__ = ["StepMetrics", "step_metrics", "itae"]
+
+
+@dataclass(frozen=True)
+class StepMetrics:
+    """Metrics of one step response (s, %, and the response's unit, N for friction).
+
+    ``None`` marks a quantity the response never reached (e.g. no settling into the band of the
+    target when a steady-state error remains).
+    """
+
+    rise_time_s: float | None
+    settling_time_s: float | None
+    overshoot_pct: float
+    steady_state_error: float
+    final_value: float
+    reference: float
+    band: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict; friction responses: ``steady_state_error_n``, ``final_friction_n``."""
+        return {
+            "rise_time_s": self.rise_time_s,
+            "settling_time_s": self.settling_time_s,
+            "overshoot_pct": self.overshoot_pct,
+            "steady_state_error_n": self.steady_state_error,
+            "final_friction_n": self.final_value,
+            "target_friction_n": self.reference,
+            "settling_band_pct": 100.0 * self.band,
+        }
+
+
+def _check(t: ArrayLike, y: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    ta = np.asarray(t, dtype=float).ravel()
+    ya = np.asarray(y, dtype=float).ravel()
+    if ta.size != ya.size or ta.size < 2:
+        raise InputError(f"time and response must have the same length >= 2, got {ta.size} "
+                         f"and {ya.size}")
+    if not (np.all(np.isfinite(ta)) and np.all(np.isfinite(ya))):
+        raise InputError("time and response must be finite numbers")
+    if np.any(np.diff(ta) <= 0):
+        raise InputError("time_s must be strictly increasing")
+    return ta, ya
+
+
+def step_metrics(
+    t: ArrayLike,
+    y: ArrayLike,
+    reference: float,
+    *,
+    band: float = 0.02,
+    rise_limits: tuple[float, float] = (0.1, 0.9),
+    tail_s: float | None = None,
+) -> StepMetrics:
+    """Rise time, settling time, overshoot and steady-state error of a sampled step response.
+
+    Parameters
+    ----------
+    t : array_like
+        Sample times in s, strictly increasing; the step happens at ``t[0]``.
+    y : array_like
+        Response samples (N for friction), ``y[0]`` is the value before the step acts.
+    reference : float
+        The target the response should reach (same unit as ``y``), e.g. 54.40 N.
+    band : float
+        Settling band as a fraction of the step |reference - y0| (default 0.02 = 2 %).
+    rise_limits : (lo, hi)
+        Fractions of the step for the rise time (default 10 % - 90 %).
+    tail_s : float or None
+        Averaging window at the end for the final value, in s; default 5 % of the duration
+        (at least one sample).
+
+    Returns
+    -------
+    StepMetrics
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 10.0, 1001)
+    >>> m = step_metrics(t, 1.0 - np.exp(-t), 1.0)
+    >>> round(m.rise_time_s, 2), round(m.settling_time_s, 2)   # ln 9 = 2.20, ln 50 = 3.91
+    (2.2, 3.92)
+    """
+    ta, ya = _check(t, y)
+    ref = float(reference)
+    check_range("band", band, 0.0, 1.0, lo_open=True, hi_open=True)
+    lo_f, hi_f = rise_limits
+    if not 0.0 <= lo_f < hi_f <= 1.0:
+        raise InputError(f"rise_limits must satisfy 0 <= lo < hi <= 1, got {rise_limits}")
+    y0 = float(ya[0])
+    step = ref - y0
+    if step == 0.0:
+        raise InputError("reference equals the initial value: no step to measure")
+    sgn = 1.0 if step > 0 else -1.0
+    progress = sgn * (ya - y0) / abs(step)          # 0 at start, 1 at the reference
+    i_lo = np.flatnonzero(progress >= lo_f)
+    i_hi = np.flatnonzero(progress >= hi_f)
+    rise = float(ta[i_hi[0]] - ta[i_lo[0]]) if i_hi.size and i_lo.size else None
+    outside = np.flatnonzero(np.abs(ya - ref) >= band * abs(step))
+    if outside.size == 0:
+        settle: float | None = float(ta[0])
+    elif outside[-1] + 1 < ta.size:
+        settle = float(ta[outside[-1] + 1])
+    else:
+        settle = None
+    overshoot = float(max(0.0, 100.0 * (progress.max() - 1.0)))
+    if tail_s is None:
+        tail_s = 0.05 * float(ta[-1] - ta[0])
+    tail = ya[ta >= ta[-1] - tail_s]
+    final = float(tail.mean()) if tail.size else float(ya[-1])
+    return StepMetrics(rise, settle, overshoot, ref - final, final, ref, float(band))
+
+
+def itae(t: ArrayLike, error: ArrayLike) -> float:
+    """Integral of time-weighted absolute error, sum t |e| dt (trapezoid), in (unit) s^2.
+
+    Time is measured from ``t[0]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 40.0, 40001)
+    >>> round(itae(t, np.exp(-t / 2.0)), 4)      # analytic: T^2 = 4
+    4.0
+    """
+    ta, ea = _check(t, error)
+    w = (ta - ta[0]) * np.abs(ea)
+    return float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(ta)))

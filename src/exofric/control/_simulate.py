@@ -1,0 +1,173 @@
+"""Closed-loop simulation of the friction control loop with a fixed sample time (Fig 12b).
+
+Each sample k (time t_k = k dt): the friction sensor reads F_true(p_k) + noise, the
+controller returns a pressure command u_k, held for dt (zero-order hold) while the pressure
+supply (lag + dead time + saturation, optionally PWM valves) moves p_k -> p_{k+1}. The loop is
+sequential by nature (feedback with saturation), so it runs sample by sample; the sensor
+noise is drawn once, vectorised, from a seeded generator.
+
+Units: time in s, friction in N, pressure and command in MPa.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from exofric.control._pid import Controller
+from exofric.control._plant import FrictionFn, PlantParams, PressurePlant
+from exofric.errors import InputError, check_range
+
+__all__ = ["SimulationResult", "simulate", "setpoint_profile"]
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Sampled closed-loop trajectories (length n + 1, sample k at time k dt).
+
+    Attributes
+    ----------
+    time_s : ndarray
+        Sample times in s.
+    setpoint_n : ndarray
+        Friction set-point in N.
+    friction_n : ndarray
+        True (noise-free) friction in N.
+    measured_n : ndarray
+        Friction the controller saw (with sensor noise) in N.
+    command_mpa : ndarray
+        Controller output in MPa (held over the following sample; last value repeated).
+    pressure_mpa : ndarray
+        Tube pressure in MPa.
+    dt_s : float
+        Sample time in s.
+    """
+
+    time_s: NDArray[np.float64]
+    setpoint_n: NDArray[np.float64]
+    friction_n: NDArray[np.float64]
+    measured_n: NDArray[np.float64]
+    command_mpa: NDArray[np.float64]
+    pressure_mpa: NDArray[np.float64]
+    dt_s: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready trajectories (s, N, MPa)."""
+        return {
+            "time_s": self.time_s.tolist(),
+            "setpoint_n": self.setpoint_n.tolist(),
+            "friction_n": self.friction_n.tolist(),
+            "measured_n": self.measured_n.tolist(),
+            "command_mpa": self.command_mpa.tolist(),
+            "pressure_mpa": self.pressure_mpa.tolist(),
+            "dt_s": self.dt_s,
+        }
+
+
+def setpoint_profile(
+    steps: list[tuple[float, float]],
+) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+    """Piecewise-constant set-point from ``[(t_start_s, value_n), ...]`` (vectorised).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f = setpoint_profile([(0.0, 250.0), (5.0, 54.4)])
+    >>> f(np.array([0.0, 4.99, 5.0])).tolist()
+    [250.0, 250.0, 54.4]
+    """
+    if not steps:
+        raise InputError("set-point profile needs at least one (time_s, value_n) step")
+    times = np.array([s[0] for s in steps], dtype=float)
+    vals = np.array([s[1] for s in steps], dtype=float)
+    if np.any(np.diff(times) <= 0):
+        raise InputError("set-point profile times must be strictly increasing (s)")
+
+    def profile(t: NDArray[np.float64]) -> NDArray[np.float64]:
+        idx = np.clip(np.searchsorted(times, t, side="right") - 1, 0, None)
+        return vals[idx]
+
+    return profile
+
+
+def simulate(
+    controller: Controller,
+    plant: PlantParams,
+    true_friction: FrictionFn,
+    setpoint_n: float | Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    *,
+    duration_s: float = 15.0,
+    dt: float = 0.01,
+    p0_mpa: float = 0.0,
+) -> SimulationResult:
+    """Run the closed loop for ``duration_s`` s at sample time ``dt`` s.
+
+    Parameters
+    ----------
+    controller : Controller
+        Used as is (call ``controller.reset()`` first to start from rest).
+    plant : PlantParams
+        Supply and sensor parameters; ``plant.noise_n`` and ``plant.seed`` set the noise.
+        ``plant.mismatch`` is *not* applied here: pass the true map in ``true_friction``.
+    true_friction : callable
+        The true friction map F(P): MPa -> N (scalar).
+    setpoint_n : float or callable
+        Constant target in N, or a vectorised function of time (s) -> N.
+    duration_s, dt : float
+        Simulated time and sample time in s (dt also the PWM period when PWM is on).
+    p0_mpa : float
+        Initial tube pressure in MPa.
+
+    Returns
+    -------
+    SimulationResult
+
+    Examples
+    --------
+    >>> from exofric.control import Controller, PIDGains
+    >>> c = Controller(PIDGains(kp=0.002, ki=0.003))
+    >>> r = simulate(c, PlantParams(), lambda p: 200.0 * p, 40.0, duration_s=20.0)
+    >>> round(float(r.friction_n[-1]), 2)
+    40.0
+    """
+    check_range("duration_s", duration_s, 0.0, 1e5, lo_open=True, unit="s")
+    check_range("dt (sample time)", dt, 1e-6, 10.0, unit="s")
+    if plant.pwm_period_s > 0.0 and not math.isclose(plant.pwm_period_s, dt, rel_tol=1e-9):
+        raise InputError(
+            f"pwm_period_s ({plant.pwm_period_s:g} s) must equal the sample time dt ({dt:g} s)"
+        )
+    n = int(round(duration_s / dt))
+    if n < 1:
+        raise InputError(f"duration_s must be at least one sample time ({dt:g} s)")
+    t = np.round(np.arange(n + 1, dtype=float) * dt, 12)   # 6.06, not 6.0600000000000005
+    if callable(setpoint_n):
+        r = np.asarray(setpoint_n(t), dtype=float)
+        if r.shape != t.shape or not np.all(np.isfinite(r)):
+            raise InputError("set-point function must return finite values (N), one per sample")
+    else:
+        sp = float(setpoint_n)
+        if not math.isfinite(sp):
+            raise InputError(f"setpoint_n must be a finite number in N, got {setpoint_n!r}")
+        r = np.full(n + 1, sp)
+    noise = (np.random.default_rng(plant.seed).normal(0.0, plant.noise_n, n + 1)
+             if plant.noise_n > 0 else np.zeros(n + 1))
+    supply = PressurePlant(plant, p0_mpa)
+    p = np.empty(n + 1)
+    f = np.empty(n + 1)
+    u = np.empty(n + 1)
+    p[0] = supply.pressure_mpa
+    rl, nl = r.tolist(), noise.tolist()
+    step, advance = controller.step, supply.advance
+    for k in range(n):
+        fk = float(true_friction(p[k]))
+        f[k] = fk
+        u[k] = step(rl[k], fk + nl[k], dt)
+        p[k + 1] = advance(u[k], dt)
+    f[n] = float(true_friction(p[n]))
+    u[n] = u[n - 1]
+    return SimulationResult(t, r, f, f + noise, u, p, float(dt))

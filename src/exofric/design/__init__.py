@@ -1,0 +1,43 @@
+"""Design sweeps and search: which structures reach a target joint torque, solved on Dask.
+
+* :func:`parse_sweep` -> :class:`SweepSpec` (grids or families of :class:`Design`, the
+  :class:`MaterialSpec` and :class:`SolverSpec`) from a TOML/dict spec.
+* :func:`run_sweep` -> :class:`SweepRun` -- every design's squeeze N(P) on a LocalCluster, any
+  Dask scheduler or serially, streamed to a resumable :class:`SweepStore` (Parquet).
+* :func:`search_designs` -> :class:`DesignSearch` -- torque at the maximum pressure, least
+  pressure reaching the target, margins, the validated region.
+
+Units: mm, MPa, N, s; torque in Nm, arm radius in m, deviation in %.
+
+Examples
+--------
+>>> from exofric.design import parse_sweep
+>>> spec = parse_sweep({"pressures_mpa": [0.3, 0.6], "grid": {"hole_mm": [10.0, 11.0]}})
+>>> len(spec.designs)
+2
+"""
+
+from exofric.design._runner import BLAS_ENV, SweepRun, SweepSummary, run_sweep, solve_design, sweep
+from exofric.design._search import (
+    DEFAULT_SPACE,
+    OBJECTIVES,
+    DesignSearch,
+    design_metrics,
+    search_designs,
+)
+from exofric.design._spec import (
+    Design,
+    MaterialSpec,
+    SolverSpec,
+    SweepSpec,
+    design_key,
+    parse_sweep,
+)
+from exofric.design._store import SCHEMA, STATUSES, SweepStore, load_sweep
+
+__all__ = [
+    "BLAS_ENV", "DEFAULT_SPACE", "Design", "design_key", "design_metrics", "DesignSearch",
+    "load_sweep", "MaterialSpec", "OBJECTIVES", "parse_sweep", "run_sweep", "SCHEMA",
+    "search_designs", "solve_design", "SolverSpec", "STATUSES", "sweep", "SweepRun", "SweepSpec",
+    "SweepStore", "SweepSummary",
+]

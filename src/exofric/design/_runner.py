@@ -1,0 +1,395 @@
+"""Design-space sweeps of the squeeze simulation on dask.distributed, cached and resumable.
+
+Units: mm, MPa, N, s; torque in Nm, arm radius in m.
+
+:func:`run_sweep` solves every design of a :class:`~exofric.design.SweepSpec` with
+:func:`exofric.simulate.squeeze` and streams one Parquet file per finished design into the
+output directory (:mod:`exofric.design`), so that
+
+* without ``scheduler`` it starts an embedded ``LocalCluster`` (worker processes, one thread
+  each, BLAS/OpenMP thread variables set to 1 so that workers do not oversubscribe cores);
+  with ``scheduler="tcp://host:8786"`` the same code runs on any Dask cluster (``dask
+  scheduler`` + ``dask worker``, dask-jobqueue on SLURM...); ``serial=True`` is a plain
+  in-process loop (no Dask);
+* designs already in the directory (same cache key: inputs + solver settings) are not
+  solved again: a killed sweep resumes losing nothing that had finished;
+* a design whose solve raises is recorded (status ``failed``, the error message) and the
+  others go on; impossible designs are recorded as ``skipped`` with the reason.
+
+Rows come back as a pandas DataFrame, one row per design and pressure; friction
+F = gamma N + F0 (N), torque T = F R (Nm) and the deviation from the base (%) are
+recomputed from the sweep's current gamma, F0, R and base, so changing those reuses the
+cache.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import socket
+import time
+import uuid
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from exofric.design._spec import Design, MaterialSpec, SolverSpec, SweepSpec, parse_sweep
+from exofric.design._store import SweepStore, load_sweep
+from exofric.errors import InputError
+
+__all__ = ["SweepSummary", "SweepRun", "run_sweep", "sweep", "solve_design", "BLAS_ENV"]
+
+#: Environment given to LocalCluster workers: one BLAS/OpenMP thread per worker process.
+BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+#: ``progress(done, total, label)`` is called once with done = 0, then after each design.
+ProgressFn = Callable[[int, int, str], None]
+SolveFn = Callable[..., Any]
+
+
+@dataclass(frozen=True)
+class SweepSummary:
+    """What one :func:`run_sweep` call did.
+
+    ``designs`` = ``computed`` + ``cached`` + ``skipped``; ``computed`` counts the solves run
+    now (successful or not), ``cached`` the designs found finished in ``out``, ``failed``
+    the designs whose solve failed (now or cached).
+    """
+
+    designs: int
+    computed: int
+    cached: int
+    skipped: int
+    failed: int
+    out: str
+    wall_time_s: float
+    scheduler: str
+    workers: int
+    run_id: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (times in s)."""
+        return {"designs": self.designs, "computed": self.computed, "cached": self.cached,
+                "skipped": self.skipped, "failed": self.failed, "out": self.out,
+                "wall_time_s": self.wall_time_s, "scheduler": self.scheduler,
+                "workers": self.workers, "run_id": self.run_id}
+
+
+@dataclass(frozen=True)
+class SweepRun:
+    """Summary and rows (one per design and pressure) of a sweep."""
+
+    summary: SweepSummary
+    frame: pd.DataFrame = field(repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Summary plus the failed (``failures``) and impossible (``skipped_designs``) ones."""
+        one = self.frame.drop_duplicates("key")
+        bad = one[one["status"] == "failed"]
+        skip = one[one["status"] == "skipped"]
+        return {**self.summary.to_dict(),
+                "rows": int(len(self.frame)),
+                "failures": [{"name": n, "error": e} for n, e in zip(bad["name"], bad["error"],
+                                                                    strict=True)],
+                "skipped_designs": [{"name": n, "reason": e} for n, e in
+                                    zip(skip["name"], skip["error"], strict=True)]}
+
+
+def _threads() -> str:
+    return ",".join(f"{k.split('_')[0].lower()}={os.environ.get(k, '')}" for k in BLAS_ENV)
+
+
+def solve_design(
+    design: Design,
+    pressures_mpa: Sequence[float],
+    material: MaterialSpec,
+    solver: SolverSpec,
+    solve_fn: SolveFn | None = None,
+) -> dict[str, Any]:
+    """Solve one design (runs on a Dask worker); never raises for a failed solve.
+
+    Parameters
+    ----------
+    design : Design
+        Sizes (mm) and Shore A hardness.
+    pressures_mpa : sequence of float
+        Increasing pressures (MPa).
+    material, solver : MaterialSpec, SolverSpec
+        Shore-to-material options and solver settings.
+    solve_fn : callable, optional
+        Replacement for :func:`exofric.simulate.squeeze` (same signature; tests).
+
+    Returns
+    -------
+    dict
+        ``status`` (``ok``/``failed``), ``error``, the squeeze arrays (N, N/mm, mm),
+        onset (MPa), Newton iterations, dofs, ``solve_time_s``/``task_time_s`` (s),
+        ``worker`` (host:pid) and ``blas_threads``.
+
+    Examples
+    --------
+    >>> from exofric.design import parse_sweep
+    >>> spec = parse_sweep({"pressures_mpa": [0.6], "grid": {},
+    ...                     "solver": {"n_radial": 1, "n_circ": 12}})
+    >>> r = solve_design(spec.designs[0], spec.pressures_mpa, spec.material, spec.solver)
+    >>> r["status"], round(r["squeeze_force_n"][0])
+    ('ok', 241)
+    """
+    t0 = time.perf_counter()
+    out: dict[str, Any] = {"status": "ok", "error": "", "worker":
+                           f"{socket.gethostname()}:{os.getpid()}", "blas_threads": _threads()}
+    try:
+        if solve_fn is None:
+            from exofric.simulate import squeeze
+
+            solve_fn = squeeze
+        mat = material.material(design.shore)
+        out.update(c10_mpa=mat.c10, c01_mpa=mat.c01, d_per_mpa=mat.d)
+        res = solve_fn(design.structure(), mat, list(pressures_mpa), mesh=solver.mesh(),
+                       penalty=solver.penalty_n_per_mm3, density=solver.density_t_per_mm3,
+                       settings=solver.newton(), keep_fields=False)
+        for k in ("pressure_mpa", "squeeze_force_n", "squeeze_force_n_per_mm", "wall_force_n",
+                  "max_penetration_mm", "newton_iterations"):
+            out[k] = np.asarray(getattr(res, k)).tolist()
+        # largest principal stretch (> 2.5: beyond the model's validated strain range)
+        out["max_stretch"] = np.asarray(
+            getattr(res, "max_stretch", np.full(len(out["pressure_mpa"]), np.nan))).tolist()
+        onset = res.contact_onset_pressure_mpa
+        out.update(contact_onset_pressure_mpa=np.nan if onset is None else float(onset),
+                   dofs=int(res.dofs), solve_time_s=float(res.solve_time_s))
+    except Exception as exc:  # recorded, never fatal for the sweep
+        msg = " ".join(str(exc).split()) or "(no message)"
+        out.update(status="failed", error=f"{type(exc).__name__}: {msg}")
+    out["task_time_s"] = time.perf_counter() - t0
+    return out
+
+
+def _rows(d: Design, status: str, res: Mapping[str, Any], run_id: str,
+          spec: SweepSpec) -> pd.DataFrame:
+    """One design's dataset rows (see :data:`sweep_store.SCHEMA`), post-processed."""
+    n = len(res["pressure_mpa"]) if status == "ok" else 1
+    nan = [np.nan] * n
+
+    def col(k: str, default: Any = np.nan) -> list[Any]:
+        v = res.get(k, default)
+        return list(v) if isinstance(v, list) else [v] * n
+
+    rows = {
+        "key": [d.key] * n, "design_index": [d.index] * n, "name": [d.name] * n,
+        "family": [d.family] * n, "status": [status] * n, "error": [res.get("error", "")] * n,
+        "hole_mm": [d.hole_mm] * n, "tube_od_mm": [d.tube_od_mm] * n,
+        "tube_id_mm": [d.tube_id_mm] * n, "wire_mm": [d.wire_mm] * n,
+        "length_mm": [d.length_mm] * n, "wall_mm": [0.5 * (d.tube_od_mm - d.tube_id_mm)] * n,
+        "clearance_mm": [d.hole_mm - d.tube_od_mm - d.wire_mm] * n, "shore": [d.shore] * n,
+        "c10_mpa": col("c10_mpa"), "c01_mpa": col("c01_mpa"), "d_per_mpa": col("d_per_mpa"),
+        "pressure_mpa": col("pressure_mpa"), "squeeze_force_n": col("squeeze_force_n"),
+        "squeeze_force_n_per_mm": col("squeeze_force_n_per_mm"),
+        "wall_force_n": col("wall_force_n"), "friction_n": nan, "torque_nm": nan,
+        "gamma": nan, "f0_n": nan, "arm_radius_m": nan, "deviation_pct": nan,
+        "in_validated_region": [False] * n,
+        "contact_onset_pressure_mpa": col("contact_onset_pressure_mpa"),
+        "max_penetration_mm": col("max_penetration_mm"), "max_stretch": col("max_stretch"),
+        "newton_iterations": col("newton_iterations", 0), "dofs": col("dofs", 0),
+        "solve_time_s": col("solve_time_s"), "task_time_s": col("task_time_s"),
+        "worker": col("worker", ""), "blas_threads": col("blas_threads", ""),
+        "run_id": [run_id] * n, "finished_at": [datetime.now(UTC).isoformat()] * n,
+    }
+    return postprocess(pd.DataFrame(rows), spec)
+
+
+def postprocess(frame: pd.DataFrame, spec: SweepSpec) -> pd.DataFrame:
+    """Friction (N), torque (Nm), deviation (%) and labels from ``spec``, rows in design order.
+
+    ``in_validated_region`` is True when the geometric deviation from ``spec.base`` is at
+    most ``spec.threshold_pct`` (:func:`exofric.friction.deviation`) *and* the
+    hardness equals the base's (the paper validated one material only).
+    """
+    from exofric.friction import deviation
+
+    by_key = {d.key: d for d in spec.designs}
+    f = frame[frame["key"].isin(list(by_key))].copy()
+    f["design_index"] = f["key"].map(lambda k: by_key[k].index).astype("int64")
+    f["name"] = f["key"].map(lambda k: by_key[k].name)
+    f["family"] = f["key"].map(lambda k: by_key[k].family)
+    ok = (f["status"] == "ok").to_numpy()
+    n = f["squeeze_force_n"].to_numpy(dtype=float)
+    f["friction_n"] = np.where(ok, spec.gamma * n + spec.f0_n, np.nan)
+    f["torque_nm"] = f["friction_n"] * spec.arm_radius_m
+    f["gamma"], f["f0_n"], f["arm_radius_m"] = spec.gamma, spec.f0_n, spec.arm_radius_m
+    dev: dict[str, tuple[float, bool]] = {}
+    for key in f.loc[f["status"] != "skipped", "key"].unique():
+        d = by_key[key]
+        m = deviation(d.structure(), spec.base, spec.threshold_pct)
+        dev[d.key] = (m.deviation_pct,
+                      m.in_validated_region and abs(d.shore - spec.base_shore) < 1e-9)
+    f["deviation_pct"] = f["key"].map(lambda k: dev.get(k, (np.nan, False))[0]).astype(float)
+    f["in_validated_region"] = f["key"].map(lambda k: dev.get(k, (np.nan, False))[1])
+    f["in_validated_region"] = f["in_validated_region"].astype(bool)
+    return f.sort_values(["design_index", "pressure_mpa"], kind="stable").reset_index(drop=True)
+
+
+def _dask_results(todo: Sequence[Design], args: tuple[Any, ...], workers: int | None,
+                  scheduler: str | None, timeout_s: float, info: dict[str, Any]
+                  ) -> Iterator[tuple[Design, dict[str, Any]]]:
+    """Submit ``todo`` to Dask and yield (design, result) as they finish."""
+    from distributed import Client, LocalCluster, as_completed
+
+    with contextlib.ExitStack() as stack:
+        if scheduler:
+            try:
+                client = stack.enter_context(Client(scheduler, timeout=f"{timeout_s}s"))
+                client.wait_for_workers(1, timeout=timeout_s)
+            except (OSError, TimeoutError) as exc:
+                raise InputError(f"--scheduler {scheduler}: cannot reach a scheduler with "
+                                 f"workers ({type(exc).__name__}: {exc})") from None
+            info["scheduler"] = scheduler
+        else:
+            n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
+            cluster = stack.enter_context(LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
+                dashboard_address=":0", silence_logs=logging.ERROR, env=dict(BLAS_ENV)))
+            client = stack.enter_context(Client(cluster))
+            info["scheduler"] = f"LocalCluster({n} processes x 1 thread)"
+        info["workers"] = len(client.scheduler_info(n_workers=-1)["workers"])
+        futs = {client.submit(solve_design, d, *args, key=f"exofric-design-{d.key}",
+                              pure=False): d for d in todo}
+        for fut in as_completed(list(futs)):
+            d = futs.pop(fut)
+            try:
+                res = fut.result()
+            except Exception as exc:  # e.g. KilledWorker: recorded like a failed solve
+                res = {"status": "failed", "error": f"{type(exc).__name__}: {exc}"}
+            fut.release()
+            yield d, res
+
+
+def run_sweep(
+    spec: SweepSpec,
+    out: str | Path,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    serial: bool = False,
+    retry_failed: bool = False,
+    progress: ProgressFn | None = None,
+    solve_fn: SolveFn | None = None,
+    timeout_s: float = 60.0,
+) -> SweepRun:
+    """Run (or resume) a sweep and return its summary and rows.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        Designs, pressures (MPa), friction model and solver settings.
+    out : str or Path
+        Result directory (Parquet dataset); created if missing, reused as the cache.
+    workers : int, optional
+        LocalCluster worker processes (default: CPU count, at most the designs to solve).
+    scheduler : str, optional
+        Address of a running Dask scheduler (``tcp://host:8786``); ``workers`` is ignored.
+    serial : bool
+        Solve in this process in a plain loop (no Dask).
+    retry_failed : bool
+        Solve again designs recorded as failed (default: keep their cached error).
+    progress : callable, optional
+        ``progress(done, total, label)`` after each design.
+    solve_fn : callable, optional
+        Replacement for :func:`exofric.simulate.squeeze` (must be picklable for Dask).
+    timeout_s : float
+        How long to wait for ``scheduler`` and its first worker (s).
+
+    Returns
+    -------
+    SweepRun
+
+    Raises
+    ------
+    InputError
+        ``workers`` < 1, or no scheduler with workers reachable at ``scheduler``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> spec = parse_sweep({"pressures_mpa": [0.3, 0.6], "grid": {"wire_mm": [1.6, 2.0]},
+    ...                     "solver": {"n_radial": 1, "n_circ": 12}})
+    >>> run = run_sweep(spec, tempfile.mkdtemp(), serial=True)
+    >>> run.summary.computed, run.summary.skipped, len(run.frame)
+    (1, 1, 3)
+    """
+    if workers is not None and workers < 1:
+        raise InputError(f"workers must be >= 1, got {workers}")
+    t0 = time.perf_counter()
+    run_id = uuid.uuid4().hex[:12]
+    store = SweepStore(out)
+    store.remove_temporary()
+    store.write_manifest(spec, {"run_id": run_id})
+    have = store.finished()
+    for d in spec.skipped:
+        if have.get(d.key) != "skipped":
+            store.write(d.key, "skipped", _rows(d, "skipped", {"error": d.skip_reason}, run_id,
+                                                    spec))
+    done_ok = ("ok",) if retry_failed else ("ok", "failed")
+    todo = [d for d in spec.runnable if have.get(d.key) not in done_ok]
+    info: dict[str, Any] = {"scheduler": "serial" if serial else "none (nothing to solve)",
+                            "workers": 0}
+    args = (spec.pressures_mpa, spec.material, spec.solver, solve_fn)
+    if progress:
+        progress(0, len(todo), "")
+    if serial:
+        info["workers"] = 1 if todo else 0
+        results: Iterator[tuple[Design, dict[str, Any]]] = ((d, solve_design(d, *args))
+                                                            for d in todo)
+    else:
+        results = (_dask_results(todo, args, workers, scheduler, timeout_s, info) if todo
+                   else iter(()))
+    for i, (d, res) in enumerate(results, 1):
+        store.write(d.key, res["status"], _rows(d, res["status"], res, run_id, spec))
+        if progress:
+            progress(i, len(todo), f"{d.name} ({res['status']})")
+    frame = postprocess(store.read([d.key for d in spec.designs]), spec)
+    status = frame.drop_duplicates("key")["status"]
+    summary = SweepSummary(
+        designs=len(spec.designs), computed=len(todo),
+        cached=len(spec.runnable) - len(todo), skipped=len(spec.skipped),
+        failed=int((status == "failed").sum()), out=str(Path(out)),
+        wall_time_s=time.perf_counter() - t0, scheduler=str(info["scheduler"]),
+        workers=int(info["workers"]), run_id=run_id)
+    return SweepRun(summary, frame)
+
+
+def sweep(
+    config: str | Path | Mapping[str, Any] | SweepSpec,
+    out: str | Path,
+    **kwargs: Any,
+) -> pd.DataFrame:
+    """Python twin of ``exofric sweep CONFIG --out DIR``: the rows as a DataFrame.
+
+    ``config`` is a sweep TOML path, a parsed TOML mapping or a :class:`SweepSpec`;
+    ``kwargs`` are those of :func:`run_sweep`. The summary (``designs``, ``computed``,
+    ``cached``, ``skipped``, ``failed``, ``out``, ``wall_time_s``) is in
+    ``frame.attrs["summary"]``. Columns: see :data:`exofric.design.SCHEMA`
+    (mm, MPa, N, N/mm, Nm, m, %, s).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> f = sweep({"pressures_mpa": [0.6], "grid": {"hole_mm": [10.0, 9.0]},
+    ...            "solver": {"n_radial": 1, "n_circ": 12}}, tempfile.mkdtemp(), serial=True)
+    >>> f.attrs["summary"]["skipped"], round(float(f["torque_nm"].iloc[0]), 1)
+    (1, 17.2)
+    """
+    if isinstance(config, SweepSpec):
+        spec = config
+    elif isinstance(config, Mapping):
+        spec = parse_sweep(config)
+    else:
+        spec = load_sweep(config)
+    run = run_sweep(spec, out, **kwargs)
+    frame = run.frame
+    frame.attrs["summary"] = run.summary.to_dict()
+    return frame

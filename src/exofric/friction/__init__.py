@@ -1,0 +1,53 @@
+"""The friction stage (paper §3.2, §4, §5): from a squeeze curve N(P) to friction and predictions.
+
+Units: pressure P in MPa, squeezing force N and friction F in N (totals over the tube length),
+torque in Nm, arm radius in m.
+
+* :class:`FrictionModel` -- the Coulomb-type model F = gamma N + F0 (Eq 1; F0 = 0 in the paper).
+* :class:`CubicFit` -- a cubic polynomial y(P) over a pressure range (Eq 8), with R^2 and a
+  bracketed inverse (Brent) that refuses targets outside the fitted range or non-monotonic fits.
+* :func:`pressure_for_friction` -- the paper's Section 5 inverse: the pressure that gives a
+  target friction, via N = (F - F0) / gamma and the cubic inverse.
+* :class:`CurveInverse` -- the exact inverse of a tabulated (FE) curve N(P) by monotone (PCHIP)
+  interpolation of P against N, which the paper lacked.
+* :func:`fit_gamma` -> :class:`GammaFit` -- gamma (Eq 7) from rig data with a CI.
+* :func:`predict` -> :class:`PredictionSet` -- friction of other structures (Table 3) and the
+  applicability check; :func:`anova_vs_base` (Table 4).
+* :func:`torque` -- T = F R and a requirement check (knee 0-40 Nm).
+* :func:`simulate_rig` -- the virtual friction rig (synthetic, labelled as such).
+
+Examples
+--------
+>>> from exofric import paper
+>>> from exofric.friction import CubicFit, FrictionModel, pressure_for_friction
+>>> cubic = CubicFit(paper.eq8(), 0.2, 0.6)
+>>> model = FrictionModel(0.7168)
+>>> round(pressure_for_friction(54.40, cubic, model), 3)   # Eq 9 inverse (paper prints 0.26)
+0.293
+"""
+
+from exofric.friction._fit import GammaFit, fit_gamma, match_squeeze, relative_errors
+from exofric.friction._inverse import CurveInverse
+from exofric.friction._model import CubicFit, FrictionModel, pressure_for_friction
+from exofric.friction._predict import (
+    ApplicabilityWarning,
+    Deviation,
+    MeasuredCurve,
+    Prediction,
+    PredictionSet,
+    deviation,
+    paper_structures,
+    predict,
+    structures_from_dict,
+)
+from exofric.friction._rig import RigConfig, RigRun, simulate_rig
+from exofric.friction._stats import AnovaResult, anova_vs_base, one_way_anova
+from exofric.friction._torque import TorqueCheck, torque
+
+__all__ = [
+    "anova_vs_base", "AnovaResult", "ApplicabilityWarning", "CubicFit", "CurveInverse",
+    "Deviation", "deviation", "fit_gamma", "FrictionModel", "GammaFit", "match_squeeze",
+    "MeasuredCurve", "one_way_anova", "paper_structures", "predict", "Prediction", "PredictionSet",
+    "pressure_for_friction", "relative_errors", "RigConfig", "RigRun", "simulate_rig",
+    "structures_from_dict", "torque", "TorqueCheck",
+]

@@ -1,0 +1,110 @@
+"""Exact inverse P(N) of a tabulated (FE) squeeze curve: :class:`CurveInverse`.
+
+The paper inverts its cubic fit (Eq 8/9); this inverts the FE curve N(P) itself by monotone
+(PCHIP) interpolation of P against N, which the paper lacked. Units: pressure P in MPa,
+squeezing force N and friction F in N (totals over the tube length).
+
+:class:`CurveInverse` is also importable from :mod:`exofric.friction`, where the rest of the
+friction model (Eqs 1, 8, 9) lives.
+
+Examples
+--------
+>>> inv = CurveInverse.from_curve([0.1, 0.2, 0.3], [-1.0, 0.0, 5.0])  # no contact at 0.1 MPa
+>>> inv.squeeze_force_n, inv.pressure_mpa
+((0.0, 5.0), (0.2, 0.3))
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from exofric.errors import InputError, check_finite
+
+if TYPE_CHECKING:
+    from exofric.friction._model import FrictionModel
+
+__all__ = ["CurveInverse"]
+
+
+@dataclass(frozen=True)
+class CurveInverse:
+    """Exact inverse P(N) of a tabulated squeeze curve by monotone (PCHIP) interpolation.
+
+    Built with :meth:`from_curve` from FE output; leading points with N <= 0 (before
+    contact) are dropped except the last one, which brackets the contact onset.
+
+    Attributes
+    ----------
+    squeeze_force_n, pressure_mpa : tuple of float
+        The interpolation nodes (N strictly increasing, N and MPa).
+
+    Examples
+    --------
+    >>> inv = CurveInverse.from_curve([0.2, 0.3, 0.4], [10.0, 40.0, 90.0])
+    >>> inv.pressure(40.0)
+    0.3
+    """
+
+    squeeze_force_n: tuple[float, ...]
+    pressure_mpa: tuple[float, ...]
+
+    @classmethod
+    def from_curve(cls, pressure_mpa: ArrayLike, squeeze_force_n: ArrayLike) -> CurveInverse:
+        """Check that N(P) is strictly increasing (after contact) and build the inverse."""
+        p = np.asarray(pressure_mpa, dtype=float).ravel()
+        n = np.asarray(squeeze_force_n, dtype=float).ravel()
+        if p.shape != n.shape or p.size < 2:
+            raise InputError(
+                f"squeeze curve needs >= 2 (pressure, force) pairs of equal length, "
+                f"got {p.size} and {n.size}"
+            )
+        if not (np.all(np.isfinite(p)) and np.all(np.isfinite(n))):
+            raise InputError("squeeze curve must be finite numbers (no NaN/inf)")
+        if np.any(np.diff(p) <= 0):
+            raise InputError("squeeze curve pressures must be strictly increasing (MPa)")
+        nonpos = np.flatnonzero(n <= 0.0)
+        start = int(nonpos[-1]) if nonpos.size else 0
+        p, n = p[start:], n[start:]
+        bad = np.flatnonzero(np.diff(n) <= 0.0)
+        if bad.size or p.size < 2:
+            at = p[bad[0] + 1] if bad.size else p[0]
+            raise InputError(
+                f"squeeze force is not strictly increasing in pressure (at {at:g} MPa); "
+                "the inverse P(N) is not unique"
+            )
+        return cls(tuple(n.tolist()), tuple(p.tolist()))
+
+    def pressure(self, squeeze_force_n: float) -> float:
+        """Pressure (MPa) at which the curve reaches squeezing force N (N)."""
+        from scipy.interpolate import PchipInterpolator
+
+        v = check_finite("target squeezing force (N)", squeeze_force_n)
+        lo, hi = self.squeeze_force_n[0], self.squeeze_force_n[-1]
+        if not lo <= v <= hi:
+            raise InputError(
+                f"target squeezing force {v:g} N is outside the curve's range "
+                f"[{lo:.4g}, {hi:.4g}] N"
+            )
+        pch = PchipInterpolator(np.array(self.squeeze_force_n), np.array(self.pressure_mpa))
+        return float(pch(v))
+
+    def pressure_for_friction(self, target_n: float, model: FrictionModel) -> float:
+        """Pressure (MPa) for friction ``target_n`` (N): P(N = (F - F0) / gamma)."""
+        f = check_finite("target friction (N)", target_n)
+        n = model.squeeze(f)
+        lo, hi = self.squeeze_force_n[0], self.squeeze_force_n[-1]
+        if not lo <= n <= hi:
+            flo, fhi = model.friction(max(lo, 0.0)), model.friction(hi)
+            raise InputError(
+                f"target friction {f:g} N is outside the curve's range [{flo:.4g}, {fhi:.4g}] N"
+            )
+        return self.pressure(n)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready nodes: ``squeeze_force_n`` (N), ``pressure_mpa`` (MPa)."""
+        return {"squeeze_force_n": list(self.squeeze_force_n),
+                "pressure_mpa": list(self.pressure_mpa)}

@@ -1,0 +1,416 @@
+"""Friction prediction for other structures and its applicability (paper Sec. 4, Table 3).
+
+For each structure, the squeeze simulation gives N(P) (N, total over the tube length) and the
+model gives F = gamma N + F0 (N). With a measured curve, the relative error per pressure is
+(F_pred - F_meas) / F_meas in % (predicted at the measured pressures themselves: they are
+added to the simulated pressures) and the maximum relative error is the signed value of
+largest magnitude (Figs 8-10). With the base group measured too, each test's errors are
+compared with the base group's by one-way ANOVA (Table 4).
+
+Applicability. With scale factors s_D, s_d1, s_d2 (structure / base diameters):
+
+* ``deviation_pct`` (exofric's metric) = 100 (max s / min s - 1): how far the structure is
+  from a proportional scaling of the base (0 for any pure scaling). Table 3 gives
+  9.1, 1.7, 13.7, 10.8, 23.0, 45.5 % for tests 2-7, ordered like the paper's findings.
+* ``paper_deviation_pct`` = 100 max |s - 1| (matches the printed column for tests 4-7);
+  ``tube_ref_deviation_pct`` = 100 max |s - s_d1| (matches tests 2-5 and 7). The paper
+  does not define its column; see docs/paper-notes.md.
+* ``clearance_change_pct`` = 100 (c / d1 - c_b / d1_b), c = D - d1 - d2 (mm): the gap that
+  decides when contact starts, which the paper ignores (percentage points of the tube OD).
+
+A prediction with ``deviation_pct`` above the threshold (20 %, where the paper found the
+model valid) emits :class:`ApplicabilityWarning`.
+
+Table 3 prints no tube inner diameters: :func:`paper_structures` takes the base ID scaled
+with d1, ID_i = ID_base d1_i / d1_base (the same wall-to-diameter ratio), and L = 116 mm.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from exofric.errors import InputError, check_positive, check_pressures
+from exofric.friction._fit import relative_errors
+from exofric.friction._model import FrictionModel
+from exofric.friction._stats import AnovaResult, anova_vs_base
+from exofric.friction._torque import TorqueCheck, torque
+from exofric.geometry import BASE, Structure
+
+__all__ = [
+    "ApplicabilityWarning",
+    "Deviation",
+    "deviation",
+    "MeasuredCurve",
+    "Prediction",
+    "PredictionSet",
+    "predict",
+    "paper_structures",
+    "structures_from_dict",
+]
+
+#: Deviation (%) up to which the paper found the model valid (Sec. 4).
+VALIDATED_DEVIATION_PCT = 20.0
+
+
+class ApplicabilityWarning(UserWarning):
+    """A friction prediction is made outside the geometric deviation the paper validated."""
+
+
+@dataclass(frozen=True)
+class Deviation:
+    """Geometric deviation of a structure from the base group (see module docstring)."""
+
+    scale_hole: float
+    scale_tube: float
+    scale_wire: float
+    deviation_pct: float
+    paper_deviation_pct: float
+    tube_ref_deviation_pct: float
+    size_change_pct: float
+    clearance_mm: float
+    base_clearance_mm: float
+    clearance_change_pct: float
+    threshold_pct: float
+
+    @property
+    def in_validated_region(self) -> bool:
+        """True when ``deviation_pct`` <= ``threshold_pct``."""
+        return self.deviation_pct <= self.threshold_pct + 1e-9
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (scale factors unitless, % and mm)."""
+        return {
+            "scale_hole": self.scale_hole,
+            "scale_tube": self.scale_tube,
+            "scale_wire": self.scale_wire,
+            "deviation_pct": self.deviation_pct,
+            "paper_deviation_pct": self.paper_deviation_pct,
+            "tube_ref_deviation_pct": self.tube_ref_deviation_pct,
+            "size_change_pct": self.size_change_pct,
+            "clearance_mm": self.clearance_mm,
+            "base_clearance_mm": self.base_clearance_mm,
+            "clearance_change_pct": self.clearance_change_pct,
+            "threshold_pct": self.threshold_pct,
+            "in_validated_region": self.in_validated_region,
+        }
+
+
+def deviation(
+    structure: Structure, base: Structure = BASE, threshold_pct: float = VALIDATED_DEVIATION_PCT
+) -> Deviation:
+    """Deviation metrics of ``structure`` from ``base`` (diameters in mm, results in %).
+
+    Examples
+    --------
+    >>> from exofric.geometry import Structure
+    >>> d = deviation(Structure(12.3, 9.2, 5.5, 1.6))     # Table 3, test 6
+    >>> round(d.deviation_pct, 1), round(d.paper_deviation_pct, 1), d.in_validated_region
+    (23.0, 23.0, False)
+    """
+    thr = check_positive("threshold_pct", threshold_pct, "%")
+    s = np.array([structure.hole_mm / base.hole_mm, structure.tube_od_mm / base.tube_od_mm,
+                  structure.wire_mm / base.wire_mm])
+    c, cb = structure.clearance_mm, base.clearance_mm
+    return Deviation(
+        scale_hole=float(s[0]),
+        scale_tube=float(s[1]),
+        scale_wire=float(s[2]),
+        deviation_pct=float(100.0 * (s.max() / s.min() - 1.0)),
+        paper_deviation_pct=float(100.0 * np.max(np.abs(s - 1.0))),
+        tube_ref_deviation_pct=float(100.0 * np.max(np.abs(s - s[1]))),
+        size_change_pct=float(100.0 * (np.exp(np.mean(np.log(s))) - 1.0)),
+        clearance_mm=float(c),
+        base_clearance_mm=float(cb),
+        clearance_change_pct=float(100.0 * (c / structure.tube_od_mm - cb / base.tube_od_mm)),
+        threshold_pct=thr,
+    )
+
+
+def paper_structures(base: Structure = BASE) -> tuple[Structure, ...]:
+    """The seven Table 3 structures (mm), named ``"test 1"`` ... ``"test 7"``.
+
+    Tube IDs are not printed: ID_i = base.tube_id_mm x d1_i / base.tube_od_mm; L = base length.
+
+    Examples
+    --------
+    >>> s = paper_structures()
+    >>> len(s), s[1].hole_mm, round(s[1].tube_id_mm, 4)
+    (7, 7.5, 3.7125)
+    """
+    from exofric import paper
+
+    out = []
+    for row in paper.table3():
+        d1 = float(row["tube_od_mm"])
+        out.append(Structure(float(row["hole_mm"]), d1, base.tube_id_mm * d1 / base.tube_od_mm,
+                             float(row["wire_mm"]), base.length_mm, f"test {row['test']}"))
+    return tuple(out)
+
+
+_KEYS = {"name", "hole_mm", "tube_od_mm", "tube_id_mm", "wire_mm", "length_mm"}
+
+
+def structures_from_dict(
+    data: Mapping[str, Any], base: Structure = BASE
+) -> tuple[tuple[Structure, ...], Structure]:
+    """Structures from a parsed structures file (see ``examples/structures-paper.toml``).
+
+    ``data`` has a list ``structure`` of tables with ``hole_mm``, ``tube_od_mm``, ``wire_mm``
+    and optional ``name``, ``tube_id_mm`` (default: base ID scaled with d1), ``length_mm``
+    (default: the base length); an optional ``base`` table (same keys, ``tube_id_mm``
+    required) replaces :data:`~exofric.geometry.BASE`. Returns (structures, base).
+    """
+    if "base" in data:
+        b = data["base"]
+        if not isinstance(b, Mapping):
+            raise InputError("structures file: 'base' must be a table")
+        base = _structure(b, None, "base", base)
+    rows = data.get("structure")
+    if not isinstance(rows, list) or not rows:
+        raise InputError("structures file: needs a non-empty [[structure]] list")
+    out = tuple(_structure(r, base, f"structure {i + 1}", base) for i, r in enumerate(rows))
+    names = [s.name for s in out]
+    dup = {n for n in names if names.count(n) > 1}
+    if dup:
+        raise InputError(f"structures file: duplicate structure name {sorted(dup)[0]!r}")
+    return out, base
+
+
+def _structure(row: Any, scale_from: Structure | None, where: str, base: Structure) -> Structure:
+    if not isinstance(row, Mapping):
+        raise InputError(f"structures file: {where} must be a table")
+    extra = set(row) - _KEYS
+    if extra:
+        raise InputError(f"structures file: {where} has unknown key {sorted(extra)[0]!r} "
+                         f"(allowed: {', '.join(sorted(_KEYS))})")
+    for key in ("hole_mm", "tube_od_mm", "wire_mm") + (("tube_id_mm",) if not scale_from else ()):
+        if key not in row:
+            raise InputError(f"structures file: {where} is missing {key!r}")
+    try:
+        d1 = float(row["tube_od_mm"])
+        tid = (float(row["tube_id_mm"]) if "tube_id_mm" in row
+               else base.tube_id_mm * d1 / base.tube_od_mm)
+        return Structure(float(row["hole_mm"]), d1, tid, float(row["wire_mm"]),
+                         float(row.get("length_mm", base.length_mm)),
+                         str(row.get("name", where)))
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, InputError):
+            raise InputError(f"structures file: {where}: {exc}") from None
+        raise InputError(f"structures file: {where}: sizes must be numbers in mm") from None
+
+
+@dataclass(frozen=True)
+class MeasuredCurve:
+    """A measured friction curve: pressures (MPa) and friction forces (N)."""
+
+    pressure_mpa: tuple[float, ...]
+    friction_n: tuple[float, ...]
+
+    @classmethod
+    def of(cls, pressure_mpa: ArrayLike, friction_n: ArrayLike) -> MeasuredCurve:
+        """Validated curve (finite, equal lengths, distinct pressures), sorted by pressure."""
+        p = np.asarray(pressure_mpa, dtype=float).ravel()
+        f = np.asarray(friction_n, dtype=float).ravel()
+        if p.size != f.size or p.size == 0:
+            raise InputError(
+                f"measured curve needs equal, non-zero lengths, got {p.size} and {f.size}"
+            )
+        if not (np.all(np.isfinite(p)) and np.all(np.isfinite(f))) or np.any(p < 0):
+            raise InputError("measured curve must be finite, with pressures >= 0 MPa")
+        o = np.argsort(p, kind="stable")
+        if np.any(np.diff(p[o]) == 0):
+            raise InputError("measured curve has a repeated pressure")
+        return cls(tuple(p[o].tolist()), tuple(f[o].tolist()))
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """Predicted friction for one structure (MPa, N, %, Nm)."""
+
+    structure: Structure
+    model: FrictionModel
+    pressure_mpa: tuple[float, ...]
+    squeeze_force_n: tuple[float, ...]
+    predicted_friction_n: tuple[float, ...]
+    contact_onset_pressure_mpa: float | None
+    deviation: Deviation
+    torque: TorqueCheck
+    measured: MeasuredCurve | None = None
+    relative_error_pct: tuple[float, ...] = ()
+
+    @property
+    def max_relative_error_pct(self) -> float | None:
+        """Signed relative error of largest magnitude (%), None without a measured curve."""
+        e = np.asarray(self.relative_error_pct, dtype=float)
+        e = e[np.isfinite(e)]
+        return float(e[np.argmax(np.abs(e))]) if e.size else None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: curves (MPa, N), errors (%), deviation (%), torque (Nm)."""
+        d: dict[str, Any] = {
+            "name": self.structure.name,
+            "structure": self.structure.to_dict(),
+            "gamma": self.model.gamma,
+            "f0_n": self.model.f0_n,
+            "pressure_mpa": list(self.pressure_mpa),
+            "squeeze_force_n": list(self.squeeze_force_n),
+            "predicted_friction_n": list(self.predicted_friction_n),
+            "contact_onset_pressure_mpa": self.contact_onset_pressure_mpa,
+            "deviation_pct": self.deviation.deviation_pct,
+            "paper_deviation_pct": self.deviation.paper_deviation_pct,
+            "in_validated_region": self.deviation.in_validated_region,
+            "deviation": self.deviation.to_dict(),
+            "max_friction_n": self.torque.friction_n,
+            "max_torque_nm": self.torque.torque_nm,
+            "meets_torque_requirement": self.torque.meets_max,
+        }
+        if self.measured is not None:
+            d["measured_pressure_mpa"] = list(self.measured.pressure_mpa)
+            d["measured_friction_n"] = list(self.measured.friction_n)
+            d["relative_error_pct"] = list(self.relative_error_pct)
+            d["max_relative_error_pct"] = self.max_relative_error_pct
+        return d
+
+
+@dataclass(frozen=True)
+class PredictionSet:
+    """Predictions for several structures, plus the ANOVA vs the base group when measured."""
+
+    predictions: tuple[Prediction, ...]
+    base: Structure
+    anova: tuple[AnovaResult, ...] = ()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict with ``structures`` (list) and ``anova`` (list)."""
+        return {
+            "gamma": self.predictions[0].model.gamma if self.predictions else None,
+            "base": self.base.to_dict(),
+            "structures": [p.to_dict() for p in self.predictions],
+            "anova": [a.to_dict() for a in self.anova],
+        }
+
+
+SqueezeFn = Callable[[Structure, Any, np.ndarray], Any]
+
+
+def _same_geometry(a: Structure, b: Structure) -> bool:
+    return all(math.isclose(x, y, rel_tol=1e-9) for x, y in
+               ((a.hole_mm, b.hole_mm), (a.tube_od_mm, b.tube_od_mm), (a.wire_mm, b.wire_mm)))
+
+
+def predict(
+    structures: Sequence[Structure],
+    gamma: float | FrictionModel,
+    material: Any,
+    pressures_mpa: ArrayLike,
+    *,
+    squeeze_fn: SqueezeFn | None = None,
+    measured: Mapping[str, MeasuredCurve] | None = None,
+    base: Structure = BASE,
+    threshold_pct: float = VALIDATED_DEVIATION_PCT,
+    arm_radius_m: float = 0.10,
+    required_torque_nm: tuple[float, float] = (0.0, 40.0),
+    alpha: float = 0.05,
+) -> PredictionSet:
+    """Predict F = gamma N(P) + F0 for each structure and compare with measured curves.
+
+    Parameters
+    ----------
+    structures : sequence of Structure
+        Structures (mm); names must be unique (they key ``measured``).
+    gamma : float or FrictionModel
+        Equivalent coefficient (unitless) or a full model with offset F0 (N).
+    material : MooneyRivlin
+        Tube material passed to the squeeze simulation.
+    pressures_mpa : array_like
+        Strictly increasing pressures (MPa) for the predicted curves.
+    squeeze_fn : callable, optional
+        ``squeeze(structure, material, pressures_mpa)`` returning an object with arrays
+        ``pressure_mpa`` and ``squeeze_force_n`` (total N) and optionally
+        ``contact_onset_pressure_mpa``; default :func:`exofric.simulate.squeeze`.
+    measured : mapping name -> MeasuredCurve, optional
+        Measured friction per structure name; the measured pressures are simulated too.
+    base : Structure
+        Reference for the deviation metrics (and the ANOVA base group when measured).
+    threshold_pct : float
+        Deviation (%) above which :class:`ApplicabilityWarning` is emitted.
+    arm_radius_m, required_torque_nm : float, (float, float)
+        Lever arm (m) and required torque range (Nm) for the torque check at max pressure.
+    alpha : float
+        ANOVA significance level.
+
+    Returns
+    -------
+    PredictionSet
+
+    Warns
+    -----
+    ApplicabilityWarning
+        For each structure with ``deviation_pct`` above ``threshold_pct``.
+    """
+    model = gamma if isinstance(gamma, FrictionModel) else FrictionModel(float(gamma))
+    grid = check_pressures("pressures_mpa", np.asarray(pressures_mpa, dtype=float).ravel())
+    if not structures:
+        raise InputError("predict needs at least one structure")
+    names = [s.name for s in structures]
+    dup = {n for n in names if names.count(n) > 1}
+    if dup:
+        raise InputError(f"structure names must be unique, {sorted(dup)[0]!r} repeats")
+    measured = dict(measured or {})
+    unknown = set(measured) - set(names)
+    if unknown:
+        raise InputError(f"measured curve {sorted(unknown)[0]!r} matches no structure "
+                         f"(names: {', '.join(names)})")
+    if squeeze_fn is None:
+        from functools import partial
+
+        from exofric.simulate import squeeze as _squeeze
+
+        squeeze_fn = partial(_squeeze, keep_fields=False)
+    preds = []
+    for s in structures:
+        meas = measured.get(s.name)
+        p_eval = grid if meas is None else np.union1d(grid, np.asarray(meas.pressure_mpa))
+        res = squeeze_fn(s, material, p_eval)
+        p_out = np.asarray(res.pressure_mpa, dtype=float).ravel()
+        n_out = np.asarray(res.squeeze_force_n, dtype=float).ravel()
+        if p_out.shape != p_eval.shape or n_out.shape != p_eval.shape:
+            raise InputError(f"{s.name}: squeeze returned {n_out.size} forces for "
+                             f"{p_eval.size} pressures")
+        f_out = model.friction(n_out)
+        dev = deviation(s, base, threshold_pct)
+        if not dev.in_validated_region:
+            warnings.warn(
+                f"{s.name}: deviation {dev.deviation_pct:.1f}% from the base exceeds "
+                f"{threshold_pct:g}%, outside the region where the paper validated the model",
+                ApplicabilityWarning, stacklevel=2,
+            )
+        rel: tuple[float, ...] = ()
+        if meas is not None:
+            at = np.searchsorted(p_out, np.asarray(meas.pressure_mpa))
+            rel = tuple(relative_errors(f_out[at], meas.friction_n).tolist())
+        onset = getattr(res, "contact_onset_pressure_mpa", None)
+        preds.append(Prediction(
+            structure=s, model=model, pressure_mpa=tuple(p_out.tolist()),
+            squeeze_force_n=tuple(n_out.tolist()), predicted_friction_n=tuple(f_out.tolist()),
+            contact_onset_pressure_mpa=None if onset is None else float(onset),
+            deviation=dev,
+            torque=torque(float(f_out[-1]), arm_radius_m, required_torque_nm),
+            measured=meas, relative_error_pct=rel,
+        ))
+    anova: tuple[AnovaResult, ...] = ()
+    base_pred = next((p for p in preds if p.measured is not None
+                      and _same_geometry(p.structure, base)), None)
+    if base_pred is not None:
+        others = {p.structure.name: p.relative_error_pct for p in preds
+                  if p.measured is not None and p is not base_pred}
+        if others and np.isfinite(base_pred.relative_error_pct).sum() >= 2:
+            anova = anova_vs_base(base_pred.relative_error_pct, others, alpha=alpha)
+    return PredictionSet(tuple(preds), base, anova)

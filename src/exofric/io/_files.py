@@ -1,0 +1,183 @@
+"""Reading and validating rig data files (CSV with units in the headers).
+
+Every reader here returns plain validated data or raises
+:class:`~exofric.errors.InputError` with one line naming the file, the row or
+column and what is allowed. Column names carry their unit (``pressure_mpa``,
+``outer_diameter_mm``, ``friction_n``, ``time_s``); a column with the same
+quantity in another unit (``pressure_kpa``) is refused with a hint, never
+silently reinterpreted.
+"""
+
+from __future__ import annotations
+
+import io as _io
+import json
+import math
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from exofric.errors import InputError
+
+__all__ = ["read_table", "write_json", "jsonable", "UNIT_SUFFIXES"]
+
+#: Unit suffixes exofric understands in column names, and their meaning.
+UNIT_SUFFIXES = {"mpa": "MPa", "mm": "mm", "n": "N", "s": "s", "nm": "Nm", "pct": "%"}
+_OTHER_UNITS = ("kpa", "pa", "bar", "psi", "cm", "m", "in", "kn", "lbf", "ms", "min")
+
+
+def _base(col: str) -> str:
+    return col.rsplit("_", 1)[0] if "_" in col else col
+
+
+def read_table(
+    path: str | Path,
+    required: Sequence[str],
+    optional: Sequence[str] = (),
+    *,
+    text_columns: Sequence[str] = (),
+    nonnegative: Sequence[str] | None = None,
+    unique_within: tuple[str, str | None] | None = None,
+    min_rows: int = 2,
+) -> pd.DataFrame:
+    """Read a CSV rig file, check it, and return its numeric columns.
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV file with a header row; ``#`` starts a comment; columns in any order;
+        unknown columns are ignored.
+    required : sequence of str
+        Column names that must be present (with unit suffix, e.g. ``pressure_mpa``).
+    optional : sequence of str
+        Numeric columns read when present.
+    text_columns : sequence of str
+        Columns (among required/optional) kept as text, e.g. a ``test`` label.
+    nonnegative : sequence of str, optional
+        Columns that must be >= 0 (default: all numeric columns).
+    unique_within : (column, group) or None
+        ``column`` must not repeat within each value of ``group`` (or at all if
+        ``group`` is None), e.g. ``("pressure_mpa", "test")``.
+    min_rows : int
+        Fewest data rows accepted (per group when ``unique_within`` has a group).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Only the required and present optional columns, numeric ones as float.
+
+    Examples
+    --------
+    >>> from exofric import paper
+    >>> df = read_table(paper.data_path("table1_test.csv"), ["pressure_mpa", "outer_diameter_mm"])
+    >>> df["outer_diameter_mm"].tolist()
+    [8.53, 8.78, 9.14, 9.44]
+    """
+    p = Path(path)
+    name = p.name
+    if not p.is_file():
+        raise InputError(f"{path}: file not found")
+    try:
+        text = p.read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{name}: cannot read as UTF-8 text ({exc.__class__.__name__})") from None
+    try:
+        df = pd.read_csv(
+            _io.StringIO(text),
+            comment="#",
+            skipinitialspace=True,
+            dtype=str,
+            keep_default_na=False,
+        )
+    except pd.errors.EmptyDataError:
+        raise InputError(
+            f"{name}: no header row (expected columns {', '.join(required)})"
+        ) from None
+    except pd.errors.ParserError as exc:
+        msg = str(exc).strip().splitlines()[-1]
+        raise InputError(f"{name}: malformed CSV ({msg})") from None
+    df.columns = [str(c).strip().lower() for c in df.columns]
+    cols = list(df.columns)
+    for col in required:
+        if col in cols:
+            continue
+        alt = [c for c in cols if _base(c) == _base(col) and c.rsplit("_", 1)[-1] in _OTHER_UNITS]
+        if alt:
+            unit = UNIT_SUFFIXES.get(col.rsplit("_", 1)[-1], "?")
+            raise InputError(
+                f"{name}: column {alt[0]!r} is in the wrong unit; exofric expects {col!r} ({unit})"
+            )
+        raise InputError(
+            f"{name}: missing column {col!r} (required: {', '.join(required)}; found: "
+            f"{', '.join(cols) or 'none'})"
+        )
+    keep = [c for c in list(required) + list(optional) if c in cols]
+    df = df[keep].copy()
+    numeric = [c for c in keep if c not in text_columns]
+    checks = numeric if nonnegative is None else [c for c in nonnegative if c in numeric]
+    for col in numeric:
+        raw = df[col].astype(str).str.strip()
+        vals = pd.to_numeric(raw, errors="coerce")
+        for i, (r, v) in enumerate(zip(raw, vals, strict=True)):
+            row = i + 1
+            if r == "" or r.lower() == "nan" or (isinstance(v, float) and math.isnan(v)):
+                what = (
+                    "empty"
+                    if r == ""
+                    else ("NaN" if r.lower() == "nan" else f"not a number: {r!r}")
+                )
+                raise InputError(f"{name}: data row {row}, column {col!r} is {what}")
+            if not math.isfinite(float(v)):
+                raise InputError(f"{name}: data row {row}, column {col!r} must be finite, got {r}")
+            if col in checks and v < 0:
+                raise InputError(f"{name}: data row {row}, column {col!r} must be >= 0, got {r}")
+        df[col] = vals.astype(float)
+    for col in text_columns:
+        if col in df.columns:
+            df[col] = df[col].astype(str).str.strip()
+    if unique_within is not None:
+        col, group = unique_within
+        groups = df.groupby(group, sort=False) if group and group in df.columns else [(None, df)]
+        for g, sub in groups:
+            dup = sub[col][sub[col].duplicated()]
+            where = f" in {group} {g!r}" if g is not None else ""
+            if len(dup):
+                raise InputError(f"{name}: duplicate {col} {dup.iloc[0]:g}{where}")
+            if len(sub) < min_rows:
+                raise InputError(
+                    f"{name}: needs at least {min_rows} data rows{where}, got {len(sub)}"
+                )
+    elif len(df) < min_rows:
+        raise InputError(f"{name}: needs at least {min_rows} data rows, got {len(df)}")
+    return df.reset_index(drop=True)
+
+
+def jsonable(obj: Any) -> Any:
+    """Convert NumPy scalars/arrays, tuples and non-finite floats to JSON-ready values.
+
+    NaN and infinities become ``None`` (JSON has no NaN).
+    """
+    if isinstance(obj, dict):
+        return {str(k): jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return jsonable(obj.tolist())
+    if isinstance(obj, np.generic):
+        return jsonable(obj.item())
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    if isinstance(obj, Path):
+        return str(obj)
+    return obj
+
+
+def write_json(obj: Any, path: str | Path) -> Path:
+    """Write ``obj`` (see :func:`jsonable`) as indented JSON; return the path."""
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    p.write_text(json.dumps(jsonable(obj), indent=2) + "\n", encoding="utf-8")
+    return p

@@ -1,0 +1,272 @@
+"""Silicone material model: Shore A hardness to Mooney-Rivlin constants.
+
+The paper (Ma et al. 2021, Eqs 2-6) builds the air tube's Mooney-Rivlin model
+from its Shore A hardness:
+
+* Eq 3: ``E0 = (2.15 S + 15.75) / (100 - S)`` MPa (Gent's 1958 relation, rounded),
+* Eq 4: ``G = E0 / 3 = 2 (C10 + C01)``,
+* Eq 5: ``C01 / C10 = 0.05``,
+* Eq 6: ``d = (1 - 2 nu) / (C10 + C01)`` with ``nu = 0.498``.
+
+The strain energy (Eq 2, ANSYS convention) is
+``U = C10 (I1b - 3) + C01 (I2b - 3) + (J - 1)^2 / d``, so the bulk modulus is
+``K = 2 / d`` and the small-strain shear modulus ``mu = 2 (C10 + C01)``.
+
+Units: moduli and C10, C01 in MPa; d in 1/MPa.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from scipy.special import erfinv
+
+from exofric.errors import InputError, check_finite, check_positive, check_range
+
+__all__ = [
+    "CORRELATIONS",
+    "Correlation",
+    "MooneyRivlin",
+    "MaterialRangeWarning",
+    "shore_to_modulus",
+]
+
+
+class MaterialRangeWarning(UserWarning):
+    """A correlation is used outside the hardness range it was published for."""
+
+
+def _paper(s: float) -> float:
+    return (2.15 * s + 15.75) / (100.0 - s)
+
+
+def _gent(s: float) -> float:
+    return 0.0981 * (56.0 + 7.62336 * s) / (0.137505 * (254.0 - 2.54 * s))
+
+
+def _qi(s: float) -> float:
+    # S = 100 erf(3.186e-4 sqrt(E[Pa]))  ->  E = (erfinv(S/100) / 3.186e-4)^2 Pa
+    return float((erfinv(s / 100.0) / 3.186e-4) ** 2) * 1e-6
+
+
+def _astm_log10(s: float) -> float:
+    return 10.0 ** (0.0235 * s - 0.6403)
+
+
+@dataclass(frozen=True)
+class Correlation:
+    """A published Shore A -> Young's modulus correlation.
+
+    Attributes
+    ----------
+    name : str
+        Key used by the API and the CLI (``--correlation``).
+    func : callable
+        Shore A hardness -> E0 in MPa.
+    valid : tuple of float
+        Hardness range (Shore A) in which exofric uses it without a warning.
+    reference : str
+        Where it comes from.
+    """
+
+    name: str
+    func: Callable[[float], float]
+    valid: tuple[float, float]
+    reference: str
+
+
+CORRELATIONS: dict[str, Correlation] = {
+    c.name: c
+    for c in (
+        Correlation(
+            "paper",
+            _paper,
+            (20.0, 80.0),
+            "Ma et al. 2021, Eq 3: E0 = (2.15 S + 15.75)/(100 - S) MPa; Gent's relation "
+            "with its constants rounded.",
+        ),
+        Correlation(
+            "gent",
+            _gent,
+            (20.0, 80.0),
+            "Gent, A.N. (1958) Trans. IRI 34, 46: E = 0.0981(56 + 7.62336 S)/"
+            "(0.137505(254 - 2.54 S)) MPa.",
+        ),
+        Correlation(
+            "qi",
+            _qi,
+            (20.0, 80.0),
+            "Qi, Joyce & Boyce (2003) Rubber Chem. Technol. 76, 419: "
+            "S = 100 erf(3.186e-4 sqrt(E)), E in Pa (neo-Hookean initial modulus).",
+        ),
+        Correlation(
+            "astm-log10",
+            _astm_log10,
+            (20.0, 80.0),
+            "Log-linear ASTM D2240/BS 903 fit: log10(E[MPa]) = 0.0235 S - 0.6403. The log is "
+            "base 10; some sources misquote it with the natural log, which gives ~3x lower E.",
+        ),
+    )
+}
+
+
+def shore_to_modulus(shore: float, correlation: str = "paper") -> float:
+    """Young's modulus E0 (MPa) of a rubber from its Shore A hardness.
+
+    Parameters
+    ----------
+    shore : float
+        Shore A hardness, in (0, 100).
+    correlation : {'paper', 'gent', 'qi', 'astm-log10'}
+        Which published correlation to use (see :data:`CORRELATIONS`). All four
+        are empirical; exofric warns (:class:`MaterialRangeWarning`) outside
+        20-80 Shore A, a conservative range common to all four, where the
+        published fits are backed by data.
+
+    Returns
+    -------
+    float
+        E0 in MPa.
+
+    Examples
+    --------
+    >>> round(shore_to_modulus(62.5), 5)
+    4.00333
+    """
+    if correlation not in CORRELATIONS:
+        raise InputError(
+            f"correlation must be one of {', '.join(CORRELATIONS)}, got {correlation!r}"
+        )
+    s = check_range("shore", shore, 0.0, 100.0, lo_open=True, hi_open=True)
+    corr = CORRELATIONS[correlation]
+    lo, hi = corr.valid
+    if not lo <= s <= hi:
+        warnings.warn(
+            f"shore {s:g} is outside the {lo:g}-{hi:g} Shore A range of the "
+            f"'{correlation}' correlation; E0 is an extrapolation",
+            MaterialRangeWarning,
+            stacklevel=2,
+        )
+    return float(corr.func(s))
+
+
+@dataclass(frozen=True)
+class MooneyRivlin:
+    """Two-parameter Mooney-Rivlin material (paper Eq 2, ANSYS convention).
+
+    ``U = C10 (I1b - 3) + C01 (I2b - 3) + (J - 1)^2 / d``.
+
+    Attributes
+    ----------
+    c10, c01 : float
+        Material constants in MPa (``c10 + c01 > 0``).
+    d : float
+        Incompressibility parameter in 1/MPa (``d > 0``; bulk modulus ``2/d``).
+    shore : float or None
+        The Shore A hardness it was built from, if any.
+    correlation : str or None
+        The Shore -> E0 correlation used, if any.
+
+    Examples
+    --------
+    >>> m = MooneyRivlin.from_shore(62.5)
+    >>> round(m.c10, 5), round(m.d, 6)
+    (0.63545, 0.005995)
+    """
+
+    c10: float
+    c01: float
+    d: float
+    shore: float | None = None
+    correlation: str | None = None
+
+    def __post_init__(self) -> None:
+        check_finite("c10", self.c10)
+        check_finite("c01", self.c01)
+        check_positive("d", self.d, "1/MPa")
+        if self.c10 + self.c01 <= 0.0:
+            raise InputError(
+                f"c10 + c01 must be > 0 MPa (shear modulus 2(c10+c01)), got {self.c10 + self.c01:g}"
+            )
+
+    @classmethod
+    def from_shore(
+        cls,
+        shore: float,
+        correlation: str = "paper",
+        c01_ratio: float = 0.05,
+        poisson: float = 0.498,
+        c10_divisor: float | None = None,
+    ) -> MooneyRivlin:
+        """Build the material from Shore A hardness by the paper's Eqs 3-6.
+
+        Parameters
+        ----------
+        shore : float
+            Shore A hardness in (0, 100).
+        correlation : str
+            Shore -> E0 correlation (default ``'paper'``, Eq 3).
+        c01_ratio : float
+            C01 / C10 (Eq 5; default 0.05), in [0, 1].
+        poisson : float
+            Poisson's ratio nu in (0, 0.5) (Eq 6; default 0.498).
+        c10_divisor : float, optional
+            ``C10 = (G/2) / c10_divisor``; default ``1 + c01_ratio`` (Eq 4 exactly). The
+            paper's printed Table 2 corresponds to 1.005 (a slip for 1.05, see the notes).
+
+        Returns
+        -------
+        MooneyRivlin
+            ``G = E0/3 = 2(C10 + C01)`` (Eq 4), ``d = (1 - 2 nu)/(C10 + C01)`` (Eq 6).
+        """
+        ratio = check_range("c01_ratio", c01_ratio, 0.0, 1.0)
+        nu = check_range("poisson", poisson, 0.0, 0.5, lo_open=True, hi_open=True)
+        e0 = shore_to_modulus(shore, correlation)
+        g = e0 / 3.0
+        div = 1.0 + ratio if c10_divisor is None else check_positive("c10_divisor", c10_divisor)
+        c10 = g / 2.0 / div
+        c01 = ratio * c10
+        d = (1.0 - 2.0 * nu) / (c10 + c01)
+        return cls(c10=c10, c01=c01, d=d, shore=float(shore), correlation=correlation)
+
+    @property
+    def shear_modulus(self) -> float:
+        """Small-strain shear modulus ``mu = 2 (C10 + C01)`` in MPa."""
+        return 2.0 * (self.c10 + self.c01)
+
+    @property
+    def bulk_modulus(self) -> float:
+        """Bulk modulus ``K = 2 / d`` in MPa."""
+        return 2.0 / self.d
+
+    @property
+    def youngs_modulus(self) -> float:
+        """Small-strain Young's modulus ``E = 9 K mu / (3 K + mu)`` in MPa."""
+        k, mu = self.bulk_modulus, self.shear_modulus
+        return 9.0 * k * mu / (3.0 * k + mu)
+
+    @property
+    def poisson(self) -> float:
+        """Small-strain Poisson's ratio ``(3K - 2mu) / (2(3K + mu))``."""
+        k, mu = self.bulk_modulus, self.shear_modulus
+        return (3.0 * k - 2.0 * mu) / (2.0 * (3.0 * k + mu))
+
+    def with_bulk_factor(self, factor: float) -> MooneyRivlin:
+        """Same shear behaviour, bulk modulus multiplied by ``factor`` (d divided)."""
+        f = check_positive("bulk factor", factor)
+        return MooneyRivlin(self.c10, self.c01, self.d / f, self.shore, self.correlation)
+
+    def to_dict(self) -> dict[str, float | str | None]:
+        """JSON-ready dict with unit-suffixed keys (MPa, 1/MPa)."""
+        return {
+            "shore": self.shore,
+            "correlation": self.correlation,
+            "e0_mpa": 3.0 * self.shear_modulus,  # Eq 4: E0 = 3 G
+            "g_mpa": self.shear_modulus,
+            "c10_mpa": self.c10,
+            "c01_mpa": self.c01,
+            "d_per_mpa": self.d,
+            "k_mpa": self.bulk_modulus,
+        }

@@ -1,0 +1,260 @@
+"""The friction-control experiment of paper §5 (Fig 12): one case, and the six side by side.
+
+A *case* is one controller (PD, PI or PID) with or without the model feedforward, on a
+:class:`ControlSetup` (plant, friction model, target, sample time). Gains come from the
+IMC/SIMC rule of :mod:`exofric.control` for the loop linearised at the target (or are
+given), and are the same with and without the model, as in the paper. The true plant's
+friction map is the model's times (1 + mismatch).
+
+Units: friction N, pressure MPa, time s.
+
+Examples
+--------
+>>> from exofric.reproduce import ControlSetup, run_case
+>>> r = run_case(ControlSetup.default(), "pi", feedforward=True)
+>>> round(r.metrics.steady_state_error, 3) + 0.0
+0.0
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Any, Literal, Protocol
+
+from exofric import paper
+from exofric.control import (
+    CONTROLLERS,
+    AntiWindup,
+    Controller,
+    CubicFrictionMap,
+    ModelFeedforward,
+    PIDGains,
+    PlantParams,
+    SimulationResult,
+    StepMetrics,
+    TuningResult,
+    local_slope,
+    rule_gains,
+    simulate,
+    step_metrics,
+)
+from exofric.errors import InputError, check_positive, check_range
+
+__all__ = ["FrictionMapLike", "ControlSetup", "CaseResult", "CompareResult", "run_case",
+           "compare", "PAPER_SETTLING_S"]
+
+#: The paper's settling times in s (Section 5, Fig 12): (controller, with model) -> s.
+PAPER_SETTLING_S: dict[tuple[str, bool], float | None] = {
+    ("pd", False): None,    # steady-state error: never settles to the target
+    ("pd", True): paper.scalar("settling_pd_model_s"),
+    ("pi", False): paper.scalar("settling_pi_s"),
+    ("pi", True): paper.scalar("settling_pi_model_s"),
+    ("pid", False): paper.scalar("settling_pid_s"),
+    ("pid", True): paper.scalar("settling_pid_model_s"),
+}
+
+
+class FrictionMapLike(Protocol):
+    """A friction map F(P) (MPa -> N) with an inverse P(F) and a scaled copy."""
+
+    def __call__(self, pressure_mpa: Any) -> Any: ...
+    def inverse(self, friction_n: float) -> float: ...
+    def scaled(self, factor: float) -> Any: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+
+@dataclass(frozen=True)
+class ControlSetup:
+    """Everything a Fig 12 case needs besides the controller choice.
+
+    Parameters
+    ----------
+    plant : PlantParams
+        Supply, sensor and mismatch (true gamma = (1 + mismatch) model gamma).
+    model_map : FrictionMapLike
+        The friction model F(P) (e.g. Eq 9) used for the feedforward and the tuning.
+    target_n : float
+        Step target in N (paper: 54.40 N).
+    dt, duration_s : float
+        Sample time and simulated horizon in s.
+    ff_mode : {'2dof', 'static'}
+        How the model feedforward is combined with the feedback (see
+        :class:`~exofric.control.ModelFeedforward`).
+    tau_c_s : float or None
+        Closed-loop time constant of the tuning rule in s (default tau + theta).
+    band : float
+        Settling band (fraction of the step, default 0.02).
+    antiwindup : str
+        Anti-windup scheme of the controllers.
+    """
+
+    plant: PlantParams
+    model_map: FrictionMapLike
+    target_n: float = 54.40
+    dt: float = 0.01
+    duration_s: float = 15.0
+    ff_mode: Literal["2dof", "static"] = "2dof"
+    tau_c_s: float | None = None
+    band: float = 0.02
+    antiwindup: AntiWindup = "back-calculation"
+
+    def __post_init__(self) -> None:
+        check_positive("target_n (target friction)", self.target_n, "N")
+        check_range("dt (sample time)", self.dt, 1e-5, 1.0, unit="s")
+        check_range("duration_s", self.duration_s, 10 * self.dt, 1e4, unit="s")
+        if self.ff_mode not in ("2dof", "static"):
+            raise InputError(f"ff_mode must be 2dof or static, got {self.ff_mode!r}")
+
+    @classmethod
+    def default(cls, **changes: Any) -> ControlSetup:
+        """The test-5 structure with Eq 9 (gamma 0.7168) and the default plant."""
+        from exofric.friction import CubicFit
+
+        g = CubicFrictionMap(CubicFit(paper.eq8(), *paper.load()["eq8"]["fit_range_mpa"]),
+                             paper.scalar("gamma"))
+        return replace(cls(PlantParams(), g), **changes)
+
+    @property
+    def true_map(self) -> FrictionMapLike:
+        """The plant's friction map: model x (1 + mismatch)."""
+        m = self.plant.mismatch
+        return self.model_map if m == 0.0 else self.model_map.scaled(1.0 + m)
+
+    def feedforward_pressure(self) -> float:
+        """P_ff = g^-1(target) in MPa from the model (InputError if unreachable)."""
+        return float(self.model_map.inverse(self.target_n))
+
+    def tuning(self, controller: str) -> TuningResult:
+        """Rule gains for the loop linearised at the target (model map, plant lag/delay)."""
+        p_ff = self.feedforward_pressure()
+        slope = local_slope(self.model_map, p_ff) * self.plant.gain
+        return rule_gains(controller, slope, self.plant.time_constant_s, self.plant.delay_s,
+                          tau_c_s=self.tau_c_s)
+
+    def make_feedforward(self) -> ModelFeedforward:
+        """The model feedforward (2-DOF with the plant's lag/delay, or static)."""
+        p = self.plant
+        if self.ff_mode == "static":
+            return ModelFeedforward(self.model_map.inverse)
+        return ModelFeedforward(self.model_map.inverse, self.model_map,
+                                time_constant_s=p.time_constant_s, delay_s=p.delay_s,
+                                gain=p.gain, p_max_mpa=p.p_max_mpa)
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """One closed-loop step response and its metrics (N, MPa, s)."""
+
+    controller: str
+    feedforward: bool
+    ff_mode: str
+    tuning: TuningResult
+    metrics: StepMetrics
+    final_pressure_mpa: float
+    feedforward_pressure_mpa: float | None
+    mismatch: float
+    paper_settling_time_s: float | None
+    simulation: SimulationResult = field(repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (no trajectories): the CLI's ``exofric control --json``."""
+        m = self.metrics.to_dict()
+        return {
+            "controller": self.controller,
+            "feedforward": self.feedforward,
+            "ff_mode": self.ff_mode if self.feedforward else None,
+            "settling_time_s": m["settling_time_s"],
+            "rise_time_s": m["rise_time_s"],
+            "overshoot_pct": m["overshoot_pct"],
+            "steady_state_error_n": m["steady_state_error_n"],
+            "steady_state_error_pct": 100.0 * self.metrics.steady_state_error
+            / self.metrics.reference,
+            "final_friction_n": m["final_friction_n"],
+            "final_pressure_mpa": self.final_pressure_mpa,
+            "target_friction_n": m["target_friction_n"],
+            "settling_band_pct": m["settling_band_pct"],
+            "feedforward_pressure_mpa": self.feedforward_pressure_mpa,
+            "mismatch": self.mismatch,
+            "gains": self.tuning.gains.to_dict(),
+            "tuning": self.tuning.to_dict(),
+            "paper_settling_time_s": self.paper_settling_time_s,
+        }
+
+
+def run_case(
+    setup: ControlSetup,
+    controller: str,
+    *,
+    feedforward: bool,
+    gains: PIDGains | None = None,
+) -> CaseResult:
+    """Simulate one Fig 12 case: ``controller`` ('pd', 'pi', 'pid') with/without the model.
+
+    Parameters
+    ----------
+    setup : ControlSetup
+    controller : {'pd', 'pi', 'pid'}
+    feedforward : bool
+        Add the model feedforward P_ff = g^-1(target).
+    gains : PIDGains or None
+        Override the rule's gains (kp MPa/N, ki MPa/(N s), kd MPa s/N).
+
+    Returns
+    -------
+    CaseResult
+    """
+    kind = controller.lower()
+    if kind not in CONTROLLERS:
+        raise InputError(f"controller must be one of {', '.join(CONTROLLERS)}, got {controller!r}")
+    tuning = setup.tuning(kind)
+    if gains is not None:
+        tuning = replace(tuning, gains=gains, method="given")
+    ff = setup.make_feedforward() if feedforward else None
+    c = Controller(tuning.gains, u_max=setup.plant.p_max_mpa, antiwindup=setup.antiwindup,
+                   feedforward=ff)
+    sim = simulate(c, setup.plant, setup.true_map, setup.target_n,
+                   duration_s=setup.duration_s, dt=setup.dt)
+    met = step_metrics(sim.time_s, sim.friction_n, setup.target_n, band=setup.band)
+    tail = sim.pressure_mpa[sim.time_s >= sim.time_s[-1] - 0.05 * setup.duration_s]
+    return CaseResult(kind, bool(feedforward), setup.ff_mode, tuning, met, float(tail.mean()),
+                      setup.feedforward_pressure() if feedforward else None,
+                      setup.plant.mismatch, PAPER_SETTLING_S.get((kind, bool(feedforward))),
+                      sim)
+
+
+@dataclass(frozen=True)
+class CompareResult:
+    """The six Fig 12 cases and the settling-time reductions (ours and the paper's, %)."""
+
+    cases: tuple[CaseResult, ...]
+    target_n: float
+    mismatch: float
+    ff_mode: str
+
+    def reduction_pct(self, controller: str) -> float | None:
+        """Settling-time reduction with the model, in % of the time without (None if n/a)."""
+        by = {(c.controller, c.feedforward): c.metrics.settling_time_s for c in self.cases}
+        t0, t1 = by.get((controller, False)), by.get((controller, True))
+        if t0 is None or t1 is None or t0 <= 0:
+            return None
+        return 100.0 * (t0 - t1) / t0
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: ``cases`` (each as :meth:`CaseResult.to_dict`) and the reductions."""
+        red = {k: self.reduction_pct(k) for k in ("pi", "pid")}
+        paper_red = {"pi": paper.scalar("settling_reduction_pi_pct"),
+                     "pid": paper.scalar("settling_reduction_pid_pct")}
+        return {
+            "target_friction_n": self.target_n,
+            "mismatch": self.mismatch,
+            "ff_mode": self.ff_mode,
+            "cases": [c.to_dict() for c in self.cases],
+            "settling_reduction_pct": red,
+            "paper_settling_reduction_pct": paper_red,
+        }
+
+
+def compare(setup: ControlSetup) -> CompareResult:
+    """Run PD, PI and PID, each without and with the model (Fig 12c-e)."""
+    cases = tuple(run_case(setup, k, feedforward=ff) for k in CONTROLLERS for ff in (False, True))
+    return CompareResult(cases, setup.target_n, setup.plant.mismatch, setup.ff_mode)

@@ -1,0 +1,44 @@
+"""The FE problems users ask for, their results, and the closed-form references they are checked by.
+
+* :func:`inflate` -> :class:`InflationResult` -- free inflation of the tube (quarter model).
+* :func:`squeeze` -> :class:`SqueezeResult` -- the tube-wire-hole squeeze N(P) (half model,
+  paper §3.4, Figs 6-7).
+* :func:`incompressible_inflation`, :func:`compressible_inflation` -- exact and 1D-BVP
+  references for the free inflation.
+* :func:`check_stretch`, :class:`StretchWarning` -- the paper's validated stretch range.
+
+Units: mm, N, MPa, s; forces per unit depth in N/mm, totals = per depth x tube length.
+
+Examples
+--------
+>>> from exofric.simulate import inflate
+>>> from exofric.material import MooneyRivlin
+>>> r = inflate(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.2])
+>>> round(float(r.outer_diameter_mm[0]), 2)
+8.75
+"""
+
+from exofric.simulate._analytic import (
+    InflationCurve,
+    compressible_inflation,
+    incompressible_inflation,
+    incompressible_limit_pressure,
+    incompressible_pressure,
+)
+from exofric.simulate._inflate import InflationResult, inflate
+from exofric.simulate._squeeze import SqueezeResult, squeeze
+from exofric.simulate._stretch import StretchWarning, check_stretch
+
+__all__ = [
+    "InflationCurve",
+    "InflationResult",
+    "SqueezeResult",
+    "StretchWarning",
+    "check_stretch",
+    "compressible_inflation",
+    "incompressible_inflation",
+    "incompressible_limit_pressure",
+    "incompressible_pressure",
+    "inflate",
+    "squeeze",
+]

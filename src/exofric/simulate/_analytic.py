@@ -1,0 +1,247 @@
+"""Closed-form and 1D references for the free inflation of a thick tube (plane strain).
+
+Two independent references the 2D FE solver is checked against:
+
+* :func:`incompressible_inflation`: the exact incompressible plane-strain solution.
+  In plane strain (stretch_z = 1) and J = 1, Mooney-Rivlin reduces to neo-Hookean
+  with ``mu = 2 (C10 + C01)``. With undeformed radii A < B, deformed inner radius a,
+  ``c = a^2 - A^2`` and ``b = sqrt(B^2 + c)``::
+
+      P = int_a^b mu (r^2/(r^2-c) - (r^2-c)/r^2) / r dr
+        = mu/2 [ ln(a^2 B^2 / (A^2 b^2)) + c (1/a^2 - 1/b^2) ]
+
+  which rises monotonically to the limit pressure ``mu ln(B/A)`` as a -> infinity.
+* :func:`compressible_inflation`: the same problem for the real, slightly
+  compressible Mooney-Rivlin energy of Eq 2 (ANSYS's deviatoric split
+  ``U = C10(I1b-3) + C01(I2b-3) + (J-1)^2/d``), solved as a 1D radial
+  large-deformation boundary value problem with ``scipy.integrate.solve_bvp``
+  (tolerance 1e-8; 1e-6 and 1e-8 agree to 1e-8 relative): equilibrium
+  ``d(P_rR)/dR + (P_rR - P_tT)/R = 0`` with ``P_rR(A) = -P r(A)/A`` (follower
+  pressure) and ``P_rR(B) = 0``.
+
+Units: mm, MPa.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import solve_bvp
+from scipy.optimize import brentq
+
+from exofric.errors import ConvergenceError, InputError, check_positive, check_pressures
+from exofric.material import MooneyRivlin
+
+__all__ = [
+    "incompressible_pressure",
+    "incompressible_inflation",
+    "incompressible_limit_pressure",
+    "compressible_inflation",
+    "InflationCurve",
+]
+
+
+@dataclass(frozen=True)
+class InflationCurve:
+    """Tube diameters (mm) at each pressure (MPa) from a reference solution."""
+
+    pressure_mpa: np.ndarray
+    outer_diameter_mm: np.ndarray
+    inner_diameter_mm: np.ndarray
+    method: str
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-ready dict."""
+        return {
+            "method": self.method,
+            "pressure_mpa": self.pressure_mpa.tolist(),
+            "outer_diameter_mm": self.outer_diameter_mm.tolist(),
+            "inner_diameter_mm": self.inner_diameter_mm.tolist(),
+        }
+
+
+def _radii(tube_od_mm: float, tube_id_mm: float) -> tuple[float, float]:
+    od = check_positive("tube_od_mm", tube_od_mm, "mm")
+    idm = check_positive("tube_id_mm", tube_id_mm, "mm")
+    if idm >= od:
+        raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {idm:g}")
+    return 0.5 * idm, 0.5 * od
+
+
+def incompressible_pressure(a: float | np.ndarray, A: float, B: float, mu: float) -> np.ndarray:
+    """Pressure (MPa) that inflates the inner radius from ``A`` to ``a`` (mm), J = 1.
+
+    Examples
+    --------
+    >>> float(incompressible_pressure(2.485, 2.485, 4.15, 1.0))
+    0.0
+    """
+    a = np.asarray(a, dtype=float)
+    c = a**2 - A**2
+    b2 = B**2 + c
+    return 0.5 * mu * (np.log(a**2 * B**2 / (A**2 * b2)) + c * (1.0 / a**2 - 1.0 / b2))
+
+
+def incompressible_limit_pressure(tube_od_mm: float, tube_id_mm: float, mu_mpa: float) -> float:
+    """Asymptotic pressure ``mu ln(B/A)`` (MPa): no free-inflation equilibrium above it."""
+    A, B = _radii(tube_od_mm, tube_id_mm)
+    return float(mu_mpa * np.log(B / A))
+
+
+def incompressible_inflation(
+    tube_od_mm: float, tube_id_mm: float, mu_mpa: float, pressures_mpa: np.ndarray | list[float]
+) -> InflationCurve:
+    """Exact incompressible plane-strain inflation of a neo-Hookean tube.
+
+    Parameters
+    ----------
+    tube_od_mm, tube_id_mm : float
+        Undeformed outer and inner diameters (mm).
+    mu_mpa : float
+        Shear modulus (MPa); for Mooney-Rivlin in plane strain ``2 (C10 + C01)``.
+    pressures_mpa : array-like
+        Internal pressures (MPa), each below the limit pressure ``mu ln(B/A)``.
+
+    Returns
+    -------
+    InflationCurve
+        Outer and inner diameters (mm).
+
+    Examples
+    --------
+    >>> c = incompressible_inflation(8.3, 4.97, 1.33444, [0.1, 0.4])
+    >>> [round(float(x), 3) for x in c.outer_diameter_mm]
+    [8.495, 9.576]
+    """
+    A, B = _radii(tube_od_mm, tube_id_mm)
+    mu = check_positive("mu_mpa", mu_mpa, "MPa")
+    p = np.asarray(pressures_mpa, dtype=float)
+    if p.ndim != 1 or not np.all(np.isfinite(p)) or np.any(p < 0):
+        raise InputError("pressures_mpa must be finite and >= 0 MPa")
+    plim = mu * np.log(B / A)
+    if np.any(p >= plim):
+        raise InputError(
+            f"pressure {p.max():g} MPa is at or above the tube's limit pressure {plim:.4g} MPa "
+            "(mu ln(B/A)): no free-inflation equilibrium exists"
+        )
+    a = np.empty_like(p)
+    for i, pi in enumerate(p):
+        if pi == 0.0:
+            a[i] = A
+            continue
+        hi = A * 2.0
+        while incompressible_pressure(hi, A, B, mu) < pi:
+            hi *= 2.0
+        a[i] = brentq(
+            lambda x, pi=pi: float(incompressible_pressure(x, A, B, mu)) - pi,
+            A,
+            hi,
+            xtol=1e-14,
+            rtol=1e-15,
+        )
+    b = np.sqrt(B**2 + a**2 - A**2)
+    return InflationCurve(p, 2.0 * b, 2.0 * a, "incompressible closed form (plane strain)")
+
+
+def _piola(lr: np.ndarray, lt: np.ndarray, m: MooneyRivlin) -> tuple[np.ndarray, np.ndarray]:
+    """First Piola stresses (P_rR, P_tT) of Eq 2 in plane strain for stretches (lr, lt)."""
+    J = lr * lt
+    s = lr**2 + lt**2  # I1 - 1 (in-plane |F|^2)
+    f_s = m.c10 * J ** (-2 / 3) + m.c01 * J ** (-4 / 3)
+    f_J = (
+        -2 / 3 * m.c10 * J ** (-5 / 3) * (s + 1)
+        - 4 / 3 * m.c01 * J ** (-7 / 3) * s
+        + 2 / 3 * m.c01 * J ** (-1 / 3)
+        + 2.0 * (J - 1.0) / m.d
+    )
+    return 2.0 * f_s * lr + f_J * lt, 2.0 * f_s * lt + f_J * lr
+
+
+def _piola_jac(lr: np.ndarray, lt: np.ndarray, m: MooneyRivlin) -> tuple[np.ndarray, np.ndarray]:
+    """d P_rR / d lr and d P_rR / d lt by the complex step (exact to round-off)."""
+    h = 1e-30
+    drr = _piola(lr + 1j * h, lt.astype(complex), m)[0].imag / h
+    drt = _piola(lr.astype(complex), lt + 1j * h, m)[0].imag / h
+    return drr, drt
+
+
+def compressible_inflation(
+    tube_od_mm: float,
+    tube_id_mm: float,
+    material: MooneyRivlin,
+    pressures_mpa: np.ndarray | list[float],
+    *,
+    tol: float = 1e-8,
+) -> InflationCurve:
+    """Compressible plane-strain inflation of a Mooney-Rivlin tube (1D radial BVP).
+
+    Solves the radial equilibrium for the exact energy of Eq 2 (with its
+    volumetric term) by collocation (``scipy.integrate.solve_bvp``), continuing
+    in pressure from the undeformed state. Independent of the 2D FE code.
+
+    Parameters
+    ----------
+    tube_od_mm, tube_id_mm : float
+        Undeformed diameters (mm).
+    material : MooneyRivlin
+        C10, C01 (MPa) and d (1/MPa).
+    pressures_mpa : array-like
+        Strictly increasing pressures (MPa).
+    tol : float
+        Collocation tolerance of solve_bvp.
+
+    Returns
+    -------
+    InflationCurve
+        Outer and inner diameters (mm).
+
+    Examples
+    --------
+    >>> from exofric.material import MooneyRivlin
+    >>> c = compressible_inflation(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.4])
+    >>> round(float(c.outer_diameter_mm[0]), 3)
+    9.584
+    """
+    A, B = _radii(tube_od_mm, tube_id_mm)
+    p_req = check_pressures("pressures_mpa", pressures_mpa)
+
+    def rhs(R: np.ndarray, y: np.ndarray) -> np.ndarray:
+        r, lr = y
+        lt = r / R
+        P_rR, P_tT = _piola(lr, lt, material)
+        drr, drt = _piola_jac(lr, lt, material)
+        dlt = (lr - lt) / R
+        dlr = -((P_rR - P_tT) / R + drt * dlt) / drr
+        return np.vstack([lr, dlr])
+
+    R = np.linspace(A, B, 41)
+    y = np.vstack([R.copy(), np.ones_like(R)])
+    out_o = np.empty_like(p_req)
+    out_i = np.empty_like(p_req)
+    p_done = 0.0
+    for k, p_target in enumerate(p_req):
+        # continuation in sub-steps of at most 0.02 MPa for robust initial guesses
+        n_sub = max(1, int(np.ceil((p_target - p_done) / 0.02)))
+        for p in np.linspace(p_done, p_target, n_sub + 1)[1:]:
+
+            def bc(ya: np.ndarray, yb: np.ndarray, p: float = p) -> np.ndarray:
+                return np.array(
+                    [
+                        _piola(np.array(ya[1]), np.array(ya[0] / A), material)[0] + p * ya[0] / A,
+                        _piola(np.array(yb[1]), np.array(yb[0] / B), material)[0],
+                    ]
+                )
+
+            sol = solve_bvp(rhs, bc, R, y, tol=tol, max_nodes=20000, bc_tol=1e-12)
+            if not sol.success:
+                raise ConvergenceError(
+                    f"1D reference did not converge at {p:.4g} MPa ({sol.message}); the pressure "
+                    "may exceed the tube's limit pressure",
+                    reached=p_done,
+                )
+            R, y = sol.x, sol.y
+            p_done = float(p)
+        out_i[k] = 2.0 * y[0, 0]
+        out_o[k] = 2.0 * y[0, -1]
+    return InflationCurve(p_req, out_o, out_i, "compressible 1D radial BVP (solve_bvp)")

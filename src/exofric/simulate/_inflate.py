@@ -1,0 +1,192 @@
+"""The FE problems users ask for: free inflation and the tube-wire-hole squeeze.
+
+Units: mm, N, MPa, s. Forces per unit depth in N/mm; totals = per depth x length.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from exofric import defaults
+from exofric.errors import InputError, check_positive, check_pressures
+from exofric.fe import InflationProblem, MeshSpec, NewtonSettings, solve_path, von_mises
+from exofric.material import MooneyRivlin
+from exofric.simulate._analytic import incompressible_inflation, incompressible_limit_pressure
+from exofric.simulate._stretch import check_stretch
+
+__all__ = ["InflationResult", "inflate"]
+
+
+@dataclass(frozen=True)
+class InflationResult:
+    """Free inflation of the tube at each pressure.
+
+    Attributes
+    ----------
+    pressure_mpa : ndarray
+        Pressures (MPa).
+    outer_diameter_mm, inner_diameter_mm : ndarray
+        Deformed diameters (mm), measured on the symmetry axis.
+    max_stretch : ndarray
+        Largest principal stretch in the tube at each pressure (a StretchWarning is
+        issued above :data:`exofric.defaults.MR_STRETCH_LIMIT`).
+    newton_iterations : ndarray of int
+        Newton iterations spent reaching each pressure (all sub-steps).
+    dofs : int
+        Degrees of freedom of the model (incl. constrained).
+    solve_time_s : float
+        Wall time of the solve alone (s).
+    symmetry : str
+        Which symmetry was used.
+    nodes : ndarray (n, 2)
+        Undeformed node coordinates (mm), quarter model.
+    elements : ndarray (e, 9)
+        Element connectivity (quad9).
+    displacements : tuple of ndarray (n, 2)
+        Nodal displacements (mm) per pressure.
+    von_mises_mpa : tuple of ndarray (e,)
+        Element-mean von Mises Cauchy stress (MPa) per pressure.
+    """
+
+    pressure_mpa: np.ndarray
+    outer_diameter_mm: np.ndarray
+    inner_diameter_mm: np.ndarray
+    max_stretch: np.ndarray
+    newton_iterations: np.ndarray
+    dofs: int
+    solve_time_s: float
+    symmetry: str
+    tube_od_mm: float
+    tube_id_mm: float
+    material: MooneyRivlin
+    mesh: MeshSpec
+    nodes: np.ndarray = field(repr=False)
+    elements: np.ndarray = field(repr=False)
+    element_kind: str = "quad9"
+    displacements: tuple[np.ndarray, ...] = field(default=(), repr=False)
+    von_mises_mpa: tuple[np.ndarray, ...] = field(default=(), repr=False)
+
+    def analytic_outer_diameter_mm(self) -> np.ndarray:
+        """Incompressible closed-form outer diameters (mm) at the same pressures."""
+        return incompressible_inflation(
+            self.tube_od_mm, self.tube_id_mm, self.material.shear_modulus, self.pressure_mpa
+        ).outer_diameter_mm
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (unit-suffixed keys)."""
+        return {
+            "pressure_mpa": self.pressure_mpa.tolist(),
+            "outer_diameter_mm": self.outer_diameter_mm.tolist(),
+            "inner_diameter_mm": self.inner_diameter_mm.tolist(),
+            "max_stretch": self.max_stretch.tolist(),
+            "analytic_outer_diameter_mm": self.analytic_outer_diameter_mm().tolist(),
+            "newton_iterations": [int(i) for i in self.newton_iterations],
+            "dofs": self.dofs,
+            "solve_time_s": self.solve_time_s,
+            "symmetry": self.symmetry,
+            "tube_od_mm": self.tube_od_mm,
+            "tube_id_mm": self.tube_id_mm,
+            "material": self.material.to_dict(),
+            "mesh": self.mesh.to_dict(),
+        }
+
+
+def inflate(
+    tube_od_mm: float,
+    tube_id_mm: float,
+    material: MooneyRivlin,
+    pressures_mpa: np.ndarray | list[float],
+    *,
+    mesh: MeshSpec | None = None,
+    settings: NewtonSettings | None = None,
+    keep_fields: bool = True,
+) -> InflationResult:
+    """Free plane-strain inflation of the air tube under internal follower pressure.
+
+    Quarter model (two symmetry planes), large deformation, mixed u/p
+    Mooney-Rivlin (Eq 2), Newton with line search and load stepping.
+
+    Parameters
+    ----------
+    tube_od_mm, tube_id_mm : float
+        Undeformed outer and inner diameters (mm).
+    material : MooneyRivlin
+        Constants C10, C01 (MPa), d (1/MPa).
+    pressures_mpa : array-like
+        Strictly increasing pressures (MPa), each below the tube's limit pressure.
+    mesh : MeshSpec, optional
+        Resolution (default :data:`exofric.defaults.INFLATION_MESH`).
+    settings : NewtonSettings, optional
+        Solver tolerances and stepping.
+    keep_fields : bool
+        Keep displacements and stresses for plotting/export (default True).
+
+    Returns
+    -------
+    InflationResult
+
+    Raises
+    ------
+    InputError
+        Bad sizes or pressures, or a pressure at/above the limit pressure
+        ``mu ln(OD/ID)`` beyond which free inflation has no equilibrium.
+    ConvergenceError
+        If the solver cannot reach a pressure (the message names it).
+
+    Examples
+    --------
+    >>> from exofric.material import MooneyRivlin
+    >>> r = inflate(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.1, 0.4])
+    >>> [round(float(d), 3) for d in r.outer_diameter_mm]
+    [8.496, 9.584]
+    """
+    od = check_positive("tube_od_mm", tube_od_mm, "mm")
+    idm = check_positive("tube_id_mm", tube_id_mm, "mm")
+    if idm >= od:
+        raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {idm:g}")
+    p = check_pressures("pressures_mpa", pressures_mpa, allow_zero=True)
+    plim = incompressible_limit_pressure(od, idm, material.shear_modulus)
+    if p[-1] >= 0.99 * plim:
+        raise InputError(
+            f"pressure {p[-1]:g} MPa is beyond 99% of the tube's limit pressure {plim:.4g} MPa "
+            f"(mu ln(OD/ID)): free inflation has no equilibrium near and above it; "
+            f"allowed range [0, {0.99 * plim:.4g}) MPa"
+        )
+    spec = mesh or defaults.INFLATION_MESH
+    prob = InflationProblem(od, idm, material, spec)
+    t0 = time.perf_counter()
+    pts = solve_path(prob, p, settings or defaults.INFLATION_NEWTON)
+    dt = time.perf_counter() - t0
+    g = prob.mesh.grid
+    stretch = np.array([prob.body.max_stretch(pt.u) for pt in pts])
+    check_stretch(stretch, p, "free inflation")
+    xo = [(prob.X + pt.u)[2 * g[-1, 0]] for pt in pts]
+    xi = [(prob.X + pt.u)[2 * g[0, 0]] for pt in pts]
+    disp: tuple[np.ndarray, ...] = ()
+    vm: tuple[np.ndarray, ...] = ()
+    if keep_fields:
+        disp = tuple(pt.u.reshape(-1, 2).copy() for pt in pts)
+        vm = tuple(von_mises(prob.body.cauchy_stress(pt.u)).mean(axis=1) for pt in pts)
+    return InflationResult(
+        pressure_mpa=p,
+        outer_diameter_mm=2.0 * np.array(xo),
+        inner_diameter_mm=2.0 * np.array(xi),
+        max_stretch=stretch,
+        newton_iterations=np.array([pt.iterations for pt in pts]),
+        dofs=prob.n_dofs,
+        solve_time_s=dt,
+        symmetry="quarter model: u_y = 0 on the x axis, u_x = 0 on the y axis",
+        tube_od_mm=od,
+        tube_id_mm=idm,
+        material=material,
+        mesh=spec,
+        nodes=prob.mesh.nodes.copy(),
+        elements=prob.mesh.elements.copy(),
+        element_kind=prob.mesh.kind,
+        displacements=disp,
+        von_mises_mpa=vm,
+    )
