@@ -32,11 +32,13 @@ demo: setup
 	@echo "report: $(CURDIR)/exofric-report/report.html"
 
 test: setup browser
+	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m pytest -q -n 2 --durations=15 tests src/exofric --doctest-modules
 
 lint: setup
 	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/mypy src
+	$(BIN)/lint-imports --no-cache
 
 bench: setup
 	$(BIN)/python benchmarks/run.py

@@ -32,3 +32,17 @@ def _run_cli(args: Sequence[str]) -> CliResult:
 def cli():
     """Run ``exofric ARGS`` in a subprocess (real exit codes, real stdout/stderr)."""
     return _run_cli
+
+
+@pytest.fixture(scope="session")
+def paper_columns_fits() -> dict:
+    """Known-hardness fits of the tube ID (mm) to the paper's ANSYS columns (Table 1), FE model.
+
+    ``{convention: CalibrationResult}`` for the Eq 4 and the printed ("paper-slip") C10;
+    computed once (~1 s each) for tests/test_calibrate.py (acceptance against the printed
+    diameters) and tests/test_regression_calibrate.py (pins of the fitted numbers).
+    """
+    from exofric.calibrate import InflationData, calibrate
+
+    sim = InflationData.paper_simulated()
+    return {c: calibrate(sim, 8.3, model="fe", c10_convention=c) for c in ("eq4", "paper-slip")}

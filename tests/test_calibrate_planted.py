@@ -1,12 +1,12 @@
-"""Joint calibration against planted truths with noise, the 1D model, and its speed (issue 5).
+"""Joint calibration against planted truths with noise (issue 5).
 
 Truth: Shore 57, tube ID 5.3 mm (8.3 mm OD), ten pressures 0.04-0.4 MPa, data generated
 by the same forward model that is then fitted (so the only error is the planted noise).
+Its speed (joint fit of the Table 1 test data with the FE model in the loop, target < 10 s)
+is measured by benchmarks/bench_calibrate.py, not asserted here.
 """
 
 from __future__ import annotations
-
-import time
 
 import numpy as np
 import pytest
@@ -39,15 +39,3 @@ def test_joint_noisy_truth_within_three_stderrs(fe, seed) -> None:
     assert r.shore_stderr < 1.0 and r.tube_id_stderr_mm < 0.1
     assert r.correlation > 0.99
     assert any("nearly interchangeable" in n for n in r.notes)
-
-
-def test_joint_on_table1_speed() -> None:
-    # Issue target: a joint calibration of the Table 1 test data with the FE model in the
-    # loop in < 10 s on this machine (measured ~1.5 s, 29 FE solves); fresh cache.
-    t0 = time.perf_counter()
-    r = calibrate(InflationData.paper_test(), 8.3, method="joint", model="fe",
-                  tube_id_mm=4.97)
-    elapsed = time.perf_counter() - t0
-    assert r.model == "fe" and r.n_model_calls > 5
-    assert elapsed < 10.0, f"joint calibration took {elapsed:.2f} s"
-    assert r.elapsed_s <= elapsed

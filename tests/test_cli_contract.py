@@ -1,8 +1,10 @@
-"""The CLI contract across all commands: --json everywhere; bad input -> one line, exit 2, fast."""
+"""The CLI contract across all commands: --json everywhere; bad input -> one line, exit 2.
+
+How fast bad input is rejected (before any solve or sweep) is measured by
+benchmarks/bench_calibrate.py, not asserted here (no wall-clock asserts in tests).
+"""
 
 from __future__ import annotations
-
-import time
 
 import pytest
 
@@ -31,17 +33,14 @@ def test_every_command_offers_json(cmd, capsys):
         (["reproduce", "--out", "/dev/null/x"], "--out"),
         (["predict", "--gamma", "-1", "--paper"], "gamma"),
         (["squeeze", "--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire", "1.6",
-          "--shore", "62.5", "--length", "-5"], "length_mm"),
+          "--shore", "62.5", "--length", "-5"], "--length"),
         (["inflate", "--shore", "62.5", "--tube-od", "8.3", "--tube-id", "4.97", "--pressures",
-          "0.1,nan"], "pressures_mpa"),
+          "0.1,nan"], "--pressures"),
     ],
 )
-def test_bad_input_is_one_line_exit_2_before_any_work(args, needle, capsys):
-    t0 = time.perf_counter()
+def test_bad_input_is_one_line_exit_2(args, needle, capsys):
     code = run(args)
-    dt = time.perf_counter() - t0
     out, err = capsys.readouterr()
     assert code == 2 and out == ""
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert len(lines) == 1 and needle in lines[0] and "Traceback" not in err
-    assert dt < 5.0  # validated up front, not after a solve or a sweep

@@ -64,11 +64,13 @@ def test_itae_optimisation_improves_on_the_rule_under_saturation():
     s = ControlSetup.default()
     start = s.tuning("pi")
     best = itae_gains(start, s.plant, s.model_map, s.target_n, duration_s=10.0, max_evals=40)
-    # Re-simulate both gain sets independently and compare the ITAE they achieve.
+    # Re-simulate both gain sets and compare the ITAE they achieve (the same simulate + itae
+    # path as the optimiser: this compares gain sets, it does not check the ITAE's value;
+    # itae() itself is checked against a closed form in test_control_metrics.py).
     def score(g):
         r = simulate(Controller(g, u_max=0.6), s.plant, s.model_map, s.target_n, duration_s=10.0)
         return itae(r.time_s, r.setpoint_n - r.friction_n)
 
     assert best.method == "itae" and best.gains.kd == 0.0      # PI stays PI
-    assert score(best.gains) == pytest.approx(best.itae_n_s2, rel=1e-12)
+    assert score(best.gains) == pytest.approx(best.itae_n_s2, rel=1e-12)   # consistency only
     assert score(best.gains) < 0.9 * score(start.gains)

@@ -81,7 +81,10 @@ def test_paper_inverse_example_0293_not_026() -> None:
     p = pressure_for_friction(54.40, c, FrictionModel(0.7168))
     assert p == pytest.approx(0.293, abs=1e-3)
     assert 0.7168 * c(p) == pytest.approx(54.40, rel=1e-12)      # round trip through Eq 9
-    assert c.inverse(54.40) == pytest.approx(0.2586, abs=1e-4)   # printed as 0.26
+    # reference: the root of Eq 8 = 54.40 N in [0.2, 0.6] MPa by np.roots (0.2586, printed 0.26)
+    roots = np.roots(np.array(EQ8) - np.array([0.0, 0.0, 0.0, 54.40]))
+    root = [r.real for r in roots if abs(r.imag) < 1e-12 and 0.2 <= r.real <= 0.6]
+    assert len(root) == 1 and c.inverse(54.40) == pytest.approx(root[0], abs=1e-9)
     assert round(c.inverse(54.40), 2) == paper.scalar("target_pressure_mpa")
     # same via the Eq 9 cubic itself
     assert c.scaled(0.7168).inverse(54.40) == pytest.approx(p, rel=1e-12)

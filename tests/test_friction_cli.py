@@ -72,9 +72,14 @@ def test_invert_options(capsys: pytest.CaptureFixture[str], squeeze_csv: Path) -
                         "--target-friction", "54.4", "--json")
     d = json.loads(out)
     assert code == 0 and d["method"].startswith("curve")
-    # the curve is Eq 8 sampled every 0.025 MPa; PCHIP vs the exact root: < 1e-3 MPa
-    assert d["pressure_mpa"] == pytest.approx(0.29265, abs=1e-3)
-    assert d["cubic_pressure_mpa"] == pytest.approx(0.2926454, abs=1e-6)
+    # Reference: the exact root of 0.7168 x Eq 8 = 54.4 N by np.roots (0.2926454 MPa). The
+    # curve is Eq 8 sampled every 0.025 MPa: PCHIP vs the root < 1e-3 MPa; the cubic fitted to
+    # those exact samples is Eq 8 again, so its inverse matches the root to 1e-6 MPa.
+    c = 0.7168 * np.array(paper.eq8()) - np.array([0.0, 0.0, 0.0, 54.4])
+    root = [r.real for r in np.roots(c) if abs(r.imag) < 1e-12 and 0.2 <= r.real <= 0.6]
+    assert len(root) == 1
+    assert d["pressure_mpa"] == pytest.approx(root[0], abs=1e-3)
+    assert d["cubic_pressure_mpa"] == pytest.approx(root[0], abs=1e-6)
     assert d["cubic"]["r2"] == pytest.approx(1.0, abs=1e-9)
     code, out, _ = _run(capsys, "invert", "--gamma", "0.7168", CUBIC, "--target-friction",
                         "54.4")
@@ -183,7 +188,7 @@ def test_bad_options(capsys: pytest.CaptureFixture[str], tmp_path: Path,
                           "--friction", str(fr))[::2], "file not found")
     _one_line_error(*_run(capsys, "rig", "--squeeze", str(squeeze_csv), "--gamma-true", "0.7",
                           "--noise-pct", "-1", "--out", str(tmp_path / "o.csv"))[::2],
-                    "noise_pct")
+                    "--noise-pct")
     _one_line_error(*_run(capsys, "rig", "--squeeze", str(squeeze_csv), "--gamma-true", "0.7",
                           "--pressures", "0.1,0.3", "--out", str(tmp_path / "o.csv"))[::2],
                     "outside the squeeze curve")

@@ -7,6 +7,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from scipy import stats
 
 from exofric import paper
 from exofric.errors import InputError
@@ -15,7 +16,6 @@ from exofric.friction import (
     FrictionModel,
     MeasuredCurve,
     deviation,
-    one_way_anova,
     paper_structures,
     predict,
     structures_from_dict,
@@ -56,12 +56,20 @@ def test_deviation_metrics_against_table3() -> None:
             assert d.paper_deviation_pct == pytest.approx(want, abs=0.051), test
         if test != 6:
             assert d.tube_ref_deviation_pct == pytest.approx(want, abs=0.051), test
-    assert devs[4].tube_ref_deviation_pct == pytest.approx(12.16, abs=0.01)
-    # exofric's metric: spread of scale factors, 100 (max s / min s - 1), by hand for test 2:
-    # s = (0.75, 0.74699, 0.6875) -> 0.75/0.6875 - 1 = 9.09 %
+    # test 6 by hand: s = (12.3/10, 9.2/8.3, 1.6/1.6) = (1.23, 1.10843, 1); max |s - s_d1| =
+    # 1.23 - 9.2/8.3 = 12.157 % (printed 23.0, which is max |s - 1|)
+    assert devs[4].tube_ref_deviation_pct == pytest.approx(100 * (1.23 - 9.2 / 8.3), rel=1e-12)
+    # exofric's metric: spread of scale factors, 100 (max s / min s - 1), by hand from the
+    # Table 3 dimensions, s = (D/10, d1/8.3, d2/1.6), max and min picked by hand:
+    # test 2 (0.75, 0.74699, 0.6875) -> 0.75/0.6875 - 1 = 9.09 %
+    # test 3 (1.23, 1.22892, 1.25) -> 1.25/(10.2/8.3) - 1 = 1.72 %
+    # test 4 (0.89, 0.87952, 1) -> 1/(7.3/8.3) - 1 = 13.70 %
+    # test 5 (1.1, 1.10843, 1) -> (9.2/8.3)/1 - 1 = 10.84 %
+    # test 6 (1.23, 1.10843, 1) -> 1.23/1 - 1 = 23.0 %
+    # test 7 (1, 1, 0.6875) -> 1/0.6875 - 1 = 45.45 %
+    hand = [0.75 / 0.6875, 1.25 / (10.2 / 8.3), 1 / (7.3 / 8.3), 9.2 / 8.3, 1.23, 1 / 0.6875]
     ours = [d.deviation_pct for d in devs]
-    assert ours[0] == pytest.approx(100 * (0.75 / 0.6875 - 1), rel=1e-12)
-    np.testing.assert_allclose(ours, [9.09, 1.72, 13.70, 10.84, 23.0, 45.45], atol=0.01)
+    np.testing.assert_allclose(ours, 100 * (np.array(hand) - 1), rtol=1e-12)
     assert [d.in_validated_region for d in devs] == [True] * 4 + [False] * 2
     # proportional scaling has zero deviation whatever the size change
     big = deviation(BASE.scaled(1.5))
@@ -102,10 +110,11 @@ def test_predict_plumbing_errors_by_hand() -> None:
     assert b.deviation.in_validated_region and not w.deviation.in_validated_region
     # torque at max pressure: F(0.6) x 0.1 m
     assert b.torque.torque_nm == pytest.approx(18.0)
-    # ANOVA base vs wide on the relative errors, checked against the function on the same data
+    # ANOVA base vs wide on the relative errors (-20, 25 vs 10, 50 %): scipy's f_oneway
     assert len(res.anova) == 1 and res.anova[0].name == "wide vs base"
-    ref = one_way_anova([-20.0, 25.0], [10.0, 50.0])
-    assert res.anova[0].p_value == pytest.approx(ref.p_value)
+    ref = stats.f_oneway([-20.0, 25.0], [10.0, 50.0])
+    assert res.anova[0].p_value == pytest.approx(ref.pvalue, rel=1e-9)
+    assert res.anova[0].f_stat == pytest.approx(ref.statistic, rel=1e-9)
     d = res.to_dict()
     s0 = d["structures"][0]
     for key in ("name", "pressure_mpa", "predicted_friction_n", "max_relative_error_pct",

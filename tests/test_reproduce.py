@@ -148,7 +148,9 @@ def test_results_json_schema_and_cli_json(run) -> None:  # type: ignore[no-untyp
     for f in res["figures"]:
         assert (out / f["file"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert len(res["figures"]) >= 11
-    # every comparison row: difference = ours - paper (the table the report prints)
+    # every comparison row follows Comparison's sign convention, difference = ours - paper
+    # (a consistency check of the table the report prints; the convention itself is checked
+    # by hand arithmetic in test_comparison_and_printed_decimals)
     for c in res["comparisons"]:
         if c["paper_value"] is not None and c["our_value"] is not None:
             assert c["difference"] == pytest.approx(c["our_value"] - c["paper_value"], abs=1e-12)
@@ -182,11 +184,12 @@ def test_table1_columns_within_half_percent(run) -> None:  # type: ignore[no-unt
         ours, theirs = np.array(c["our_outer_diameter_mm"]), np.array(c["paper_outer_diameter_mm"])
         # acceptance: each of the 16 printed ANSYS diameters within 0.5% (notes: max 0.42%)
         assert np.all(np.abs(ours / theirs - 1.0) < 0.005), c["shore"]
+        # consistency: the printed column is what its name says (not a correctness check)
         assert c["difference_pct"] == pytest.approx((100 * (ours / theirs - 1)).tolist())
-    # the fitted ID (notes: 4.9666 +- 0.011 mm; fast mesh within 2e-4 mm of the default)
-    assert cal["tube_id_mm"] == pytest.approx(4.9666, abs=0.002)
-    # the paper's bisection on the test column lands near its 62.5 (notes: 62.57)
-    assert cal["shore"] == pytest.approx(62.57, abs=0.05)
+    # the paper's bisection on the test column gives 62.5 Shore; ours lands within 0.2 of it
+    # (same tolerance as tests/test_calibrate.py). The fitted tube ID and Shore themselves are
+    # regression pins: tests/test_regression_reproduce.py.
+    assert abs(cal["shore"] - 62.5) < 0.2
 
 
 def test_inverse_0293_not_026(run) -> None:  # type: ignore[no-untyped-def]

@@ -22,27 +22,87 @@ Examples
 240
 """
 
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from exofric._version import __version__
-from exofric.calibrate import CalibrationResult, InflationData, calibrate
-from exofric.control import Controller, PIDGains, PlantParams
-from exofric.design import SweepSpec, parse_sweep, run_sweep, search_designs
-from exofric.errors import ConvergenceError, InputError
-from exofric.fe import MeshSpec
-from exofric.friction import (
-    CubicFit,
-    CurveInverse,
-    FrictionModel,
-    GammaFit,
-    fit_gamma,
-    predict,
-    pressure_for_friction,
-    simulate_rig,
-    torque,
-)
-from exofric.geometry import BASE, Structure
-from exofric.material import MooneyRivlin, shore_to_modulus
-from exofric.reproduce import ReproduceConfig, ReproduceResult, reproduce
-from exofric.simulate import InflationResult, SqueezeResult, inflate, squeeze
+
+# Lazy facade (SPEC 1 style): ``import exofric`` stays cheap (the CLI and every Dask worker
+# import it), and each name is loaded from its one home on first use.
+_HOME: dict[str, str] = {
+    "CalibrationResult": "exofric.calibrate",
+    "InflationData": "exofric.calibrate",
+    "calibrate": "exofric.calibrate",
+    "Controller": "exofric.control",
+    "PIDGains": "exofric.control",
+    "PlantParams": "exofric.control",
+    "SweepSpec": "exofric.design",
+    "parse_sweep": "exofric.design",
+    "run_sweep": "exofric.design",
+    "search_designs": "exofric.design",
+    "ConvergenceError": "exofric.errors",
+    "InputError": "exofric.errors",
+    "MeshSpec": "exofric.fe",
+    "CubicFit": "exofric.friction",
+    "CurveInverse": "exofric.friction",
+    "FrictionModel": "exofric.friction",
+    "GammaFit": "exofric.friction",
+    "fit_gamma": "exofric.friction",
+    "predict": "exofric.friction",
+    "pressure_for_friction": "exofric.friction",
+    "simulate_rig": "exofric.friction",
+    "torque": "exofric.friction",
+    "BASE": "exofric.geometry",
+    "Structure": "exofric.geometry",
+    "MooneyRivlin": "exofric.material",
+    "shore_to_modulus": "exofric.material",
+    "ReproduceConfig": "exofric.reproduce",
+    "ReproduceResult": "exofric.reproduce",
+    "reproduce": "exofric.reproduce",
+    "InflationResult": "exofric.simulate",
+    "SqueezeResult": "exofric.simulate",
+    "inflate": "exofric.simulate",
+    "squeeze": "exofric.simulate",
+}
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.calibrate import CalibrationResult, InflationData, calibrate
+    from exofric.control import Controller, PIDGains, PlantParams
+    from exofric.design import SweepSpec, parse_sweep, run_sweep, search_designs
+    from exofric.errors import ConvergenceError, InputError
+    from exofric.fe import MeshSpec
+    from exofric.friction import (
+        CubicFit,
+        CurveInverse,
+        FrictionModel,
+        GammaFit,
+        fit_gamma,
+        predict,
+        pressure_for_friction,
+        simulate_rig,
+        torque,
+    )
+    from exofric.geometry import BASE, Structure
+    from exofric.material import MooneyRivlin, shore_to_modulus
+    from exofric.reproduce import ReproduceConfig, ReproduceResult, reproduce
+    from exofric.simulate import InflationResult, SqueezeResult, inflate, squeeze
+
+
+def __getattr__(name: str) -> Any:
+    """Load a top-level name from its home subpackage on first use."""
+    home = _HOME.get(name)
+    if home is None:
+        raise AttributeError(f"module 'exofric' has no attribute {name!r}")
+    value = getattr(importlib.import_module(home), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
 
 __all__ = [
     "BASE",

@@ -8,12 +8,48 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
+from typing import overload
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "ConvergenceError",
+    "InputError",
+    "check_finite",
+    "check_positive",
+    "check_pressures",
+    "check_range",
+    "check_series",
+]
 
 
 class InputError(ValueError):
-    """Invalid user input: the message names the field and the allowed range."""
+    """Invalid user input: the message names the field and the allowed range.
+
+    Messages name the Python parameter (``pmax_mpa``), never a command-line flag; the CLI's
+    central error handler maps parameter names to its flags (``--pmax``).
+
+    Parameters
+    ----------
+    message : str
+        One line: the parameter, what is allowed (with its unit) and what was given.
+    param : str or None
+        The Python parameter the message is about (default: the message's first word when it
+        is an identifier, e.g. ``"pmax_mpa must be > 0 MPa, got -1"`` -> ``"pmax_mpa"``).
+
+    Examples
+    --------
+    >>> InputError("pmax_mpa must be > 0 MPa, got -1").param
+    'pmax_mpa'
+    """
+
+    def __init__(self, message: str, param: str | None = None) -> None:
+        super().__init__(message)
+        if param is None:
+            head = message.split(" ", 1)[0]
+            param = head if head.isidentifier() else None
+        self.param = param
 
 
 class ConvergenceError(RuntimeError):
@@ -23,6 +59,19 @@ class ConvergenceError(RuntimeError):
     ----------
     reached : float or None
         The last load level (e.g. pressure in MPa) that did converge.
+
+    Parameters
+    ----------
+    message : str
+        One line: what did not converge and where.
+    reached : float, optional
+        The last converged load level (MPa for pressure paths), or None.
+
+    Examples
+    --------
+    >>> err = ConvergenceError("Newton stalled at 0.61 MPa", reached=0.6)
+    >>> err.reached
+    0.6
     """
 
     def __init__(self, message: str, reached: float | None = None) -> None:
@@ -31,7 +80,30 @@ class ConvergenceError(RuntimeError):
 
 
 def check_finite(name: str, value: float) -> float:
-    """Return ``float(value)`` or raise if it is NaN/inf or not a number."""
+    """Return ``float(value)`` or raise if it is NaN/inf or not a number.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : float
+        The value to check (any unit; the unit is the caller's).
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Raises
+    ------
+    InputError
+        If ``value`` is not a number or not finite.
+
+    Examples
+    --------
+    >>> check_finite("hole_mm", "10")
+    10.0
+    """
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -42,7 +114,31 @@ def check_finite(name: str, value: float) -> float:
 
 
 def check_positive(name: str, value: float, unit: str = "") -> float:
-    """Return ``value`` if finite and > 0, else raise :class:`InputError`."""
+    """Return ``value`` if finite and > 0, else raise :class:`InputError`.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : float
+        The value to check, in ``unit``.
+    unit : str
+        Unit printed in the error message (e.g. ``"mm"``); empty for none.
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Examples
+    --------
+    >>> check_positive("hole_mm", 10.0, "mm")
+    10.0
+    >>> check_positive("hole_mm", -1.0, "mm")
+    Traceback (most recent call last):
+    ...
+    exofric.errors.InputError: hole_mm must be > 0 mm, got -1
+    """
     v = check_finite(name, value)
     if v <= 0.0:
         raise InputError(f"{name} must be > 0{(' ' + unit) if unit else ''}, got {v:g}")
@@ -59,7 +155,35 @@ def check_range(
     hi_open: bool = False,
     unit: str = "",
 ) -> float:
-    """Return ``value`` if finite and inside [lo, hi] (ends open on request)."""
+    """Return ``value`` if finite and inside [lo, hi] (ends open on request).
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : float
+        The value to check, in ``unit``.
+    lo, hi : float
+        Allowed range, in the same unit as ``value``; ``lo <= hi``.
+    lo_open, hi_open : bool
+        Exclude the lower / upper end.
+    unit : str
+        Unit printed in the error message (e.g. ``"MPa"``); empty for none.
+
+    Returns
+    -------
+    float
+        ``float(value)``.
+
+    Examples
+    --------
+    >>> check_range("shore", 62.5, 0.0, 100.0)
+    62.5
+    >>> check_range("pmax_mpa", 0.0, 0.0, 2.0, lo_open=True, unit="MPa")
+    Traceback (most recent call last):
+    ...
+    exofric.errors.InputError: pmax_mpa must be in (0, 2] MPa, got 0
+    """
     v = check_finite(name, value)
     bad = (v < lo or v > hi) or (lo_open and v == lo) or (hi_open and v == hi)
     if bad:
@@ -81,6 +205,27 @@ def check_pressures(
 
     Raises :class:`InputError` for an empty list, NaN or negative values,
     values above ``max_mpa`` or a list that is not strictly increasing.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    values : array-like of float
+        Pressures (MPa), strictly increasing, in [0, ``max_mpa``].
+    max_mpa : float
+        Largest allowed pressure (MPa).
+    allow_zero : bool
+        Accept 0 MPa as the first value (otherwise the range is (0, ``max_mpa``]).
+
+    Returns
+    -------
+    numpy.ndarray
+        The pressures as a 1-D float array (MPa).
+
+    Examples
+    --------
+    >>> check_pressures("pressures_mpa", [0.0, 0.3, 0.6]).tolist()
+    [0.0, 0.3, 0.6]
     """
     arr = np.asarray(list(values), dtype=float)
     if arr.ndim != 1 or arr.size == 0:
@@ -94,3 +239,128 @@ def check_pressures(
     if np.any(np.diff(arr) <= 0.0):
         raise InputError(f"{name} must be strictly increasing, got {arr.tolist()}")
     return arr
+
+
+def _series_array(name: str, values: ArrayLike, unit: str, pre: str) -> NDArray[np.float64]:
+    """``values`` as a flat float array; InputError if not numbers or not all finite."""
+    try:
+        a = np.asarray(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"{pre}{name} must be a list of numbers{unit}",
+                         param=name if name.isidentifier() else None) from None
+    bad = np.flatnonzero(~np.isfinite(a))
+    if bad.size:
+        i = int(bad[0])
+        raise InputError(f"{pre}{name} must be finite numbers{unit}, got {a[i]} at index {i}",
+                         param=name if name.isidentifier() else None)
+    return a
+
+
+@overload
+def check_series(
+    x_name: str, x: ArrayLike, y_name: None = None, y: None = None, *, x_unit: str = "",
+    y_unit: str = "", increasing: bool = True, min_points: int = 2, x_min: float | None = None,
+    y_min: float | None = None, where: str = "",
+) -> tuple[NDArray[np.float64], None]: ...
+
+
+@overload
+def check_series(
+    x_name: str, x: ArrayLike, y_name: str, y: ArrayLike, *, x_unit: str = "",
+    y_unit: str = "", increasing: bool = True, min_points: int = 2, x_min: float | None = None,
+    y_min: float | None = None, where: str = "",
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+
+
+def check_series(
+    x_name: str,
+    x: ArrayLike,
+    y_name: str | None = None,
+    y: ArrayLike | None = None,
+    *,
+    x_unit: str = "",
+    y_unit: str = "",
+    increasing: bool = True,
+    min_points: int = 2,
+    x_min: float | None = None,
+    y_min: float | None = None,
+    where: str = "",
+) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """Validate a sampled series x (and y(x)): finite, equal lengths, x strictly increasing.
+
+    The one check behind every tabulated curve (pressure in MPa vs force in N, time in s vs
+    response). Arrays are flattened; checks run in this order, each raising
+    :class:`InputError` with one line naming the parameter (``param`` is set to it):
+
+    1. numbers and finite (no NaN/inf), naming the first bad index;
+    2. ``y`` has as many values as ``x``;
+    3. at least ``min_points`` values;
+    4. ``x >= x_min`` and ``y >= y_min`` when given;
+    5. ``x`` strictly increasing (if ``increasing``), naming the first offending pair.
+
+    Parameters
+    ----------
+    x_name, y_name : str
+        Parameter names used in messages (``y_name`` only with ``y``).
+    x, y : array_like
+        The abscissa (e.g. pressure, MPa) and the optional ordinate (e.g. force, N).
+    x_unit, y_unit : str
+        Units quoted in messages (``"MPa"``, ``"N"``, ``"s"``).
+    increasing : bool
+        Require ``x`` strictly increasing (default True).
+    min_points : int
+        Least number of values (default 2).
+    x_min, y_min : float or None
+        Lower bounds (inclusive), e.g. 0 for pressures and forces.
+    where : str
+        Context prefixed to messages (``"squeeze curve"`` -> ``"squeeze curve: ..."``).
+
+    Returns
+    -------
+    (x, y) : tuple of ndarray
+        Flat float copies; ``y`` is None when not given.
+
+    Examples
+    --------
+    >>> x, y = check_series("pressure_mpa", [0.1, 0.2], "squeeze_force_n", [1, 3])
+    >>> x.tolist(), y.tolist()
+    ([0.1, 0.2], [1.0, 3.0])
+    >>> check_series("pressure_mpa", [0.2, 0.1], x_unit="MPa")
+    Traceback (most recent call last):
+    ...
+    exofric.errors.InputError: pressure_mpa must be strictly increasing (MPa), got 0.2 then \
+0.1 at index 1
+    """
+    pre = f"{where}: " if where else ""
+    xu = f" ({x_unit})" if x_unit else ""
+    yu = f" ({y_unit})" if y_unit else ""
+    xa = _series_array(x_name, x, xu, pre)
+    ya = None
+    if y is not None:
+        yn = y_name or "y"
+        ya = _series_array(yn, y, yu, pre)
+        if ya.size != xa.size:
+            raise InputError(f"{pre}{x_name} and {yn} must have the same length, got "
+                             f"{xa.size} and {ya.size}",
+                             param=x_name if x_name.isidentifier() else None)
+    if xa.size < min_points:
+        raise InputError(f"{pre}{x_name} needs at least {min_points} value"
+                         f"{'' if min_points == 1 else 's'}, got {xa.size}",
+                         param=x_name if x_name.isidentifier() else None)
+    for name, a, lo, unit in ((x_name, xa, x_min, x_unit), (y_name or "y", ya, y_min, y_unit)):
+        if a is None or lo is None:
+            continue
+        below = np.flatnonzero(a < lo)
+        if below.size:
+            i = int(below[0])
+            raise InputError(f"{pre}{name} must be >= {lo:g}{' ' + unit if unit else ''}, "
+                             f"got {a[i]:g} at index {i}",
+                             param=name if name.isidentifier() else None)
+    if increasing:
+        bad = np.flatnonzero(np.diff(xa) <= 0.0)
+        if bad.size:
+            i = int(bad[0]) + 1
+            raise InputError(f"{pre}{x_name} must be strictly increasing{xu}, got "
+                             f"{xa[i - 1]:g} then {xa[i]:g} at index {i}",
+                             param=x_name if x_name.isidentifier() else None)
+    return xa, ya

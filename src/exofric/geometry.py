@@ -86,7 +86,19 @@ class Structure:
         return (0.0, 0.5 * self.hole_mm - 0.5 * self.wire_mm)
 
     def scaled(self, factor: float, name: str = "") -> Structure:
-        """All diameters multiplied by ``factor`` (length unchanged)."""
+        """All diameters multiplied by ``factor`` (length unchanged).
+
+        Parameters
+        ----------
+        factor : float
+            Scale factor (unitless), > 0.
+        name : str
+            Label of the scaled structure.
+
+        Returns
+        -------
+        Structure
+        """
         f = check_positive("scale factor", factor)
         return Structure(
             self.hole_mm * f,

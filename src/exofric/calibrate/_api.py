@@ -109,10 +109,10 @@ def calibrate(
         raise InputError("method 'known-hardness' needs a 'shore' column in the data")
     if method in ("bisection", "bounded"):
         if fit_tube_id:
-            raise InputError(f"fit_tube_id (--fit-tube-id) needs method 'joint', got {method!r}")
+            raise InputError(f"fit_tube_id needs method 'joint', got {method!r}")
         if tube_id_mm is None:
-            raise InputError(f"method {method!r} needs tube_id_mm (--tube-id, mm) or "
-                             "fit_tube_id (--fit-tube-id)")
+            raise InputError(f"method {method!r} needs tube_id_mm (mm) or fit_tube_id",
+                             param="tube_id_mm")
     if isinstance(model, CachedModel):
         cm = model
     elif isinstance(model, str):

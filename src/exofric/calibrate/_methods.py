@@ -48,6 +48,14 @@ class Evaluator:
         ``model(shore, tube_id_mm, pressures_mpa) -> OD (mm)``, ideally memoised.
     data : InflationData
         Measured points; with a ``shore`` column, its values override ``shore``.
+
+    Examples
+    --------
+    >>> from exofric.calibrate import paper_table1_model
+    >>> ev = Evaluator(paper_table1_model(), InflationData.paper_test())
+    >>> t = ev.trial(62.5, 4.97)
+    >>> round(t.average_error_pct, 2), len(ev.history)
+    (0.46, 1)
     """
 
     def __init__(self, model: ModelFn, data: InflationData) -> None:
@@ -58,7 +66,21 @@ class Evaluator:
         self._seen: dict[tuple[float | None, float], Trial] = {}
 
     def simulate(self, shore: float | None, tube_id_mm: float) -> np.ndarray:
-        """Model outer diameters (mm) at the data points (may raise the model's errors)."""
+        """Model outer diameters (mm) at the data points (may raise the model's errors).
+
+        Parameters
+        ----------
+        shore : float or None
+            Trial Shore A hardness, in (0, 100); None only when the data have a ``shore``
+            column (its per-point values are used).
+        tube_id_mm : float
+            Trial tube inner diameter (mm), below the outer diameter.
+
+        Returns
+        -------
+        numpy.ndarray
+            Outer diameters (mm), one per data point.
+        """
         d = self.data
         out = np.empty(len(d))
         for g, idx in d.groups():  # loop over hardness groups (a handful), not points
@@ -69,7 +91,22 @@ class Evaluator:
         return out
 
     def trial(self, shore: float | None, tube_id_mm: float) -> Trial:
-        """Evaluate (or recall) one trial and add it to the history once."""
+        """Evaluate (or recall) one trial and add it to the history once.
+
+        A model failure (:class:`InputError`, :class:`ConvergenceError`) gives a trial with
+        infinite errors and a note instead of raising.
+
+        Parameters
+        ----------
+        shore : float or None
+            Trial Shore A hardness, in (0, 100); None when the data carry a ``shore`` column.
+        tube_id_mm : float
+            Trial tube inner diameter (mm).
+
+        Returns
+        -------
+        Trial
+        """
         key = (None if shore is None else float(shore), float(tube_id_mm))
         if key in self._seen:
             return self._seen[key]
@@ -111,6 +148,27 @@ def bisection(
     changes sign) is returned with ``converged=False`` and a note. Returns (chosen
     trial, converged, notes).
 
+    Parameters
+    ----------
+    ev : Evaluator
+        The data and model; every trial lands in ``ev.history``.
+    tube_id_mm : float
+        Fixed tube inner diameter (mm).
+    bracket : tuple of float
+        Shore A hardness range ``(lo, hi)``, ``0 < lo < hi < 100`` (paper: 60, 70).
+    tol_pct : float
+        Stop when the average absolute diameter error is below it (%), > 0 (paper: 0.5).
+    xtol : float
+        Stop when the bracket is narrower than this (Shore A), > 0.
+    max_iter : int
+        Largest number of bisection steps.
+
+    Returns
+    -------
+    trial : Trial
+    converged : bool
+    notes : list of str
+
     Examples
     --------
     >>> from exofric.calibrate import paper_table1_model
@@ -136,7 +194,7 @@ def bisection(
         beyond = f"below {lo:g}" if sgn[0] > 0 else f"above {hi:g}"
         raise InputError(
             f"bracket [{lo:g}, {hi:g}] does not contain the hardness: simulated diameters are "
-            f"{side} the measured ones at both ends (hardness {beyond}?); widen --bracket"
+            f"{side} the measured ones at both ends (hardness {beyond}?); widen the bracket"
         )
     t = first[1]
     for _ in range(max_iter):
@@ -176,6 +234,35 @@ def bounded(
     Uses ``scipy.optimize.minimize_scalar(method="bounded")`` (Brent, derivative
     free, so the kinks of the absolute errors are harmless). Returns (best trial,
     converged, notes); ``tol_pct`` only adds a note when it is not met.
+
+    Parameters
+    ----------
+    ev : Evaluator
+        The data and model; every trial lands in ``ev.history``.
+    tube_id_mm : float
+        Fixed tube inner diameter (mm).
+    bracket : tuple of float
+        Shore A hardness range ``(lo, hi)``, ``0 < lo < hi < 100``.
+    tol_pct : float
+        Average error (%) above which a note is added.
+    xtol : float
+        Absolute tolerance on the hardness (Shore A), > 0.
+    max_iter : int
+        Largest number of function evaluations of the minimiser.
+
+    Returns
+    -------
+    trial : Trial
+    converged : bool
+    notes : list of str
+
+    Examples
+    --------
+    >>> from exofric.calibrate import paper_table1_model
+    >>> ev = Evaluator(paper_table1_model(), InflationData.paper_test())
+    >>> t, ok, notes = bounded(ev, 4.97)
+    >>> round(t.shore, 1), ok
+    (63.9, True)
     """
     lo, hi = bracket
 
@@ -197,7 +284,31 @@ def bounded(
 
 
 class Fit:
-    """Outcome of a least-squares fit: best trial, parameters, covariance summary."""
+    """Outcome of a least-squares fit: best trial, parameters, covariance summary.
+
+    Parameters
+    ----------
+    trial : Trial
+        The trial at the optimum.
+    x : numpy.ndarray
+        Fitted parameters in the fit's order (``joint``: Shore A, tube ID in mm;
+        ``known_hardness``: tube ID in mm).
+    stderr : numpy.ndarray
+        Their standard errors, same units as ``x``.
+    corr : float or None
+        Correlation of the two parameters of a two-parameter fit (unitless, in [-1, 1]).
+    converged : bool
+        Whether the least-squares solver reported success.
+    notes : list of str
+        Caveats (bounds reached, parameters not separable).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = Trial(62.5, 4.97, 0.2, 0.1, 0.4, (8.5, 8.8))
+    >>> Fit(t, np.array([4.97]), np.array([0.01]), None, True, []).x.tolist()
+    [4.97]
+    """
 
     def __init__(self, trial: Trial, x: np.ndarray, stderr: np.ndarray, corr: float | None,
                  converged: bool, notes: list[str]) -> None:
@@ -290,6 +401,39 @@ def joint(
     are ``sqrt(diag((J^T J)^-1) s^2)`` with ``s^2 = |r|^2/(n - 2)`` and ``J`` by
     forward differences (steps 0.01 Shore, 0.001 mm). When ``|corr| > 0.99`` the
     fit says that the data cannot separate hardness and wall thickness.
+
+    Parameters
+    ----------
+    ev : Evaluator
+        The data (without a ``shore`` column) and model.
+    shore0 : float
+        Starting hardness (Shore A), clipped to ``shore_bounds``.
+    tube_id0_mm : float
+        Starting tube inner diameter (mm), clipped to [0.02, 0.98] x ``tube_od_mm``.
+    tube_od_mm : float
+        Undeformed tube outer diameter (mm), > 0; bounds the inner diameter.
+    shore_bounds : tuple of float
+        Allowed hardness range (Shore A).
+    steps : tuple of float
+        Forward-difference steps (Shore A, mm), > 0.
+    max_nfev : int
+        Largest number of residual evaluations.
+
+    Returns
+    -------
+    Fit
+        ``x = [shore, tube_id_mm]`` (Shore A, mm).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def model(shore, tube_id_mm, p):  # a toy forward model: OD (mm)
+    ...     return 8.3 + p * (100 - shore) / 50 + p**2 * (tube_id_mm - 4)
+    >>> p = np.array([0.1, 0.2, 0.3, 0.4])
+    >>> ev = Evaluator(model, InflationData(p, model(62.5, 4.97, p)))  # planted data
+    >>> fit = joint(ev, 60.0, 4.8, 8.3)
+    >>> fit.x.round(2).tolist()
+    [62.5, 4.97]
     """
     lo = np.array([shore_bounds[0], 0.02 * tube_od_mm])
     hi = np.array([shore_bounds[1], 0.98 * tube_od_mm])
@@ -313,7 +457,36 @@ def known_hardness(
     step: float = 0.001,
     max_nfev: int = 40,
 ) -> Fit:
-    """Fit only the tube inner diameter (mm) when each point's hardness is known."""
+    """Fit only the tube inner diameter (mm) when each point's hardness is known.
+
+    Parameters
+    ----------
+    ev : Evaluator
+        The data (with a ``shore`` column) and model.
+    tube_id0_mm : float
+        Starting tube inner diameter (mm), clipped to [0.02, 0.98] x ``tube_od_mm``.
+    tube_od_mm : float
+        Undeformed tube outer diameter (mm), > 0.
+    step : float
+        Forward-difference step (mm), > 0.
+    max_nfev : int
+        Largest number of residual evaluations.
+
+    Returns
+    -------
+    Fit
+        ``x = [tube_id_mm]`` (mm).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> def model(shore, tube_id_mm, p):  # a toy forward model: OD (mm)
+    ...     return 8.3 + p * (100 - shore) / 50 + p**2 * (tube_id_mm - 4)
+    >>> p = np.array([0.1, 0.2, 0.3, 0.4])
+    >>> data = InflationData(p, model(62.5, 4.97, p), shore=np.full(4, 62.5))
+    >>> known_hardness(Evaluator(model, data), 4.8, 8.3).x.round(3).tolist()
+    [4.97]
+    """
     if ev.data.shore is None:
         raise InputError("known-hardness calibration needs a 'shore' column in the data")
     lo, hi = np.array([0.02 * tube_od_mm]), np.array([0.98 * tube_od_mm])

@@ -3,7 +3,8 @@
 :class:`InflationData` holds validated (pressure, outer diameter) points, with an
 optional known Shore hardness per point; :class:`CalibrationResult` is what every
 calibration method returns, with :meth:`CalibrationResult.plot` drawing Fig 5b
-(measured and simulated diameter against pressure, with the trial curves).
+(measured and simulated diameter against pressure, with the trial curves) and
+:meth:`CalibrationResult.to_frame` giving the trial history as a table.
 
 Units: pressures in MPa, diameters in mm, errors in %.
 """
@@ -11,17 +12,38 @@ Units: pressures in MPa, diameters in mm, errors in %.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from exofric.errors import InputError
 from exofric.material import MooneyRivlin
 
+if TYPE_CHECKING:
+    import pandas as pd
+
 __all__ = ["InflationData", "Trial", "CalibrationResult", "relative_errors_pct"]
 
 _REQUIRED = ("pressure_mpa", "outer_diameter_mm")
+
+
+def _json_ready(obj: Any) -> Any:
+    """NumPy scalars/arrays and tuples -> plain values, NaN/inf -> None (JSON has no NaN).
+
+    The calibration stage does no file I/O, so it keeps this small converter instead of
+    importing :func:`exofric.io.jsonable`.
+    """
+    if isinstance(obj, dict):
+        return {str(k): _json_ready(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_json_ready(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _json_ready(obj.tolist())
+    if isinstance(obj, np.generic):
+        return _json_ready(obj.item())
+    if isinstance(obj, float) and not np.isfinite(obj):
+        return None
+    return obj
 
 
 def relative_errors_pct(simulated_mm: np.ndarray, measured_mm: np.ndarray) -> np.ndarray:
@@ -29,6 +51,18 @@ def relative_errors_pct(simulated_mm: np.ndarray, measured_mm: np.ndarray) -> np
 
     The paper's "average error" (Table 1) is the mean of their absolute values,
     relative to the *tested* diameter (checked against its printed numbers).
+
+    Parameters
+    ----------
+    simulated_mm : array-like
+        Simulated outer diameters (mm).
+    measured_mm : array-like
+        Measured outer diameters (mm), > 0, same shape.
+
+    Returns
+    -------
+    numpy.ndarray
+        Errors (%).
 
     Examples
     --------
@@ -106,35 +140,54 @@ class InflationData:
         object.__setattr__(self, "shore", None if s is None else key)
 
     @classmethod
-    def from_csv(cls, path: str | Path) -> InflationData:
-        """Read ``pressure_mpa,outer_diameter_mm[,shore]`` CSV via :func:`exofric.io.read_table`.
+    def from_frame(cls, df: Any, source: str | None = None) -> InflationData:
+        """Build from a table with ``pressure_mpa``, ``outer_diameter_mm`` [, ``shore``] columns.
 
-        Columns in any order, extra columns ignored, ``#`` comments allowed. Raises
-        :class:`InputError` (one line) for a missing column, a non-numeric/empty
-        cell (naming the row), negative or NaN values, duplicate pressures (within
-        a shore value) and fewer than two points.
+        ``df`` is a :class:`pandas.DataFrame` (or any mapping of column -> values), e.g. from
+        :func:`exofric.io.read_inflation_table`; ``source`` defaults to
+        ``df.attrs["source"]`` (the file name, for messages). Raises :class:`InputError`
+        (one line) for a missing column and everything :class:`InflationData` refuses.
+
+        Parameters
+        ----------
+        df : pandas.DataFrame or mapping
+            Columns ``pressure_mpa`` (MPa), ``outer_diameter_mm`` (mm) and optionally
+            ``shore`` (Shore A).
+        source : str, optional
+            Name for messages (default ``df.attrs["source"]``).
+
+        Examples
+        --------
+        >>> import pandas as pd
+        >>> df = pd.DataFrame({"pressure_mpa": [0.2, 0.1], "outer_diameter_mm": [8.78, 8.53]})
+        >>> InflationData.from_frame(df, "rig.csv").outer_diameter_mm.tolist()
+        [8.53, 8.78]
         """
-        from exofric.io import read_table
-
-        df = read_table(path, _REQUIRED, ("shore",), unique_within=("pressure_mpa", "shore"),
-                        min_rows=2)
-        shore = df["shore"].to_numpy(float) if "shore" in df.columns else None
-        return cls(df["pressure_mpa"].to_numpy(float), df["outer_diameter_mm"].to_numpy(float),
-                   shore, Path(path).name)
+        if source is None:
+            source = str(getattr(df, "attrs", {}).get("source", ""))
+        cols = list(getattr(df, "columns", df))
+        for col in _REQUIRED:
+            if col not in cols:
+                raise InputError(f"{source or 'inflation data'}: missing column {col!r} "
+                                 f"(required: {', '.join(_REQUIRED)}; found: "
+                                 f"{', '.join(map(str, cols)) or 'none'})")
+        shore = np.asarray(df["shore"], dtype=float) if "shore" in cols else None
+        return cls(np.asarray(df["pressure_mpa"], dtype=float),
+                   np.asarray(df["outer_diameter_mm"], dtype=float), shore, source)
 
     @classmethod
     def paper_test(cls) -> InflationData:
-        """The paper's Table 1 test column (MPa, mm)."""
+        """The paper's Table 1 test column (MPa, mm), from its shipped CSV."""
         from exofric import paper
 
-        return cls.from_csv(paper.data_path("table1_test.csv"))
+        return cls.from_frame(paper.table1_points("test"))
 
     @classmethod
     def paper_simulated(cls) -> InflationData:
         """The paper's four Table 1 ANSYS columns, with their Shore hardness per row."""
         from exofric import paper
 
-        return cls.from_csv(paper.data_path("table1_simulated.csv"))
+        return cls.from_frame(paper.table1_points("simulated"))
 
     def groups(self) -> list[tuple[float | None, np.ndarray]]:
         """``(shore or None, indices)`` for each hardness group (one group without shore)."""
@@ -148,7 +201,28 @@ class InflationData:
 
 @dataclass(frozen=True)
 class Trial:
-    """One trial (hardness, tube ID) of a calibration and its errors (%)."""
+    """One trial (hardness, tube ID) of a calibration and its errors (%).
+
+    Attributes
+    ----------
+    shore : float or None
+        Trial Shore A hardness (None when the data carry their own).
+    tube_id_mm : float
+        Trial tube inner diameter (mm).
+    average_error_pct, mean_signed_error_pct, max_error_pct : float
+        Mean absolute, mean signed and largest absolute relative diameter error (%);
+        ``inf`` when the model failed.
+    outer_diameter_mm : tuple of float
+        Model outer diameters (mm) at the data points (NaN when the model failed).
+    note : str
+        Why the model failed, if it did.
+
+    Examples
+    --------
+    >>> t = Trial(62.5, 4.97, 0.2, 0.1, 0.4, (8.5, 8.8))
+    >>> t.to_dict()["average_error_pct"]
+    0.2
+    """
 
     shore: float | None
     tube_id_mm: float
@@ -160,9 +234,7 @@ class Trial:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (non-finite errors of a failed trial become ``None``)."""
-        from exofric.io import jsonable
-
-        return jsonable({
+        return _json_ready({
             "shore": self.shore,
             "tube_id_mm": self.tube_id_mm,
             "average_error_pct": self.average_error_pct,
@@ -201,6 +273,21 @@ class CalibrationResult:
         Caveats (e.g. hardness and wall thickness not separable).
     shore_stderr, tube_id_stderr_mm, correlation : float or None
         Least-squares standard errors (Shore A, mm) and their correlation.
+    tol_pct : float or None
+        Stopping tolerance on the average error (%), for the bracketing methods.
+    bracket : tuple of float or None
+        Hardness bracket searched (Shore A), for the bracketing methods.
+    n_model_calls : int
+        Forward-model evaluations actually computed (cache misses).
+    elapsed_s : float
+        Wall time of the calibration (s).
+
+    Examples
+    --------
+    >>> from exofric.calibrate import calibrate
+    >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97, model="paper-table1")
+    >>> r.method, r.shore, [t.shore for t in r.history]
+    ('bisection', 62.5, [60.0, 65.0, 70.0, 62.5])
     """
 
     method: str
@@ -239,8 +326,6 @@ class CalibrationResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict with unit-suffixed keys (mm, MPa, %, s)."""
-        from exofric.io import jsonable
-
         d = self.data
         points = [
             {
@@ -276,56 +361,64 @@ class CalibrationResult:
             out["tube_id_stderr_mm"] = self.tube_id_stderr_mm
         if self.correlation is not None:
             out["correlation"] = self.correlation
-        return jsonable(out)
+        return _json_ready(out)
 
-    def plot(self, path: str | Path) -> Path:
-        """Draw Fig 5b: measured and simulated outer diameter (mm) vs pressure (MPa).
+    def to_frame(self) -> pd.DataFrame:
+        """The trial history as a DataFrame: one row per trial, in the order evaluated.
 
-        Trial curves of the history are drawn thin and grey, the final curve bold.
-        Writes a PNG/SVG/PDF (by suffix) and returns its path.
+        Columns: ``trial`` (1, 2, ...), ``shore`` (Shore A; NaN for known hardness),
+        ``tube_id_mm``, ``average_error_pct``, ``mean_signed_error_pct``, ``max_error_pct``
+        and ``note``.
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> from exofric.calibrate import InflationData, calibrate
+        >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97,
+        ...               model="paper-table1")
+        >>> r.to_frame()[["trial", "shore"]].values.tolist()   # the paper's trial order
+        [[1.0, 60.0], [2.0, 65.0], [3.0, 70.0], [4.0, 62.5]]
         """
-        import matplotlib
+        import pandas as pd
 
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        h = self.history
+        return pd.DataFrame({
+            "trial": np.arange(1, len(h) + 1),
+            "shore": np.array([np.nan if t.shore is None else t.shore for t in h], dtype=float),
+            "tube_id_mm": np.array([t.tube_id_mm for t in h], dtype=float),
+            "average_error_pct": np.array([t.average_error_pct for t in h], dtype=float),
+            "mean_signed_error_pct": np.array([t.mean_signed_error_pct for t in h], dtype=float),
+            "max_error_pct": np.array([t.max_error_pct for t in h], dtype=float),
+            "note": [t.note for t in h],
+        })
 
-        d = self.data
-        fig, ax = plt.subplots(figsize=(6.0, 4.2), dpi=120)
-        od = self.tube_od_mm
-        for gi, (g, idx) in enumerate(d.groups()):
-            p = d.pressure_mpa[idx]
-            # simulated curves start from the undeformed tube: OD at P = 0
-            pc = p if p[0] == 0.0 else np.concatenate([[0.0], p])
+    def plot(self, ax: Any | None = None) -> Any:
+        """Draw Fig 5b: measured and simulated outer diameter (mm) against pressure (MPa).
 
-            def curve(sim: np.ndarray, p: np.ndarray = p) -> np.ndarray:
-                return sim if p[0] == 0.0 else np.concatenate([[od], sim])
+        Trial curves of the history are drawn thin and grey, the final curve bold
+        (:func:`exofric.plots.plot_calibration`). Write it with :func:`exofric.plots.save`.
 
-            colour = f"C{gi % 10}"
-            if g is None:
-                for k, t in enumerate(self.history):
-                    sim = np.asarray(t.outer_diameter_mm)[idx]
-                    if not np.all(np.isfinite(sim)):
-                        continue
-                    ax.plot(pc, curve(sim), "-", color="0.7", lw=0.8, zorder=1)
-                    if k < 6:  # label the first trials only (later ones crowd together)
-                        ax.annotate(f"{t.shore:.4g}", (p[-1], sim[-1]), fontsize=6,
-                                    color="0.5", xytext=(2, 0), textcoords="offset points")
-            label = "" if g is None else f" (Shore {g:g})"
-            ax.plot(p, d.outer_diameter_mm[idx], "o", color=colour, label=f"measured{label}",
-                    zorder=3)
-            ax.plot(pc, curve(self.simulated_mm[idx]), "-", color=colour, lw=2, zorder=2,
-                    label=None if g is not None else f"model, Shore {self.shore:.4g}")
-        ax.set_xlabel("inflation pressure P (MPa)")
-        ax.set_ylabel("tube outer diameter (mm)")
-        shore_txt = "known" if self.shore is None else f"{self.shore:.4g}"
-        ax.set_title(f"{self.method} ({self.model}): Shore {shore_txt}, ID "
-                     f"{self.tube_id_mm:.4g} mm, avg error {self.average_error_pct:.2f}%",
-                     fontsize=9)
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        out = Path(path)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(out)
-        plt.close(fig)
-        return out
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Where to draw (default a new figure).
+
+        Returns
+        -------
+        matplotlib Axes
+
+        Examples
+        --------
+        >>> from exofric.calibrate import InflationData, calibrate
+        >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97,
+        ...               model="paper-table1")
+        >>> ax = r.plot()
+        >>> len(ax.lines)        # 4 trials, the measured points, the final curve
+        6
+        """
+        from exofric.plots import plot_calibration
+
+        return plot_calibration(self, ax)

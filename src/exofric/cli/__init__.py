@@ -10,10 +10,13 @@ that does not converge exits 3.
 from __future__ import annotations
 
 import importlib
+import os
 import pkgutil
+import re
 import sys
 import warnings
 from collections.abc import Sequence
+from typing import Any
 
 import typer
 
@@ -71,9 +74,62 @@ def _warn_line(message, category, filename, lineno, file=None, line=None):  # ty
     print(f"exofric: warning: {message}", file=sys.stderr)
 
 
+_UNIT_SUFFIXES = ("_mpa", "_mm", "_nm", "_n", "_m", "_s", "_pct")
+
+
+def _option_flags(cmd: Any) -> dict[str, str]:
+    """Python parameter name -> first long flag, over every (sub)command of the CLI."""
+    flags: dict[str, str] = {}
+    for p in getattr(cmd, "params", []):
+        longs = [o for o in getattr(p, "opts", []) if o.startswith("--")]
+        if p.name and longs:
+            flags.setdefault(p.name, longs[0])
+    for sub in getattr(cmd, "commands", {}).values():
+        for k, v in _option_flags(sub).items():
+            flags.setdefault(k, v)
+    return flags
+
+
+def _with_flags(exc: InputError, cmd: Any) -> str:
+    """The core's message with Python parameter names (``pmax_mpa``) shown as CLI flags.
+
+    Only messages about a parameter (:attr:`InputError.param` set: they open with its name) are
+    rewritten. A name maps to the option of the same name, or of the name without its unit
+    suffix (``pmax_mpa`` -> ``pmax`` -> ``--pmax``); the opening parameter always, other
+    ``snake_case`` parameter names in the message too, except quoted ones ('friction_n' is a
+    column or key of the user's file, not an option).
+    """
+    msg = str(exc)
+    head = exc.param
+    if not head:
+        return msg
+    flags = _option_flags(cmd)
+
+    def flag_for(name: str) -> str | None:
+        if name in flags:
+            return flags[name]
+        for suf in _UNIT_SUFFIXES:
+            if name.endswith(suf) and name[: -len(suf)] in flags:
+                return flags[name[: -len(suf)]]
+        return None
+
+    def sub(m: re.Match[str]) -> str:
+        return flag_for(m.group(0)) or m.group(0)
+
+    msg = re.sub(r"(?<![\w'\"-])[a-z][a-z0-9]*(?:_[a-z0-9]+)+\b(?!['\"])", sub, msg)
+    if msg.startswith(head + " ") or msg.startswith(head + ":"):
+        flag = flag_for(head)
+        if flag:
+            msg = flag + msg[len(head):]
+    return msg
+
+
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv`` (default ``sys.argv[1:]``) and return the exit code."""
     warnings.showwarning = _warn_line
+    # figures are only ever written to files: a non-interactive backend, chosen once here
+    # (before anything imports matplotlib; a user's MPLBACKEND wins)
+    os.environ.setdefault("MPLBACKEND", "Agg")
     cmd = typer.main.get_command(app)
     try:
         rv = cmd.main(
@@ -91,7 +147,7 @@ def run(argv: Sequence[str] | None = None) -> int:
         print(f"exofric: error: {msg}", file=sys.stderr)
         return 2
     except InputError as exc:
-        print(f"exofric: error: {exc}", file=sys.stderr)
+        print(f"exofric: error: {_with_flags(exc, cmd)}", file=sys.stderr)
         return 2
     except OSError as exc:  # files the user named: missing, unwritable, not a directory...
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""

@@ -54,14 +54,28 @@ def kv_table(title: str, rows: list[tuple[str, str, str]]) -> Table:
     return t
 
 
+def save_figure(fig: Any, path: str | Path) -> Path:
+    """Write a figure drawn by :mod:`exofric.plots` to ``path`` (``--plot PATH`` options).
+
+    Creates the parent directory (as every ``--plot`` always did), then
+    :func:`exofric.plots.save` writes the image and closes the figure.
+    """
+    from exofric.plots import save
+
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    return save(fig, p)
+
+
 def write_outputs(
-    res: Any, plot: Path | None, vtu: Path | None, plotter: Callable[[Any, Path], Path]
+    res: Any, plot: Path | None, vtu: Path | None, draw: Callable[[Any], Any]
 ) -> dict[str, str]:
-    """Write the optional PNG (``plotter(res, path)``) and the VTU of the last state of an FE
-    result (``nodes``, ``elements``, ``displacements``, ``von_mises_mpa``); return their paths."""
+    """Write the optional PNG (the figure ``draw(res)``, see :func:`save_figure`) and the VTU of
+    the last state of an FE result (``nodes``, ``elements``, ``displacements``,
+    ``von_mises_mpa``); return their paths."""
     out: dict[str, str] = {}
     if plot is not None:
-        out["plot"] = str(plotter(res, plot))
+        out["plot"] = str(save_figure(draw(res), plot))
     if vtu is not None:
         from exofric.io import write_vtu
 

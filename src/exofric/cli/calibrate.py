@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats, save_figure
 from exofric.errors import InputError
 
 
@@ -57,13 +57,14 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Identify Shore A hardness (and tube ID, mm) from inflation data. MPa, mm, %."""
         from exofric.calibrate import InflationData, calibrate
+        from exofric.io import read_inflation_table
 
         lohi = parse_floats("--bracket", bracket)
         if len(lohi) != 2:
             raise InputError(f"--bracket must be two Shore A values lo,hi, got {bracket!r}")
         if c10_convention not in ("eq4", "paper-slip"):
             raise InputError(f"--c10-convention must be eq4 or paper-slip, got {c10_convention!r}")
-        d = InflationData.from_csv(data)
+        d = InflationData.from_frame(read_inflation_table(data))
         res = calibrate(
             d, tube_od, tube_id_mm=tube_id, method=method, fit_tube_id=fit_tube_id,
             bracket=(lohi[0], lohi[1]), tol_pct=tol_pct, model=model, correlation=correlation,
@@ -71,7 +72,7 @@ def register(app: typer.Typer) -> None:
         )
         out = res.to_dict()
         if plot is not None:
-            out["plot_path"] = str(res.plot(plot))
+            out["plot_path"] = str(save_figure(res.plot(), plot))
 
         def render() -> None:
             def pm(v: float | None, se: float | None, fmt: str) -> str:

@@ -4,18 +4,17 @@
 ``exofric control compare`` the six cases of Fig 12 beside the paper's settling times;
 ``exofric control identify STEP.csv`` fits the supply's lag and dead time to a step response.
 Units: friction N, pressure MPa, time s; gains kp MPa/N, ki MPa/(N s), kd MPa s/N.
+Plant TOMLs, squeeze curves and step CSVs are read by :mod:`exofric.io`.
 """
 
 from __future__ import annotations
 
-import json
-import tomllib
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table, save_figure
 from exofric.errors import InputError
 
 if TYPE_CHECKING:
@@ -48,13 +47,15 @@ PLOT = _opt(None, "Write a PNG plot of the response(s) to this path.")
 
 
 def _plant_from_file(path: str) -> dict[str, Any]:
+    from exofric.io import read_toml
+
     p = Path(path)
     if not p.is_file():
         raise InputError(f"--plant {path}: file not found")
     try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise InputError(f"--plant {p.name}: not valid TOML ({exc})") from None
+        data = read_toml(p)
+    except InputError as exc:
+        raise InputError(f"--plant {exc}") from None
     extra = sorted(set(data) - {"plant"})
     if extra:
         raise InputError(f"--plant {p.name}: unknown table(s) {', '.join(extra)}; expected [plant]")
@@ -68,6 +69,7 @@ def _structure_map(structure: str, gamma: float) -> Any:
     from exofric import paper
     from exofric.control import CubicFrictionMap, CurveFrictionMap
     from exofric.friction import CubicFit
+    from exofric.io import read_squeeze_curve
 
     if structure.lower() == "test5":
         lo, hi = paper.load()["eq8"]["fit_range_mpa"]
@@ -76,31 +78,19 @@ def _structure_map(structure: str, gamma: float) -> Any:
     if not p.is_file():
         raise InputError(f"--structure must be 'test5' or an existing JSON file, got {structure!r}")
     try:
-        data = json.loads(p.read_text(encoding="utf-8"))
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise InputError(
-            f"--structure {p.name}: not valid JSON ({exc.__class__.__name__})"
-        ) from None
-    if not isinstance(data, dict) or not all(
-        isinstance(data.get(k), list) for k in ("pressure_mpa", "squeeze_force_n")
-    ):
-        raise InputError(f"--structure {p.name}: needs lists 'pressure_mpa' and 'squeeze_force_n'")
-    try:
-        pres = tuple(float(v) for v in data["pressure_mpa"])
-        force = tuple(float(v) for v in data["squeeze_force_n"])
-    except (TypeError, ValueError):
-        raise InputError(f"--structure {p.name}: pressure_mpa and squeeze_force_n must be "
-                         "numbers") from None
+        curve = read_squeeze_curve(p)
+    except InputError as exc:
+        raise InputError(f"--structure {exc}") from None
+    pres = tuple(float(v) for v in curve["pressure_mpa"])
+    force = tuple(float(v) for v in curve["squeeze_force_n"])
     return CurveFrictionMap(pres, force, gamma)
 
 
 def _identify_csv(path: str) -> Any:
     from exofric.control import identify_step
-    from exofric.io import read_table
+    from exofric.io import read_step_response
 
-    df = read_table(path, ["time_s", "pressure_mpa"], ["command_mpa"],
-                    nonnegative=["pressure_mpa", "command_mpa"], unique_within=("time_s", None),
-                    min_rows=10)
+    df = read_step_response(path)
     cmd = df["command_mpa"].to_numpy() if "command_mpa" in df.columns else None
     return identify_step(df["time_s"].to_numpy(), df["pressure_mpa"].to_numpy(), cmd)
 
@@ -141,43 +131,9 @@ def _setup(target: float, structure: str, gamma: float | None, plant: str | None
 
 
 def _plot_cases(cases: list[CaseResult], path: str, title: str) -> None:
-    import matplotlib
+    from exofric.plots import plot_control_cases
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    kinds = list(dict.fromkeys(c.controller for c in cases))
-    fig, axes = plt.subplots(2, len(kinds), figsize=(4.2 * len(kinds), 6), squeeze=False,
-                             sharex=True)
-    for j, kind in enumerate(kinds):
-        ax, axp = axes[0][j], axes[1][j]
-        for c in (c for c in cases if c.controller == kind):
-            s = c.simulation
-            lab = "with model" if c.feedforward else "without model"
-            col = "tab:blue" if c.feedforward else "tab:red"
-            ts = c.metrics.settling_time_s
-            ax.plot(s.time_s, s.friction_n, color=col,
-                    label=f"{lab} (ts {ts:.2f} s)" if ts is not None else f"{lab} (not settled)")
-            axp.plot(s.time_s, s.pressure_mpa, color=col)
-            axp.plot(s.time_s, s.command_mpa, color=col, ls=":", lw=0.8)
-        tgt = cases[0].metrics.reference
-        band = cases[0].metrics.band * tgt
-        ax.axhline(tgt, color="k", lw=1)
-        ax.axhspan(tgt - band, tgt + band, color="0.85")
-        ref = {c.feedforward: c.paper_settling_time_s for c in cases if c.controller == kind}
-        paper_txt = ", ".join(f"{'with' if ff else 'without'} {_fmt(v, '.2f')} s"
-                              for ff, v in sorted(ref.items()) if v is not None)
-        ax.set_title(f"{kind.upper()}  {title}" + (f"\npaper: {paper_txt}" if paper_txt else ""),
-                     fontsize=10)
-        ax.set_ylabel("friction (N)")
-        ax.legend(fontsize=8)
-        axp.set_xlabel("time (s)")
-        axp.set_ylabel("pressure (MPa); command dotted")
-    fig.tight_layout()
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    save_figure(plot_control_cases(cases, title=title), path)
 
 
 def _fmt(v: float | None, spec: str) -> str:

@@ -1,93 +1,40 @@
 """``exofric fit-friction | predict | invert | rig``: the friction model (paper Eqs 1, 7-9).
 
-Units: pressure MPa, forces N, torque Nm, arm radius m. File reading happens here (the edge):
-squeeze curves (``exofric squeeze --json`` output or a ``pressure_mpa,squeeze_force_n`` CSV)
-and friction CSVs (``pressure_mpa,friction_n`` with an optional ``test`` column).
+Units: pressure MPa, forces N, torque Nm, arm radius m. Files are read by :mod:`exofric.io`:
+squeeze curves (``exofric squeeze --json`` output or a ``pressure_mpa,squeeze_force_n`` CSV),
+friction CSVs (``pressure_mpa,friction_n`` with an optional ``test`` column) and structure
+TOMLs.
 """
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats, save_figure
 from exofric.errors import InputError
 
-__all__ = ["register", "read_squeeze_curve", "read_friction_csv"]
+__all__ = ["register"]
 
 
-def read_squeeze_curve(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """Squeeze curve (pressure MPa, total squeezing force N) from a JSON or CSV file.
+def _squeeze_curve(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
+    """(pressure MPa, squeezing force N) of a squeeze curve file (JSON or CSV), sorted."""
+    from exofric.io import read_squeeze_curve
 
-    JSON: one object with lists ``pressure_mpa`` and ``squeeze_force_n`` (as printed by
-    ``exofric squeeze --json``). CSV: columns ``pressure_mpa,squeeze_force_n``. Pressures
-    must be strictly increasing after sorting (no repeats).
-    """
-    from exofric.io import read_table
-
-    p = Path(path)
-    if p.suffix.lower() == ".json":
-        if not p.is_file():
-            raise InputError(f"{path}: file not found")
-        try:
-            obj = json.loads(p.read_text(encoding="utf-8"))
-        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-            raise InputError(f"{p.name}: not valid JSON ({exc.__class__.__name__})") from None
-        if not isinstance(obj, dict):
-            raise InputError(f"{p.name}: expected a JSON object with pressure_mpa, squeeze_force_n")
-        for key in ("pressure_mpa", "squeeze_force_n"):
-            if key not in obj:
-                raise InputError(f"{p.name}: missing key {key!r} (need pressure_mpa, "
-                                 "squeeze_force_n)")
-        try:
-            pr = np.asarray(obj["pressure_mpa"], dtype=float).ravel()
-            n = np.asarray(obj["squeeze_force_n"], dtype=float).ravel()
-        except (TypeError, ValueError):
-            raise InputError(f"{p.name}: pressure_mpa and squeeze_force_n must be number "
-                             "lists") from None
-        if pr.size != n.size or pr.size < 2:
-            raise InputError(f"{p.name}: pressure_mpa and squeeze_force_n need >= 2 entries of "
-                             f"equal length, got {pr.size} and {n.size}")
-        if not (np.all(np.isfinite(pr)) and np.all(np.isfinite(n))):
-            raise InputError(f"{p.name}: pressure_mpa and squeeze_force_n must be finite")
-        if np.any(pr < 0):
-            raise InputError(f"{p.name}: pressure_mpa must be >= 0")
-    else:
-        df = read_table(p, ["pressure_mpa", "squeeze_force_n"],
-                        unique_within=("pressure_mpa", None))
-        pr = df["pressure_mpa"].to_numpy(float)
-        n = df["squeeze_force_n"].to_numpy(float)
-    o = np.argsort(pr, kind="stable")
-    pr, n = pr[o], n[o]
-    if np.any(np.diff(pr) <= 0):
-        raise InputError(f"{p.name}: duplicate pressure_mpa {pr[1:][np.diff(pr) <= 0][0]:g}")
-    return pr, n
+    df = read_squeeze_curve(path)
+    return df["pressure_mpa"].to_numpy(float), df["squeeze_force_n"].to_numpy(float)
 
 
-def read_friction_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
-    """Friction CSV -> (pressure MPa, friction N, test labels, synthetic flag).
+def _friction_data(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
+    """(pressure MPa, friction N, test labels, SYNTHETIC flag) of a friction CSV."""
+    from exofric.io import read_friction_table
 
-    Columns ``pressure_mpa,friction_n`` and an optional ``test`` label (several tests in one
-    file; pressures may repeat across tests, not within one). ``synthetic`` is True when a
-    comment line says SYNTHETIC (files written by ``exofric rig``).
-    """
-    from exofric.io import read_table
-
-    df = read_table(path, ["pressure_mpa", "friction_n"], optional=["test"],
-                    text_columns=["test"], unique_within=("pressure_mpa", "test"))
-    tests = df["test"].to_numpy(str) if "test" in df.columns else np.full(len(df), "")
-    try:
-        head = [ln for ln in Path(path).read_text(encoding="utf-8-sig").splitlines()
-                if ln.lstrip().startswith("#")]
-    except OSError:
-        head = []
-    synthetic = any("SYNTHETIC" in ln.upper() for ln in head)
-    return (df["pressure_mpa"].to_numpy(float), df["friction_n"].to_numpy(float), tests,
-            synthetic)
+    df = read_friction_table(path)
+    return (df["pressure_mpa"].to_numpy(float), df["friction_n"].to_numpy(float),
+            df["test"].to_numpy(str), bool(df.attrs["synthetic"]))
 
 
 def _two(name: str, text: str) -> tuple[float, float]:
@@ -122,17 +69,17 @@ def _register_fit(app: typer.Typer) -> None:
 
         _choice("--model", model, ("proportional", "affine"))
         _choice("--ci", ci, ("analytic", "ols", "bootstrap"))
-        ps, ns = read_squeeze_curve(squeeze)
-        pf, ff, tests, synthetic = read_friction_csv(friction)
+        ps, ns = _squeeze_curve(squeeze)
+        pf, ff, tests, synthetic = _friction_data(friction)
         fit = fit_gamma(pf, ff, ps, ns, model=model, ci=ci, seed=seed)  # type: ignore[arg-type]
         d = fit.to_dict()
         d["synthetic"] = synthetic
         d["n_tests"] = int(np.unique(tests).size)
         if plot:
-            from exofric.plots import plot_gamma_fit, save
+            from exofric.plots import plot_gamma_fit
 
             title = "SYNTHETIC rig data" if synthetic else Path(friction).name
-            d["plot"] = str(save(plot_gamma_fit(fit, title), plot))
+            d["plot"] = str(save_figure(plot_gamma_fit(fit, title), plot))
 
         def render() -> None:
             rows = [
@@ -157,7 +104,7 @@ def _register_fit(app: typer.Typer) -> None:
 def _measured_map(path: str, names: list[str]) -> dict[str, Any]:
     from exofric.friction import MeasuredCurve
 
-    pf, ff, tests, _ = read_friction_csv(path)
+    pf, ff, tests, _ = _friction_data(path)
     labels = [str(t) for t in np.unique(tests)]
     if labels == [""]:
         if len(names) != 1:
@@ -195,10 +142,9 @@ def _register_predict(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Predict friction F = gamma N(P) for other structures via the FE (Sec. 4). MPa, N."""
-        import tomllib
-
         from exofric.friction import FrictionModel, paper_structures, predict, structures_from_dict
         from exofric.geometry import BASE
+        from exofric.io import read_toml
         from exofric.material import MooneyRivlin
 
         if use_paper == (structures is not None):
@@ -209,15 +155,9 @@ def _register_predict(app: typer.Typer) -> None:
         if use_paper:
             structs = paper_structures(BASE)
         else:
-            sp = Path(str(structures))
-            if not sp.is_file():
+            if not Path(str(structures)).is_file():
                 raise InputError(f"{structures}: file not found")
-            try:
-                data = tomllib.loads(sp.read_text(encoding="utf-8"))
-            except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-                msg = str(exc).splitlines()[0]
-                raise InputError(f"{sp.name}: not valid TOML ({msg})") from None
-            structs, base = structures_from_dict(data, BASE)
+            structs, base = structures_from_dict(read_toml(str(structures)), BASE)
         names = [s.name for s in structs]
         meas = _measured_map(measured, names) if measured else None
         material = MooneyRivlin.from_shore(shore)
@@ -228,9 +168,9 @@ def _register_predict(app: typer.Typer) -> None:
         if use_paper:
             d["tube_id_note"] = "Table 3 prints no tube IDs: ID = base ID x d1 / base d1"
         if plot:
-            from exofric.plots import plot_predictions, save
+            from exofric.plots import plot_predictions
 
-            d["plot"] = str(save(plot_predictions(res.predictions), plot))
+            d["plot"] = str(save_figure(plot_predictions(res.predictions), plot))
 
         def render() -> None:
             from rich.table import Table
@@ -286,7 +226,7 @@ def _register_invert(app: typer.Typer) -> None:
             d["method"] = "cubic"
             d["pressure_mpa"] = pressure_for_friction(target_friction, fit, model)
         else:
-            ps, ns = read_squeeze_curve(str(squeeze))
+            ps, ns = _squeeze_curve(str(squeeze))
             inv = CurveInverse.from_curve(ps, ns)
             d["method"] = "curve (PCHIP)"
             d["pressure_mpa"] = inv.pressure_for_friction(target_friction, model)
@@ -332,8 +272,9 @@ def _register_rig(app: typer.Typer) -> None:
     ) -> None:
         """Virtual friction rig: SYNTHETIC friction data F = gamma_true N(P) + errors. MPa, N."""
         from exofric.friction import RigConfig, simulate_rig
+        from exofric.io import write_text
 
-        ps, ns = read_squeeze_curve(squeeze)
+        ps, ns = _squeeze_curve(squeeze)
         cfg = RigConfig(noise_pct=noise_pct, noise_n=noise_n, offset_n=offset_n,
                         drift_n_per_s=drift, drag_n=drag_n, pressure_noise_mpa=pressure_noise,
                         sample_rate_hz=sample_rate, pull_speed_mm_per_s=pull_speed)
@@ -341,8 +282,7 @@ def _register_rig(app: typer.Typer) -> None:
         run = simulate_rig(ps, ns, gamma_true, sp, config=cfg, seed=seed, repeats=repeats)
         op = Path(out)
         try:
-            op.parent.mkdir(parents=True, exist_ok=True)
-            op.write_text(run.to_csv_text(), encoding="utf-8")
+            write_text(op, run.to_csv_text())
         except OSError as exc:
             raise InputError(f"--out {out}: cannot write ({exc.__class__.__name__})") from None
         d = run.to_dict()

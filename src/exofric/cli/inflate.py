@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from exofric import defaults
 from exofric.cli._common import JSON_OPTION, console, emit, parse_floats, write_outputs
 from exofric.material import MooneyRivlin
 
@@ -46,8 +47,10 @@ def register(app: typer.Typer) -> None:
         c10: float = typer.Option(None, help="Override C10 (MPa)."),
         c01: float = typer.Option(None, help="Override C01 (MPa)."),
         d: float = typer.Option(None, help="Override d (1/MPa)."),
-        n_radial: int = typer.Option(2, help="Elements through the wall."),
-        n_circ: int = typer.Option(6, help="Elements around the quarter."),
+        n_radial: int = typer.Option(defaults.INFLATION_MESH["n_radial"],
+                                     help="Elements through the wall."),
+        n_circ: int = typer.Option(defaults.INFLATION_MESH["n_circ"],
+                                   help="Elements around the quarter."),
         plot: Path = typer.Option(None, help="Write a PNG of the deformed section and OD(P)."),
         vtu: Path = typer.Option(None, help="Write the deformed mesh at the last pressure (VTU)."),
         as_json: bool = JSON_OPTION,

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from exofric import defaults
 from exofric.cli._common import JSON_OPTION, console, emit, parse_floats, write_outputs
 from exofric.cli.inflate import material_from_options
 
@@ -27,10 +28,14 @@ def register(app: typer.Typer) -> None:
         d: float = typer.Option(None, help="Override d (1/MPa)."),
         length: float = typer.Option(116.0, help="Tube length L (mm) for total forces."),
         pressures: str = typer.Option(DEFAULT_P, help="Increasing pressures (MPa)."),
-        n_radial: int = typer.Option(2, help="Elements through the wall."),
-        n_circ: int = typer.Option(24, help="Elements around the half tube."),
-        grading: float = typer.Option(6.0, help="Element size ratio, graded toward the wire."),
-        penalty: float = typer.Option(1e5, help="Contact penalty (N/mm^3)."),
+        n_radial: int = typer.Option(defaults.SQUEEZE_MESH["n_radial"],
+                                     help="Elements through the wall."),
+        n_circ: int = typer.Option(defaults.SQUEEZE_MESH["n_circ"],
+                                   help="Elements around the half tube."),
+        grading: float = typer.Option(defaults.SQUEEZE_MESH["grading"],
+                                      help="Element size ratio, graded toward the wire."),
+        penalty: float = typer.Option(defaults.CONTACT_PENALTY_N_PER_MM3,
+                                      help="Contact penalty (N/mm^3)."),
         plot: Path = typer.Option(None, help="PNG: deformed sections (Fig 6) and N(P) (Fig 7)."),
         vtu: Path = typer.Option(None, help="VTU of the half section at the last pressure."),
         as_json: bool = JSON_OPTION,

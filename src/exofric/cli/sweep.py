@@ -9,7 +9,7 @@ from typing import Any
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table, save_figure
 
 WORKERS = typer.Option(None, "--workers", help="LocalCluster worker processes (default: CPUs).")
 SCHEDULER = typer.Option(None, "--scheduler",
@@ -152,8 +152,8 @@ def register(app: typer.Typer) -> None:
             from exofric.plots import plot_design_map
 
             skipped = frame[frame["status"] == "skipped"]
-            d["plot"] = str(plot_design_map(search, plot or Path(run.summary.out) /
-                                            "design-map.png", skipped=skipped))
+            d["plot"] = str(save_figure(plot_design_map(search, skipped=skipped),
+                                        plot or Path(run.summary.out) / "design-map.png"))
 
         emit(d, as_json, lambda: _render_design(d))
 

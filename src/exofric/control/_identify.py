@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric.control._plant import PlantParams
-from exofric.errors import InputError
+from exofric.errors import InputError, check_series
 
 __all__ = ["IdentifiedPlant", "identify_step", "fopdt_response"]
 
@@ -122,10 +122,8 @@ def fopdt_response(
     ...                         delay_s=0.0), 6).tolist()            # at rest at u0 = 1
     [1.0, 1.0, 1.0]
     """
-    t = np.asarray(time_s, dtype=float).ravel()
-    u = np.asarray(command_mpa, dtype=float).ravel()
-    if t.shape != u.shape:
-        raise InputError("time_s and command_mpa must have the same length")
+    t, u = check_series("time_s", time_s, "command_mpa", command_mpa, x_unit="s",
+                        y_unit="MPa", increasing=False, min_points=1)
     du = np.diff(u)
     idx = np.flatnonzero(du != 0.0)
     steps = _basis(t, t[idx + 1], du[idx], time_constant_s, delay_s)
@@ -192,24 +190,16 @@ def identify_step(
     """
     from scipy.optimize import least_squares
 
-    t = np.asarray(time_s, dtype=float).ravel()
-    p = np.asarray(pressure_mpa, dtype=float).ravel()
-    if t.shape != p.shape or t.size < 10:
-        raise InputError(f"step response needs >= 10 samples of time_s and pressure_mpa of equal "
-                         f"length, got {t.size} and {p.size}")
-    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(p))):
-        raise InputError("step response must be finite numbers")
-    if np.any(np.diff(t) <= 0):
-        raise InputError("time_s must be strictly increasing")
+    t, p = check_series("time_s", time_s, "pressure_mpa", pressure_mpa, x_unit="s",
+                        y_unit="MPa", min_points=10, where="step response")
     if command_mpa is None:
         if not (t[0] <= 0.0 < t[-1]):
             raise InputError("without command_mpa the step is at t = 0 s: time_s must span it")
         t_steps, du = np.array([0.0]), np.array([1.0])
         u0, gain_assumed = 0.0, True
     else:
-        u = np.asarray(command_mpa, dtype=float).ravel()
-        if u.shape != t.shape or not np.all(np.isfinite(u)):
-            raise InputError("command_mpa must be finite with one value per sample")
+        _, u = check_series("time_s", t, "command_mpa", command_mpa, x_unit="s",
+                            y_unit="MPa", where="step response")
         d = np.diff(u)
         idx = np.flatnonzero(d != 0.0)
         if idx.size == 0:
@@ -224,7 +214,7 @@ def identify_step(
     def linear(tau: float, theta: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         x = _basis(t, t_steps, du, tau, theta)
         a = np.column_stack([np.ones_like(t), u0 + x])
-        coef, *_ = np.linalg.lstsq(a, p, rcond=None)
+        coef = np.asarray(np.linalg.lstsq(a, p, rcond=None)[0], dtype=np.float64)
         return coef, p - a @ coef
 
     def vp_resid(z: NDArray[np.float64]) -> NDArray[np.float64]:

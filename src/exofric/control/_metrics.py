@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from exofric.errors import InputError, check_range
+from exofric.errors import InputError, check_range, check_series
 
 __all__ = ["StepMetrics", "step_metrics", "itae"]
 
@@ -57,17 +57,10 @@ class StepMetrics:
         }
 
 
-def _check(t: ArrayLike, y: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    ta = np.asarray(t, dtype=float).ravel()
-    ya = np.asarray(y, dtype=float).ravel()
-    if ta.size != ya.size or ta.size < 2:
-        raise InputError(f"time and response must have the same length >= 2, got {ta.size} "
-                         f"and {ya.size}")
-    if not (np.all(np.isfinite(ta)) and np.all(np.isfinite(ya))):
-        raise InputError("time and response must be finite numbers")
-    if np.any(np.diff(ta) <= 0):
-        raise InputError("time_s must be strictly increasing")
-    return ta, ya
+def _check(t: ArrayLike, y: ArrayLike,
+           y_name: str = "y") -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Sample times t (s, strictly increasing, >= 2) and one finite ``y_name`` per sample."""
+    return check_series("t", t, y_name, y, x_unit="s", where="time series")
 
 
 def step_metrics(
@@ -151,6 +144,6 @@ def itae(t: ArrayLike, error: ArrayLike) -> float:
     >>> round(itae(t, np.exp(-t / 2.0)), 4)      # analytic: T^2 = 4
     4.0
     """
-    ta, ea = _check(t, error)
+    ta, ea = _check(t, error, "error")
     w = (ta - ta[0]) * np.abs(ea)
     return float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(ta)))

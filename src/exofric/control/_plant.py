@@ -33,7 +33,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric.errors import InputError, check_finite, check_positive, check_range
-from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction
+from exofric.friction import (
+    CubicFit,
+    CurveInverse,
+    FrictionModel,
+    SqueezeCurve,
+    pressure_for_friction,
+)
 
 __all__ = [
     "PlantParams",
@@ -283,15 +289,18 @@ class CubicFrictionMap:
 class CurveFrictionMap:
     """Friction F(P) = scale * gamma * N(P) from a tabulated (FE) squeeze curve N(P).
 
-    N(P) is interpolated monotonically (PCHIP) between the given points. Below the first
-    pressure: straight line to (0 MPa, 0 N) (no pressure, no squeeze) if that point has N > 0,
-    else 0. Above the last pressure: straight line with the end slope. F is clipped to >= 0
-    (before contact N <= 0 means no friction). The inverse covers the given points only.
+    N(P) is the :class:`~exofric.friction.SqueezeCurve` interpolant (monotone PCHIP) between
+    the given points. Below the first pressure: straight line to (0 MPa, 0 N) (no pressure,
+    no squeeze) if that point has N > 0, else 0. Above the last pressure: straight line with
+    the interpolant's end slope dN/dP (C1 at the last point, as :class:`CubicFrictionMap`).
+    F is clipped to >= 0. The inverse covers the given points only
+    (:class:`~exofric.friction.CurveInverse`).
 
     Parameters
     ----------
     pressure_mpa, squeeze_force_n : tuple of float
-        The curve (MPa, N), pressures strictly increasing.
+        The curve (MPa, N): finite, >= 0, pressures strictly increasing (a
+        :class:`~exofric.friction.SqueezeCurve`).
     gamma : float
         Equivalent coefficient (unitless).
     scale : float
@@ -312,31 +321,20 @@ class CurveFrictionMap:
     def __post_init__(self) -> None:
         check_positive("gamma (equivalent coefficient)", self.gamma)
         check_positive("friction map scale", self.scale)
-        p = np.asarray(self.pressure_mpa, dtype=float)
-        n = np.asarray(self.squeeze_force_n, dtype=float)
-        if p.ndim != 1 or p.shape != n.shape or p.size < 2:
-            raise InputError("structure curve needs >= 2 (pressure_mpa, squeeze_force_n) pairs "
-                             "of equal length")
-        if not (np.all(np.isfinite(p)) and np.all(np.isfinite(n))) or np.any(p < 0):
-            raise InputError("structure curve must be finite, with pressures >= 0 MPa")
-        if np.any(np.diff(p) <= 0):
-            raise InputError("structure curve pressures must be strictly increasing (MPa)")
-        from scipy.interpolate import PchipInterpolator
-
-        object.__setattr__(self, "_nodes", (p, n))
-        object.__setattr__(self, "_pchip", PchipInterpolator(p, n, extrapolate=False))
-        object.__setattr__(self, "_slope", float((n[-1] - n[-2]) / (p[-1] - p[-2])))
-        object.__setattr__(self, "_inverse", CurveInverse.from_curve(p, n))
+        curve = SqueezeCurve(self.pressure_mpa, self.squeeze_force_n)
+        object.__setattr__(self, "_curve", curve)
+        object.__setattr__(self, "_slope", float(curve.slope(curve.pressure_range_mpa[1])))
+        object.__setattr__(self, "_inverse", CurveInverse.from_squeeze_curve(curve))
 
     def __call__(self, pressure_mpa: Any) -> Any:
         """Friction in N at pressure(s) in MPa (float in, float out; array in, array out)."""
-        p_nodes, n_nodes = self._nodes  # type: ignore[attr-defined]
+        curve: SqueezeCurve = self._curve  # type: ignore[attr-defined]
         x, scalar = _as_array(pressure_mpa)
-        lo, hi = p_nodes[0], p_nodes[-1]
-        inside = self._pchip(np.clip(x, lo, hi))  # type: ignore[attr-defined]
+        lo, hi = curve.pressure_range_mpa
+        inside = curve(np.clip(x, lo, hi))
         n = inside + np.maximum(x - hi, 0.0) * self._slope  # type: ignore[attr-defined]
         if lo > 0.0:
-            n = np.where(x < lo, n_nodes[0] * np.clip(x, 0.0, None) / lo, n)
+            n = np.where(x < lo, curve.squeeze_force_n[0] * np.clip(x, 0.0, None) / lo, n)
         f = self.scale * self.gamma * np.maximum(n, 0.0)
         return float(f) if scalar else f
 

@@ -14,14 +14,17 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from exofric.control._pid import Controller
 from exofric.control._plant import FrictionFn, PlantParams, PressurePlant
-from exofric.errors import InputError, check_range
+from exofric.errors import InputError, check_range, check_series
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["SimulationResult", "simulate", "setpoint_profile"]
 
@@ -68,6 +71,63 @@ class SimulationResult:
             "dt_s": self.dt_s,
         }
 
+    def to_frame(self) -> pd.DataFrame:
+        """The trajectories as a DataFrame: one row per sample (s, N, MPa).
+
+        Columns: ``time_s``, ``setpoint_n``, ``friction_n``, ``measured_friction_n``
+        (with sensor noise), ``command_mpa`` and ``pressure_mpa``.
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> from exofric.control import Controller, PIDGains, PlantParams
+        >>> sim = simulate(Controller(PIDGains(0.002, 0.01, 0.0), u_max=0.6), PlantParams(),
+        ...                lambda p: 200.0 * p, 50.0, duration_s=1.0, dt=0.01)
+        >>> df = sim.to_frame()
+        >>> len(df), list(df.columns[:3])
+        (101, ['time_s', 'setpoint_n', 'friction_n'])
+        """
+        import pandas as pd
+
+        return pd.DataFrame({
+            "time_s": self.time_s,
+            "setpoint_n": self.setpoint_n,
+            "friction_n": self.friction_n,
+            "measured_friction_n": self.measured_n,
+            "command_mpa": self.command_mpa,
+            "pressure_mpa": self.pressure_mpa,
+        })
+
+    def plot(self, ax: Any | None = None) -> Any:
+        """Draw the friction (N) and its set-point against time (s).
+
+        Two lines (:func:`exofric.plots.plot_simulation`); write the figure with
+        :func:`exofric.plots.save`.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Where to draw (default a new figure).
+
+        Returns
+        -------
+        matplotlib Axes
+
+        Examples
+        --------
+        >>> from exofric.control import Controller, PIDGains, PlantParams
+        >>> sim = simulate(Controller(PIDGains(0.002, 0.01, 0.0), u_max=0.6), PlantParams(),
+        ...                lambda p: 200.0 * p, 50.0, duration_s=1.0, dt=0.01)
+        >>> len(sim.plot().lines)
+        2
+        """
+        from exofric.plots import plot_simulation
+
+        return plot_simulation(self, ax)
+
 
 def setpoint_profile(
     steps: list[tuple[float, float]],
@@ -83,10 +143,9 @@ def setpoint_profile(
     """
     if not steps:
         raise InputError("set-point profile needs at least one (time_s, value_n) step")
-    times = np.array([s[0] for s in steps], dtype=float)
-    vals = np.array([s[1] for s in steps], dtype=float)
-    if np.any(np.diff(times) <= 0):
-        raise InputError("set-point profile times must be strictly increasing (s)")
+    times, vals = check_series("t_start_s", [s[0] for s in steps], "value_n",
+                               [s[1] for s in steps], x_unit="s", y_unit="N", min_points=1,
+                               where="set-point profile")
 
     def profile(t: NDArray[np.float64]) -> NDArray[np.float64]:
         idx = np.clip(np.searchsorted(times, t, side="right") - 1, 0, None)

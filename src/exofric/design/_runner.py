@@ -99,6 +99,30 @@ class SweepRun:
                 "skipped_designs": [{"name": n, "reason": e} for n, e in
                                     zip(skip["name"], skip["error"], strict=True)]}
 
+    def to_frame(self) -> pd.DataFrame:
+        """The sweep rows as a DataFrame (a copy of :attr:`frame`): one row per design and
+        pressure (a single row for a skipped or failed design).
+
+        Columns: see :data:`exofric.design.SCHEMA` (``pressure_mpa``, ``squeeze_force_n``,
+        ``friction_n``, ``torque_nm``, the design sizes in mm, ...; mm, MPa, N, N/mm, Nm, m,
+        %, s).
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from exofric.design import parse_sweep
+        >>> spec = parse_sweep({"pressures_mpa": [0.3, 0.6], "grid": {},
+        ...                     "solver": {"n_radial": 1, "n_circ": 12}})
+        >>> df = run_sweep(spec, tempfile.mkdtemp(), serial=True).to_frame()
+        >>> len(df), list(df["pressure_mpa"])
+        (2, [0.3, 0.6])
+        """
+        return self.frame.copy()
+
 
 def _threads() -> str:
     return ",".join(f"{k.split('_')[0].lower()}={os.environ.get(k, '')}" for k in BLAS_ENV)
@@ -171,7 +195,7 @@ def solve_design(
 
 def _rows(d: Design, status: str, res: Mapping[str, Any], run_id: str,
           spec: SweepSpec) -> pd.DataFrame:
-    """One design's dataset rows (see :data:`sweep_store.SCHEMA`), post-processed."""
+    """One design's dataset rows (see :data:`exofric.design.SCHEMA`), post-processed."""
     n = len(res["pressure_mpa"]) if status == "ok" else 1
     nan = [np.nan] * n
 
@@ -245,7 +269,7 @@ def _dask_results(todo: Sequence[Design], args: tuple[Any, ...], workers: int | 
                 client = stack.enter_context(Client(scheduler, timeout=f"{timeout_s}s"))
                 client.wait_for_workers(1, timeout=timeout_s)
             except (OSError, TimeoutError) as exc:
-                raise InputError(f"--scheduler {scheduler}: cannot reach a scheduler with "
+                raise InputError(f"scheduler {scheduler}: cannot reach a scheduler with "
                                  f"workers ({type(exc).__name__}: {exc})") from None
             info["scheduler"] = scheduler
         else:

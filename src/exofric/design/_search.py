@@ -29,7 +29,7 @@ import numpy as np
 import pandas as pd
 
 from exofric.errors import InputError, check_finite, check_positive, check_range
-from exofric.friction import FrictionModel
+from exofric.friction import FrictionModel, SqueezeCurve
 
 __all__ = ["DesignSearch", "design_metrics", "search_designs", "DEFAULT_SPACE", "OBJECTIVES"]
 
@@ -112,6 +112,68 @@ class DesignSearch:
             "closest": [_record(r) for _, r in self.closest.head(top).iterrows()],
         }
 
+    def to_frame(self) -> pd.DataFrame:
+        """The ranked table as a DataFrame (a copy of :attr:`table`): one row per solved design.
+
+        Reaching designs first in objective order. Columns: the design (``name``, ``key``,
+        ``hole_mm``, ``tube_od_mm``, ``tube_id_mm``, ``wire_mm``, ``length_mm``, ``shore``),
+        ``required_pressure_mpa`` (NaN when not reached), ``pressure_margin_mpa``,
+        ``torque_at_pmax_nm``, ``torque_margin_nm``, ``max_torque_nm``, ``max_pressure_mpa``,
+        ``contact_onset_pressure_mpa``, ``deviation_pct``, ``in_validated_region``,
+        ``reaches_target`` and ``note``.
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> p = [0.2, 0.4, 0.6]
+        >>> rows = pd.DataFrame({"key": ["a"] * 3, "design_index": 0, "name": "a",
+        ...     "family": "", "status": "ok", "pressure_mpa": p,
+        ...     "squeeze_force_n": [200.0, 400.0, 600.0], "hole_mm": 10.0, "tube_od_mm": 8.3,
+        ...     "tube_id_mm": 4.97, "wire_mm": 1.6, "length_mm": 116.0, "shore": 62.5,
+        ...     "deviation_pct": 0.0, "in_validated_region": True,
+        ...     "contact_onset_pressure_mpa": 0.0})
+        >>> s = search_designs(rows, 40.0, 0.1, 0.6, gamma=1.0)
+        >>> s.to_frame()[["name", "required_pressure_mpa"]].round(6).values.tolist()
+        [['a', 0.4]]
+        """
+        return self.table.copy()
+
+    def plot(self, ax: Any | None = None, *, skipped: pd.DataFrame | None = None) -> Any:
+        """Draw the design map: torque at pmax (Nm) over two design dimensions (mm).
+
+        :func:`exofric.plots.plot_design_map` (best design starred, designs outside the
+        validated region edged red); write it with :func:`exofric.plots.save`.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Where to draw (default a new figure).
+        skipped : DataFrame, optional
+            Impossible designs of the sweep (``status == "skipped"`` rows), grey crosses.
+
+        Returns
+        -------
+        matplotlib Axes
+
+        Examples
+        --------
+        >>> p = [0.2, 0.4, 0.6]
+        >>> rows = pd.DataFrame({"key": ["a"] * 3, "design_index": 0, "name": "a",
+        ...     "family": "", "status": "ok", "pressure_mpa": p,
+        ...     "squeeze_force_n": [200.0, 400.0, 600.0], "hole_mm": 10.0, "tube_od_mm": 8.3,
+        ...     "tube_id_mm": 4.97, "wire_mm": 1.6, "length_mm": 116.0, "shore": 62.5,
+        ...     "deviation_pct": 0.0, "in_validated_region": True,
+        ...     "contact_onset_pressure_mpa": 0.0})
+        >>> search_designs(rows, 40.0, 0.1, 0.6, gamma=1.0).plot().get_xlabel()
+        'tube OD d1 (mm)'
+        """
+        from exofric.plots import plot_design_map
+
+        return plot_design_map(self, ax, skipped=skipped)
+
 
 def _record(row: pd.Series) -> dict[str, Any]:
     out: dict[str, Any] = {}
@@ -126,33 +188,20 @@ def _record(row: pd.Series) -> dict[str, Any]:
     return out
 
 
-def _curve(p: np.ndarray, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """N(P) with (0, 0) prepended when the sweep starts above 0 MPa."""
-    if p[0] > 0.0:
-        return np.concatenate([[0.0], p]), np.concatenate([[0.0], n])
-    return p, n
-
-
 def _one(p: np.ndarray, n: np.ndarray, pmax: float, target_n: float) -> tuple[float, float]:
     """(N at pmax (N), least pressure (MPa) where N reaches target_n, NaN beyond pmax).
 
-    Both come from one monotone cubic (PCHIP) interpolant of N(P): on each interval between
-    swept pressures it is monotone, so the first crossing is a unique root (Brent).
+    Both come from one :class:`~exofric.friction.SqueezeCurve` (monotone PCHIP of N(P), with
+    (0 MPa, 0 N) prepended when the sweep starts above 0 MPa): the force at pmax is its value
+    and the least pressure its first crossing of the target (:meth:`SqueezeCurve.pressure`).
+    A target at or below the first node's force needs the curve's first pressure.
     """
-    from scipy.interpolate import PchipInterpolator
-    from scipy.optimize import brentq
-
-    pp, nn = _curve(p, n)
-    f = PchipInterpolator(pp, nn)
-    n_pmax = float(f(pmax))
-    hit = np.flatnonzero(nn >= target_n)
-    if not hit.size:
+    curve = SqueezeCurve(p, n).with_origin()
+    n_pmax = float(curve(pmax, edge_tol_mpa=1e-12))       # pmax <= last pressure + 1e-12
+    n_first, n_top = curve.force_range_n
+    if target_n > n_top:
         return n_pmax, np.nan
-    i = int(hit[0])
-    if i == 0:
-        p_req = float(pp[0])
-    else:
-        p_req = float(brentq(lambda x: float(f(x)) - target_n, pp[i - 1], pp[i], xtol=1e-12))
+    p_req = curve.pressure_mpa[0] if target_n <= n_first else curve.pressure(target_n)
     return n_pmax, (p_req if p_req <= pmax + 1e-12 else np.nan)
 
 
@@ -190,7 +239,7 @@ def design_metrics(
         raise InputError("the sweep has no solved design to search (all skipped or failed)")
     pmax_avail = float(ok.groupby("key")["pressure_mpa"].max().min())
     if pmax_mpa > pmax_avail + 1e-12:
-        raise InputError(f"--pmax {pmax_mpa:g} MPa is above the sweep's largest pressure "
+        raise InputError(f"pmax_mpa {pmax_mpa:g} MPa is above the sweep's largest pressure "
                          f"{pmax_avail:g} MPa; allowed range (0, {pmax_avail:g}] MPa")
     rows = []
     for key, g in ok.groupby("key", sort=False):
@@ -263,18 +312,18 @@ def search_designs(
     >>> round(s.best["required_pressure_mpa"], 6)
     0.4
     """
-    t = check_positive("--target-torque (Nm)", target_torque_nm, "Nm")
-    r = check_positive("--arm (lever arm, m)", arm_radius_m, "m")
-    pmax = check_range("--pmax", pmax_mpa, 0.0, 2.0, lo_open=True, unit="MPa")
+    t = check_positive("target_torque_nm", target_torque_nm, "Nm")
+    r = check_positive("arm_radius_m (lever arm)", arm_radius_m, "m")
+    pmax = check_range("pmax_mpa", pmax_mpa, 0.0, 2.0, lo_open=True, unit="MPa")
     if objective not in OBJECTIVES:
-        raise InputError(f"--objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}")
+        raise InputError(f"objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}")
 
     def _from_frame(col: str, default: float) -> float:
         vals = frame[col].dropna().unique() if col in frame else np.array([])
         return float(vals[0]) if len(vals) else default
 
-    g = check_positive("--gamma", gamma if gamma is not None else _from_frame("gamma", 0.7168))
-    f0 = check_finite("--f0 (N)", f0_n if f0_n is not None else _from_frame("f0_n", 0.0))
+    g = check_positive("gamma", gamma if gamma is not None else _from_frame("gamma", 0.7168))
+    f0 = check_finite("f0_n (N)", f0_n if f0_n is not None else _from_frame("f0_n", 0.0))
     m = design_metrics(frame, t, r, pmax, g, f0)
     if objective == "pressure":
         order = ["reaches_target", "required_pressure_mpa", "torque_margin_nm"]

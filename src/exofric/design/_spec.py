@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from exofric import defaults
 from exofric._version import __version__
 from exofric.errors import InputError, check_positive, check_pressures, check_range
 from exofric.fe import MeshSpec, NewtonSettings
@@ -61,13 +62,13 @@ class SolverSpec:
     sub-step (MPa); Newton iterations per sub-step before a cut-back.
     """
 
-    n_radial: int = 2
-    n_circ: int = 24
-    grading: float = 6.0
-    penalty_n_per_mm3: float = 1e5
-    density_t_per_mm3: float = 1.1e-9
-    max_step_mpa: float = 0.025
-    max_iter: int = 30
+    n_radial: int = defaults.SQUEEZE_MESH["n_radial"]
+    n_circ: int = defaults.SQUEEZE_MESH["n_circ"]
+    grading: float = defaults.SQUEEZE_MESH["grading"]
+    penalty_n_per_mm3: float = defaults.CONTACT_PENALTY_N_PER_MM3
+    density_t_per_mm3: float = defaults.SILICONE_DENSITY_T_PER_MM3
+    max_step_mpa: float = defaults.SQUEEZE_NEWTON["max_step"]
+    max_iter: int = defaults.SQUEEZE_NEWTON["max_iter"]
 
     def mesh(self) -> MeshSpec:
         """The :class:`MeshSpec` of the half tube."""

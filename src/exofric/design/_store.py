@@ -1,4 +1,7 @@
-"""The I/O edge of sweeps: reading sweep TOML files and the Parquet result dataset.
+"""What a sweep's files mean: the sweep TOML and the result dataset's schema and statuses.
+
+The file mechanics are :mod:`exofric.io` (:func:`~exofric.io.read_toml`,
+:class:`~exofric.io.ParquetStore`); this module says what the files hold.
 
 Dataset layout (``OUT/``): one Parquet file per finished design, written atomically (to a
 hidden temporary file, then renamed) as soon as the design finishes, so a killed sweep
@@ -14,21 +17,16 @@ skipped designs); columns and units in :data:`SCHEMA`.
 
 from __future__ import annotations
 
-import json
-import os
-import tomllib
-import uuid
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 import pyarrow as pa
-import pyarrow.parquet as pq
 
 from exofric.design._spec import SweepSpec, parse_sweep
 from exofric.errors import InputError
-from exofric.io import jsonable
+from exofric.io import ParquetStore, read_toml
 
 __all__ = ["SCHEMA", "STATUSES", "SweepStore", "load_sweep"]
 
@@ -59,6 +57,13 @@ SCHEMA = pa.schema([
 def load_sweep(path: str | Path) -> SweepSpec:
     """Read and validate a sweep TOML file (see ``examples/sweep-small.toml``).
 
+    ``parse_sweep(read_toml(path))``, named after the file's stem.
+
+    Parameters
+    ----------
+    path : str or Path
+        The sweep TOML file.
+
     Raises
     ------
     InputError
@@ -66,19 +71,17 @@ def load_sweep(path: str | Path) -> SweepSpec:
 
     Examples
     --------
-    >>> spec = load_sweep("examples/sweep-small.toml")      # doctest: +SKIP
-    >>> len(spec.designs), len(spec.skipped)                # doctest: +SKIP
+    >>> spec = load_sweep("examples/sweep-small.toml")      # path from the repository root
+    >>> len(spec.designs), len(spec.skipped)
     (12, 4)
     """
     p = Path(path)
     try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
+        data = read_toml(p)
     except FileNotFoundError:
         raise InputError(f"sweep file {p} does not exist") from None
-    except (OSError, UnicodeDecodeError) as exc:
+    except OSError as exc:
         raise InputError(f"sweep file {p} cannot be read: {exc}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"sweep file {p} is not valid TOML: {exc}") from None
     try:
         return parse_sweep(data, name=p.stem)
     except InputError as exc:
@@ -86,7 +89,15 @@ def load_sweep(path: str | Path) -> SweepSpec:
 
 
 class SweepStore:
-    """A sweep's result directory (created if missing).
+    """A sweep's result directory (created if missing): design files with :data:`SCHEMA` rows.
+
+    The file mechanics are :class:`exofric.io.ParquetStore`; this class fixes the schema, the
+    statuses (:data:`STATUSES`), the ``design-`` prefix and the ``_sweep.json`` manifest.
+
+    Parameters
+    ----------
+    out : str or Path
+        The result directory.
 
     Examples
     --------
@@ -99,58 +110,54 @@ class SweepStore:
     def __init__(self, out: str | Path) -> None:
         self.out = Path(out)
         if self.out.exists() and not self.out.is_dir():
-            raise InputError(f"--out {self.out} exists and is not a directory")
-        self.out.mkdir(parents=True, exist_ok=True)
+            raise InputError(f"out {self.out} exists and is not a directory")
+        self._files = ParquetStore(self.out, SCHEMA, tags=STATUSES, prefix="design",
+                                   manifest="_sweep.json")
 
     def remove_temporary(self) -> int:
         """Delete temporary files left by a killed writer; returns how many."""
-        stale = list(self.out.glob(".design-*.tmp")) + list(self.out.glob("._sweep.json.*.tmp"))
-        for f in stale:
-            f.unlink(missing_ok=True)
-        return len(stale)
-
-    def _path(self, key: str, status: str) -> Path:
-        return self.out / f"design-{key}-{status}.parquet"
+        return self._files.remove_temporary()
 
     def finished(self) -> dict[str, str]:
         """Cache key -> status of every design file present (``ok`` wins over ``failed``)."""
-        found: dict[str, str] = {}
-        for f in self.out.glob("design-*-*.parquet"):
-            key, _, status = f.stem.removeprefix("design-").rpartition("-")
-            if status in STATUSES and found.get(key) != "ok":
-                found[key] = status
-        return found
+        return self._files.finished()
 
     def write(self, key: str, status: str, rows: pd.DataFrame) -> Path:
         """Write one design's rows (columns of :data:`SCHEMA`) atomically; returns the file.
 
         A previous file of the same design with another status is removed afterwards.
+
+        Parameters
+        ----------
+        key : str
+            The design's cache key.
+        status : str
+            ``ok``, ``failed`` or ``skipped``.
+        rows : pandas.DataFrame
+            The design's rows (other columns are ignored).
         """
         if status not in STATUSES:
             raise InputError(f"status must be one of {', '.join(STATUSES)}, got {status!r}")
-        table = pa.Table.from_pandas(rows[SCHEMA.names], schema=SCHEMA, preserve_index=False)
-        final = self._path(key, status)
-        tmp = self.out / f".{final.name}.{uuid.uuid4().hex}.tmp"
-        pq.write_table(table, tmp)
-        os.replace(tmp, final)
-        for other in STATUSES:
-            if other != status and self._path(key, other).exists():
-                self._path(key, other).unlink()
-        return final
+        return self._files.write(key, status, rows)
 
     def read(self, keys: Iterable[str] | None = None) -> pd.DataFrame:
-        """The rows of ``keys`` (default: every design file) as a DataFrame."""
-        have = self.finished()
-        want = list(have) if keys is None else [k for k in keys if k in have]
-        tables = [pq.read_table(self._path(k, have[k]), schema=SCHEMA) for k in want]
-        if not tables:
-            return SCHEMA.empty_table().to_pandas()
-        return pa.concat_tables(tables).to_pandas()
+        """The rows of ``keys`` (default: every design file) as a DataFrame.
+
+        Parameters
+        ----------
+        keys : iterable of str, optional
+            Cache keys, in the order wanted; keys without a file are skipped.
+        """
+        return self._files.read(keys)
 
     def write_manifest(self, spec: SweepSpec, extra: Mapping[str, Any] | None = None) -> Path:
-        """Write ``_sweep.json``: the sweep definition (and ``extra``), atomically."""
-        path = self.out / "_sweep.json"
-        tmp = self.out / f".{path.name}.{uuid.uuid4().hex}.tmp"
-        tmp.write_text(json.dumps(jsonable({**spec.to_dict(), **(extra or {})}), indent=1))
-        os.replace(tmp, path)
-        return path
+        """Write ``_sweep.json``: the sweep definition (and ``extra``), atomically.
+
+        Parameters
+        ----------
+        spec : SweepSpec
+            The sweep (its ``to_dict()`` is written).
+        extra : mapping, optional
+            More keys, e.g. ``{"run_id": ...}``.
+        """
+        return self._files.write_manifest({**spec.to_dict(), **(extra or {})})

@@ -38,6 +38,12 @@ class RigidCircle:
         True if the body is inside the circle (the hole), False if outside (the wire).
     name : str
         Label.
+
+    Examples
+    --------
+    >>> hole = RigidCircle((0.0, 0.0), 5.0, inside=True, name="hole")
+    >>> hole.radius
+    5.0
     """
 
     center: tuple[float, float]
@@ -48,7 +54,29 @@ class RigidCircle:
 
 @dataclass
 class ContactState:
-    """Per-node contact results for one obstacle (nodes = the contact candidates)."""
+    """Per-node contact results for one obstacle (nodes = the contact candidates).
+
+    Parameters
+    ----------
+    energy : float
+        Penalty energy (N mm per mm depth, i.e. N).
+    force : ndarray (m, 2)
+        Contact force on the body at each node (N per mm depth).
+    blocks : ndarray (m, 2, 2)
+        Nodal tangent blocks (N/mm per mm depth).
+    gap : ndarray (m,)
+        Signed gap (mm); negative is penetration.
+    active : ndarray of bool (m,)
+        Nodes in contact (gap < 0).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hole = RigidCircle((0.0, 0.0), 5.0, inside=True)
+    >>> st = evaluate_contact(np.array([[0.0, 5.01]]), np.array([1.0]), hole, 1e5)
+    >>> st.active.tolist(), round(float(st.force[0, 1]))
+    ([True], -1000)
+    """
 
     energy: float
     force: np.ndarray  # (m, 2) force ON the body (N per mm depth)
@@ -61,6 +89,29 @@ def nodal_weights(edges: np.ndarray, nodes: np.ndarray, n_nodes: int) -> np.ndar
     """Tributary reference lengths (mm) of every node of the given boundary edges.
 
     Exact integrals ``int N_a ds`` of the edge shape functions (Gauss rule, 4 points).
+
+    Parameters
+    ----------
+    edges : ndarray (m, order + 1)
+        Node indices of each boundary edge.
+    nodes : ndarray (n, 2)
+        Undeformed node coordinates (mm).
+    n_nodes : int
+        Length of the result (all nodes; nodes off the edges get 0).
+
+    Returns
+    -------
+    ndarray (n_nodes,)
+        Tributary lengths (mm).
+
+    Examples
+    --------
+    >>> import math
+    >>> from exofric.fe import polar_mesh
+    >>> m = polar_mesh(2.485, 4.15, 2, 4)  # quarter annulus
+    >>> w = nodal_weights(m.boundary_edges("outer"), m.nodes, m.n_nodes)
+    >>> bool(abs(w.sum() - math.pi / 2 * 4.15) < 1e-3)  # the quarter arc (mm)
+    True
     """
     order = edges.shape[1] - 1
     g, gw = np.polynomial.legendre.leggauss(4)
@@ -75,7 +126,33 @@ def nodal_weights(edges: np.ndarray, nodes: np.ndarray, n_nodes: int) -> np.ndar
 def evaluate_contact(
     x: np.ndarray, weights: np.ndarray, circle: RigidCircle, eps: float, tangent: bool = True
 ) -> ContactState:
-    """Penalty contact of points ``x`` (m, 2) with tributary ``weights`` (m,) against ``circle``."""
+    """Penalty contact of points ``x`` (m, 2) with tributary ``weights`` (m,) against ``circle``.
+
+    Parameters
+    ----------
+    x : ndarray (m, 2)
+        Current coordinates of the candidate nodes (mm).
+    weights : ndarray (m,)
+        Tributary lengths of the nodes (mm), from :func:`nodal_weights`.
+    circle : RigidCircle
+        The obstacle.
+    eps : float
+        Penalty stiffness (N/mm^3: contact pressure in MPa per mm of penetration), > 0.
+    tangent : bool
+        Also compute the tangent blocks (otherwise ``blocks`` is zeros).
+
+    Returns
+    -------
+    ContactState
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hole = RigidCircle((0.0, 0.0), 5.0, inside=True)
+    >>> st = evaluate_contact(np.array([[0.0, 5.01], [0.0, 4.0]]), np.ones(2), hole, 1e5)
+    >>> st.gap.round(3).tolist(), st.active.tolist()
+    ([-0.01, 1.0], [True, False])
+    """
     d = x - np.asarray(circle.center)
     dist = np.hypot(d[:, 0], d[:, 1])
     n = d / dist[:, None]

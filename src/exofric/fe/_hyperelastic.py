@@ -131,6 +131,15 @@ class HyperelasticBody:
         Mixed u/p (default; locking-free) or plain displacement (locks).
     n_gauss : int, optional
         Gauss points per direction (default 3 for quad9, 2 for quad4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from exofric.fe import polar_mesh
+    >>> from exofric.material import MooneyRivlin
+    >>> body = HyperelasticBody(polar_mesh(2.485, 4.15, 2, 4), MooneyRivlin.from_shore(62.5))
+    >>> body.max_stretch(np.zeros(2 * 45))  # undeformed (unitless)
+    1.0
     """
 
     def __init__(
@@ -168,14 +177,39 @@ class HyperelasticBody:
             (self.ref.w[:, :, None] * self.ref.Np[None]).transpose(0, 2, 1))  # (e, m, q)
 
     def deformation_gradient(self, u: np.ndarray) -> np.ndarray:
-        """F at every element and quadrature point, shape (e, q, 2, 2)."""
+        """F at every element and quadrature point, shape (e, q, 2, 2).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+
+        Returns
+        -------
+        ndarray (e, q, 2, 2)
+            Deformation gradient (unitless).
+        """
         ne, n = len(self.edofs), self.n_local
         ue = u[self.edofs].reshape(ne, n, 2).transpose(0, 2, 1)  # (e, i, n)
         g = (ue @ self._dN_nqj).reshape(ne, 2, -1, 2).transpose(0, 2, 1, 3)  # (e, q, i, j)
         return np.eye(2) + g
 
     def evaluate(self, u: np.ndarray, tangent: bool = True) -> ElementState:
-        """Energy, element forces and element tangents at displacement ``u`` (mm)."""
+        """Energy, element forces and element tangents at displacement ``u`` (mm).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        tangent : bool
+            Also compute the element tangent matrices.
+
+        Returns
+        -------
+        ElementState
+            Energy (N mm per mm depth), element forces (N per mm depth), tangents
+            (N/mm per mm depth) and a validity flag (False for an inverted element).
+        """
         r = self.ref
         F = self.deformation_gradient(u)
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
@@ -222,6 +256,16 @@ class HyperelasticBody:
 
         From the eigenvalues of C = F^T F (2x2, closed form): lambda^2 = (tr C + sqrt(tr C^2
         - 4 det C)) / 2 with det C = J^2.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+
+        Returns
+        -------
+        float
+            Largest principal stretch (unitless).
         """
         F = self.deformation_gradient(u)
         C = np.einsum("...ki,...kj->...ij", F, F)
@@ -231,7 +275,13 @@ class HyperelasticBody:
         return float(np.sqrt(lam2.max()))
 
     def element_pressure(self, u: np.ndarray) -> np.ndarray:
-        """Hydrostatic pressure field p (MPa, tension positive) at quadrature points (e, q)."""
+        """Hydrostatic pressure field p (MPa, tension positive) at quadrature points (e, q).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        """
         F = self.deformation_gradient(u)
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
         r = self.ref
@@ -241,7 +291,13 @@ class HyperelasticBody:
         return self.K * (J - 1.0)
 
     def cauchy_stress(self, u: np.ndarray) -> np.ndarray:
-        """Cauchy stress (MPa) at quadrature points: (e, q, 4) = [sxx, syy, sxy, szz]."""
+        """Cauchy stress (MPa) at quadrature points: (e, q, 4) = [sxx, syy, sxy, szz].
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        """
         F = self.deformation_gradient(u)
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
         s = np.einsum("...ij,...ij->...", F, F)
@@ -259,6 +315,23 @@ class HyperelasticBody:
 
 
 def von_mises(stress: np.ndarray) -> np.ndarray:
-    """Von Mises stress (MPa) from ``[sxx, syy, sxy, szz]`` in the last axis."""
+    """Von Mises stress (MPa) from ``[sxx, syy, sxy, szz]`` in the last axis.
+
+    Parameters
+    ----------
+    stress : ndarray (..., 4)
+        Cauchy stress components ``[sxx, syy, sxy, szz]`` (MPa).
+
+    Returns
+    -------
+    ndarray (...)
+        Von Mises stress (MPa).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> float(von_mises(np.array([1.0, 0.0, 0.0, 0.0])))  # uniaxial 1 MPa
+    1.0
+    """
     sxx, syy, sxy, szz = np.moveaxis(stress, -1, 0)
     return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxy**2)

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from exofric import defaults
 from exofric.fe._hyperelastic import ElementState, HyperelasticBody
 from exofric.fe._loads import area_hessian
 from exofric.fe._mesh import TubeMesh, polar_mesh
@@ -33,13 +34,19 @@ class MeshSpec:
         Circumferential size ratio largest/smallest (squeeze: toward the wire).
     formulation : {'mixed', 'displacement'}
         Volumetric treatment ('displacement' locks; kept for demonstration).
+
+    Examples
+    --------
+    >>> from exofric import defaults
+    >>> MeshSpec(**defaults.SQUEEZE_MESH).to_dict()["n_circ"]
+    24
     """
 
-    n_radial: int = 2
-    n_circ: int = 6
-    kind: str = "quad9"
-    grading: float = 1.0
-    formulation: str = "mixed"
+    n_radial: int = defaults.INFLATION_MESH["n_radial"]
+    n_circ: int = defaults.INFLATION_MESH["n_circ"]
+    kind: str = defaults.INFLATION_MESH["kind"]
+    grading: float = defaults.INFLATION_MESH["grading"]
+    formulation: str = defaults.INFLATION_MESH["formulation"]
 
     def to_dict(self) -> dict[str, object]:
         """JSON-ready dict."""
@@ -63,6 +70,29 @@ class PressurizedTube:
     Holds the hyperelastic body, the symmetry constraints (``fixed`` dofs), the
     cavity-area Hessian of the pressure potential ``-P * A_cavity`` and the assembler
     (element blocks, the pressure Hessian, then any ``extra_patterns``).
+
+    Parameters
+    ----------
+    mesh : TubeMesh
+        The tube mesh (mm).
+    material : MooneyRivlin
+        Tube material.
+    spec : MeshSpec
+        Mesh settings (its ``formulation`` is used).
+    fixed : ndarray of int
+        Constrained dofs (symmetry planes).
+    extra_patterns : tuple of (rows, cols)
+        Further block patterns (e.g. contact) assembled after the pressure Hessian.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from exofric.fe import polar_mesh
+    >>> from exofric.material import MooneyRivlin
+    >>> m = polar_mesh(2.485, 4.15, 2, 4)
+    >>> tube = PressurizedTube(m, MooneyRivlin.from_shore(62.5), MeshSpec(), np.array([1]))
+    >>> tube.n_dofs, int(tube.free.sum())
+    (90, 89)
     """
 
     def __init__(
@@ -96,7 +126,22 @@ class PressurizedTube:
     def pressurized(
         self, u: np.ndarray, load: float, tangent: bool
     ) -> tuple[ElementState, float, np.ndarray] | None:
-        """Body state, energy (N mm per mm) and residual (N per mm) under pressure ``load``."""
+        """Body state, energy (N mm per mm) and residual (N per mm) under pressure ``load``.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        load : float
+            Internal pressure (MPa).
+        tangent : bool
+            Also compute the element tangents.
+
+        Returns
+        -------
+        tuple or None
+            ``(state, energy, residual)``; None if an element is inverted.
+        """
         st = self.body.evaluate(u, tangent)
         if not st.valid:
             return None
@@ -106,7 +151,17 @@ class PressurizedTube:
         return st, st.energy - 0.5 * load * float(x @ Hx), R
 
     def tangent(self, st: ElementState, load: float, *extra_blocks: np.ndarray) -> sp.csc_matrix:
-        """Reduced tangent: element blocks, ``-P H`` and the extra blocks (pattern order)."""
+        """Reduced tangent: element blocks, ``-P H`` and the extra blocks (pattern order).
+
+        Parameters
+        ----------
+        st : ElementState
+            Body state with tangents (from :meth:`pressurized` with ``tangent=True``).
+        load : float
+            Internal pressure (MPa).
+        *extra_blocks : ndarray
+            Values of the ``extra_patterns`` blocks (N/mm per mm depth), in order.
+        """
         assert st.ke is not None
         return self.assembler.matrix([st.ke, -load * self.H.data, *extra_blocks])
 
@@ -116,6 +171,22 @@ class InflationProblem(PressurizedTube):
 
     Symmetry: ``u_y = 0`` on theta = 0 and ``u_x = 0`` on theta = 90 deg. The pressure
     acts through the potential ``-P * A_cavity`` (see :mod:`exofric.fe`).
+
+    Parameters
+    ----------
+    tube_od_mm, tube_id_mm : float
+        Undeformed outer and inner tube diameters (mm), ``tube_id_mm < tube_od_mm``.
+    material : MooneyRivlin
+        Tube material.
+    spec : MeshSpec
+        Quarter-tube mesh (``n_circ`` elements over 90 deg).
+
+    Examples
+    --------
+    >>> from exofric.material import MooneyRivlin
+    >>> p = InflationProblem(8.3, 4.97, MooneyRivlin.from_shore(62.5), MeshSpec())
+    >>> p.n_dofs, p.scales(0.2)[1]  # dofs, length scale B (mm)
+    (130, 4.15)
     """
 
     def __init__(
@@ -142,7 +213,17 @@ class InflationProblem(PressurizedTube):
     def evaluate(
         self, u: np.ndarray, load: float, tangent: bool
     ) -> tuple[float, np.ndarray, sp.csc_matrix | None] | None:
-        """Energy (N mm per mm depth), residual (N/mm) and reduced tangent at pressure ``load``."""
+        """Energy (N mm per mm depth), residual (N/mm) and reduced tangent at pressure ``load``.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        load : float
+            Internal pressure (MPa).
+        tangent : bool
+            Also assemble the reduced tangent.
+        """
         out = self.pressurized(u, load, tangent)
         if out is None:
             return None
@@ -150,5 +231,11 @@ class InflationProblem(PressurizedTube):
         return energy, R, (self.tangent(st, load) if tangent else None)
 
     def scales(self, load: float) -> tuple[float, float]:
-        """Force scale P*B (N/mm) with a floor, and length scale B (mm)."""
+        """Force scale P*B (N/mm) with a floor, and length scale B (mm).
+
+        Parameters
+        ----------
+        load : float
+            Internal pressure (MPa); floored at 1e-3 MPa.
+        """
         return max(load, 1e-3) * self.B, self.B

@@ -36,6 +36,20 @@ def area_hessian(edges: np.ndarray, n_nodes: int) -> sp.csr_matrix:
         Node indices of each boundary edge, oriented so the enclosed region is on the left.
     n_nodes : int
         Number of nodes (dofs are ``2 node + component``).
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix (2 n_nodes, 2 n_nodes)
+        H (unitless); ``1/2 x^T H x`` is in mm^2 for ``x`` in mm.
+
+    Examples
+    --------
+    >>> import math
+    >>> from exofric.fe import polar_mesh
+    >>> m = polar_mesh(2.485, 4.15, 2, 4)  # quarter annulus
+    >>> H = area_hessian(m.boundary_edges("outer"), m.n_nodes)
+    >>> abs(enclosed_area(H, m.nodes.ravel()) - math.pi / 4 * 4.15**2) < 1e-2  # mm^2
+    True
     """
     order = edges.shape[1] - 1
     S = _edge_matrix(order)
@@ -60,5 +74,27 @@ def area_hessian(edges: np.ndarray, n_nodes: int) -> sp.csr_matrix:
 
 
 def enclosed_area(H: sp.csr_matrix, x: np.ndarray) -> float:
-    """Area ``1/2 x^T H x`` (mm^2) for the flattened current coordinates ``x``."""
+    """Area ``1/2 x^T H x`` (mm^2) for the flattened current coordinates ``x``.
+
+    Parameters
+    ----------
+    H : scipy.sparse.csr_matrix
+        The constant Hessian from :func:`area_hessian`.
+    x : ndarray (2 n,)
+        Flattened current node coordinates (mm).
+
+    Returns
+    -------
+    float
+        Area (mm^2) swept by the edges from the origin (the cavity area when the edges
+        close it together with the symmetry planes).
+
+    Examples
+    --------
+    >>> from exofric.fe import polar_mesh
+    >>> m = polar_mesh(2.485, 4.15, 2, 4)
+    >>> H = area_hessian(m.boundary_edges("outer"), m.n_nodes)
+    >>> round(enclosed_area(H, m.nodes.ravel()), 2)
+    13.53
+    """
     return 0.5 * float(x @ (H @ x))

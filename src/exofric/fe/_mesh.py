@@ -42,6 +42,12 @@ class TubeMesh:
         Radius (mm) of each radial grid line.
     full_circle : bool
         True when the mesh closes on itself (no symmetry planes).
+
+    Examples
+    --------
+    >>> m = polar_mesh(2.485, 4.15, 2, 4)
+    >>> m.n_nodes, m.order, m.boundary_edges("inner").shape
+    (45, 2, (4, 3))
     """
 
     nodes: np.ndarray
@@ -76,6 +82,16 @@ class TubeMesh:
         """Edges of the ``'inner'`` or ``'outer'`` surface as node tuples, by increasing angle.
 
         Each row has ``order + 1`` nodes (3 for quad9, 2 for quad4).
+
+        Parameters
+        ----------
+        side : {'inner', 'outer'}
+            Which surface (anything but ``'inner'`` means the outer one).
+
+        Returns
+        -------
+        ndarray (m, order + 1)
+            Node indices of each edge.
         """
         line = self.grid[0] if side == "inner" else self.grid[-1]
         k = self.order
@@ -103,6 +119,27 @@ def graded_angles(
     ``grading`` is the ratio of the largest to the smallest element (1 = uniform);
     sizes vary geometrically away from ``toward`` (an angle inside the range, by
     default ``theta1``).
+
+    Parameters
+    ----------
+    theta0, theta1 : float
+        Range of angles (rad), ``theta0 < theta1``.
+    n : int
+        Number of elements, >= 1.
+    grading : float
+        Largest / smallest element size (unitless), >= 1.
+    toward : float, optional
+        Angle (rad) where the elements are smallest (default ``theta1``).
+
+    Returns
+    -------
+    ndarray (n + 1,)
+        Element boundary angles (rad), increasing.
+
+    Examples
+    --------
+    >>> graded_angles(0.0, 1.0, 3, grading=4.0).round(4).tolist()
+    [0.0, 0.5714, 0.8571, 1.0]
     """
     if n < 1:
         raise InputError(f"number of circumferential elements must be >= 1, got {n}")

@@ -21,6 +21,7 @@ from scipy.linalg import LinAlgError, solve_banded
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 from scipy.sparse.linalg import MatrixRankWarning, spsolve
 
+from exofric import defaults
 from exofric.errors import ConvergenceError
 
 __all__ = ["Assembler", "Problem", "NewtonSettings", "solve_path", "PathPoint"]
@@ -41,6 +42,14 @@ class Assembler:
         True for unknown dofs.
     patterns : sequence of (rows, cols)
         Index arrays of the blocks that will be assembled, in call order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> a = Assembler(2, np.array([True, True]), [(np.array([0, 1]), np.array([0, 1]))])
+    >>> K = a.matrix([np.array([2.0, 4.0])])  # diag(2, 4)
+    >>> a.solve(K, np.array([2.0, 2.0])).tolist()
+    [1.0, 0.5]
     """
 
     def __init__(
@@ -81,6 +90,17 @@ class Assembler:
 
         Falls back to SuperLU when the band is wider than 1/4 of the system. Raises
         ``LinAlgError`` for a singular matrix.
+
+        Parameters
+        ----------
+        K : scipy.sparse.csc_matrix (nf, nf)
+            Matrix of the free dofs, as returned by :meth:`matrix` (same pattern).
+        rhs : ndarray (nf,)
+            Right-hand side over the free dofs.
+
+        Returns
+        -------
+        ndarray (nf,)
         """
         if 4 * self.band > self.nf:
             return np.asarray(spsolve(K, rhs))
@@ -92,14 +112,41 @@ class Assembler:
         return x
 
     def matrix(self, blocks: Sequence[np.ndarray]) -> sp.csc_matrix:
-        """CSC matrix of the free dofs from block values given in pattern order."""
+        """CSC matrix of the free dofs from block values given in pattern order.
+
+        Parameters
+        ----------
+        blocks : sequence of ndarray
+            Values of each pattern's entries, in the order and shapes of ``patterns``;
+            entries on fixed dofs are dropped, repeated entries summed.
+
+        Returns
+        -------
+        scipy.sparse.csc_matrix (nf, nf)
+        """
         vals = np.concatenate([np.asarray(b).ravel() for b in blocks])[self.keep]
         data = np.bincount(self.inv, weights=vals, minlength=self.nnz)
         return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.nf, self.nf))
 
 
 class Problem(Protocol):
-    """What :func:`solve_path` needs from a discretised problem."""
+    """What :func:`solve_path` needs from a discretised problem.
+
+    Attributes
+    ----------
+    n_dofs : int
+        Number of dofs (2 per node).
+    free : ndarray of bool (n_dofs,)
+        True for unknown (unconstrained) dofs.
+
+    Examples
+    --------
+    >>> from exofric.fe import InflationProblem, MeshSpec
+    >>> from exofric.material import MooneyRivlin
+    >>> p: Problem = InflationProblem(8.3, 4.97, MooneyRivlin.from_shore(62.5), MeshSpec())
+    >>> p.n_dofs
+    130
+    """
 
     n_dofs: int
     free: np.ndarray
@@ -107,33 +154,98 @@ class Problem(Protocol):
     def evaluate(
         self, u: np.ndarray, load: float, tangent: bool
     ) -> tuple[float, np.ndarray, sp.csc_matrix | None] | None:
-        """(energy, full residual, reduced tangent or None); None if the state is invalid."""
+        """(energy, full residual, reduced tangent or None); None if the state is invalid.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        load : float
+            Load level (MPa for pressure).
+        tangent : bool
+            Also assemble the reduced tangent matrix.
+        """
         ...
 
     def scales(self, load: float) -> tuple[float, float]:
-        """(force scale in N per mm depth, length scale in mm) for the tolerances."""
+        """(force scale in N per mm depth, length scale in mm) for the tolerances.
+
+        Parameters
+        ----------
+        load : float
+            Load level (MPa for pressure).
+        """
         ...
 
 
 @dataclass(frozen=True)
 class NewtonSettings:
-    """Solver settings (tolerances are relative to the problem's scales)."""
+    """Solver settings (tolerances are relative to the problem's scales).
 
-    tol_r: float = 1e-9
-    tol_u: float = 1e-10
-    max_iter: int = 15
-    max_cutbacks: int = 12
-    max_step: float = 0.05
-    min_step: float = 1e-6
-    line_search_halvings: int = 8
-    extrapolate: bool = True
+    Defaults: :data:`exofric.defaults.NEWTON`.
+
+    Parameters
+    ----------
+    tol_r : float
+        Residual tolerance (unitless), relative to the problem's force scale (N/mm), > 0.
+    tol_u : float
+        Increment tolerance (unitless), relative to the problem's length scale (mm), > 0.
+    max_iter : int
+        Newton iterations per sub-step before a cut-back, >= 1.
+    max_cutbacks : int
+        Halvings of a failed sub-step before :class:`~exofric.errors.ConvergenceError`.
+    max_step : float
+        Largest load sub-step, in ``load_unit`` (MPa for pressure), > 0.
+    min_step : float
+        Smallest load sub-step, in ``load_unit`` (MPa for pressure), > 0.
+    line_search_halvings : int
+        Backtracking halvings of a Newton step, >= 0.
+    extrapolate : bool
+        Start each sub-step from a secant predictor.
+    load_name, load_unit : str
+        Name and unit of the load in messages (``"pressure"``, ``"MPa"``).
+
+    Examples
+    --------
+    >>> NewtonSettings(max_step=0.025).max_step
+    0.025
+    """
+
+    tol_r: float = defaults.NEWTON["tol_r"]
+    tol_u: float = defaults.NEWTON["tol_u"]
+    max_iter: int = defaults.NEWTON["max_iter"]
+    max_cutbacks: int = defaults.NEWTON["max_cutbacks"]
+    max_step: float = defaults.NEWTON["max_step"]
+    min_step: float = defaults.NEWTON["min_step"]
+    line_search_halvings: int = defaults.NEWTON["line_search_halvings"]
+    extrapolate: bool = defaults.NEWTON["extrapolate"]
     load_name: str = "pressure"
     load_unit: str = "MPa"
 
 
 @dataclass
 class PathPoint:
-    """A converged state at one requested load."""
+    """A converged state at one requested load.
+
+    Parameters
+    ----------
+    load : float
+        The requested load (MPa for pressure).
+    u : ndarray (n_dofs,)
+        Converged nodal displacements (mm).
+    iterations : int
+        Newton iterations spent reaching it (all sub-steps).
+    steps : int
+        Load sub-steps taken from the previous requested load.
+    info : dict of str to float
+        Extra diagnostics (problem-specific; empty by default).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> PathPoint(0.2, np.zeros(4), 5, 1).load
+    0.2
+    """
 
     load: float
     u: np.ndarray
@@ -239,11 +351,40 @@ def solve_path(
     retried; the step grows again after successes. Returns one converged state per
     requested load.
 
+    Parameters
+    ----------
+    problem : Problem
+        The discretised problem (e.g. :class:`InflationProblem`, :class:`SqueezeProblem`).
+    loads : sequence of float
+        Increasing loads to report (MPa for pressure), each > ``load0``.
+    settings : NewtonSettings, optional
+        Solver settings (default ``NewtonSettings()``).
+    u0 : ndarray (n_dofs,), optional
+        Starting displacements (mm); default zero.
+    load0 : float
+        Starting load (MPa for pressure).
+    on_step : callable, optional
+        Called as ``on_step(load, u)`` after every converged sub-step (load in MPa, u in mm).
+
+    Returns
+    -------
+    list of PathPoint
+        One per requested load.
+
     Raises
     ------
     ConvergenceError
         When a step cannot be converged even after the allowed cutbacks; the
         message names the last load reached and the load attempted.
+
+    Examples
+    --------
+    >>> from exofric.fe import InflationProblem, MeshSpec
+    >>> from exofric.material import MooneyRivlin
+    >>> p = InflationProblem(8.3, 4.97, MooneyRivlin.from_shore(62.5), MeshSpec())
+    >>> [pt] = solve_path(p, [0.2])
+    >>> round(p.body.max_stretch(pt.u), 3)
+    1.134
     """
     s = settings or NewtonSettings()
     u = np.zeros(problem.n_dofs) if u0 is None else u0.copy()

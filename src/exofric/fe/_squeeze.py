@@ -38,6 +38,17 @@ class SqueezeProblem(PressurizedTube):
         Contact penalty eps (N/mm^3: MPa of contact pressure per mm of penetration).
     density : float
         Silicone density (t/mm^3) for the self-weight regulariser.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from exofric import defaults
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> p = SqueezeProblem(BASE, MooneyRivlin.from_shore(62.5),
+    ...                    MeshSpec(**defaults.SQUEEZE_MESH), 1e5, 1.1e-9)
+    >>> round(p.wire_gap(np.zeros(p.n_dofs)), 3)  # the clearance (mm)
+    0.1
     """
 
     def __init__(
@@ -84,7 +95,15 @@ class SqueezeProblem(PressurizedTube):
         self.f_body[1::2] = -density * GRAVITY_MM_S2 * nodal_vol
 
     def contact(self, u: np.ndarray, tangent: bool = False) -> tuple[ContactState, ContactState]:
-        """Contact states (hole, wire) of the outer nodes at displacement ``u``."""
+        """Contact states (hole, wire) of the outer nodes at displacement ``u``.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        tangent : bool
+            Also compute the contact tangent blocks.
+        """
         xo = (self.X + u).reshape(-1, 2)[self.outer]
         return (
             evaluate_contact(xo, self.w_outer, self.hole, self.penalty, tangent),
@@ -94,7 +113,17 @@ class SqueezeProblem(PressurizedTube):
     def evaluate(
         self, u: np.ndarray, load: float, tangent: bool
     ) -> tuple[float, np.ndarray, sp.csc_matrix | None] | None:
-        """Energy (N mm per mm), residual (N per mm) and reduced tangent at pressure ``load``."""
+        """Energy (N mm per mm), residual (N per mm) and reduced tangent at pressure ``load``.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        load : float
+            Internal pressure (MPa).
+        tangent : bool
+            Also assemble the reduced tangent.
+        """
         out = self.pressurized(u, load, tangent)
         if out is None:
             return None
@@ -112,6 +141,19 @@ class SqueezeProblem(PressurizedTube):
         A secant predictor that jumps past the first touch of the wire starts Newton far
         inside the stiff penalty; stopping it at the touch (the whole increment scaled, so
         the mesh stays consistent) lets Newton engage the contact gradually.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Converged displacements (mm) at the last load.
+        guess : ndarray (n_dofs,)
+            Predicted displacements (mm) at the next load.
+
+        Returns
+        -------
+        ndarray (n_dofs,)
+            ``guess``, or the point on the segment ``u -> guess`` where a node first
+            touches the wire (mm).
         """
         g0 = self.contact(u)[1].gap
         g1 = self.contact(guess)[1].gap
@@ -122,7 +164,13 @@ class SqueezeProblem(PressurizedTube):
         return u + t * (guess - u)
 
     def scales(self, load: float) -> tuple[float, float]:
-        """Force scale (N/mm) with a floor for P -> 0, and length scale (mm)."""
+        """Force scale (N/mm) with a floor for P -> 0, and length scale (mm).
+
+        Parameters
+        ----------
+        load : float
+            Internal pressure (MPa); floored at 0.01 MPa.
+        """
         return max(load, 0.01) * self.B, self.B
 
     def weight_per_mm(self) -> float:
@@ -130,14 +178,43 @@ class SqueezeProblem(PressurizedTube):
         return -2.0 * float(self.f_body[1::2].sum())
 
     def wire_gap(self, u: np.ndarray) -> float:
-        """Smallest gap (mm) between the tube's outer nodes and the wire."""
+        """Smallest gap (mm) between the tube's outer nodes and the wire.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        """
         return float(self.contact(u)[1].gap.min())
 
 
 def wire_halfwidth(
     xo: np.ndarray, gap: np.ndarray, center: tuple[float, float], radius: float
 ) -> float:
-    """Arc half-width (mm) on the wire of the contact zone (gap zero crossing interpolated)."""
+    """Arc half-width (mm) on the wire of the contact zone (gap zero crossing interpolated).
+
+    Parameters
+    ----------
+    xo : ndarray (m, 2)
+        Current coordinates (mm) of the tube's outer nodes, from the bottom to the top.
+    gap : ndarray (m,)
+        Signed gap to the wire (mm), negative in contact.
+    center : tuple of float
+        Wire centre (x, y) (mm).
+    radius : float
+        Wire radius (mm).
+
+    Returns
+    -------
+    float
+        Half-width of the contact arc (mm); 0 without contact.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> wire_halfwidth(np.zeros((2, 2)), np.array([0.1, 0.2]), (0.0, 4.2), 0.8)
+    0.0
+    """
     act = np.flatnonzero(gap <= 0.0)
     if act.size == 0:
         return 0.0
@@ -151,7 +228,29 @@ def wire_halfwidth(
 
 
 def wall_arc(xo: np.ndarray, active: np.ndarray, radius: float) -> float:
-    """Hole-wall arc length (mm) in contact, full section (2 x the half model)."""
+    """Hole-wall arc length (mm) in contact, full section (2 x the half model).
+
+    Parameters
+    ----------
+    xo : ndarray (m, 2)
+        Current coordinates (mm) of the tube's outer nodes.
+    active : ndarray of bool (m,)
+        Nodes in contact with the hole wall.
+    radius : float
+        Hole radius (mm).
+
+    Returns
+    -------
+    float
+        Contact arc length (mm), both halves.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> xo = np.array([[5.0, 0.0], [0.0, 5.0]])  # a quarter of the wall, both nodes active
+    >>> round(wall_arc(xo, np.array([True, True]), 5.0), 4)  # 2 x (pi/2 x 5 mm)
+    15.708
+    """
     th = np.arctan2(xo[:, 1], xo[:, 0])
     both = active[:-1] & active[1:]
     return float(2.0 * radius * np.sum(np.abs(np.diff(th))[both]))

@@ -8,6 +8,8 @@ torque in Nm, arm radius in m.
   bracketed inverse (Brent) that refuses targets outside the fitted range or non-monotonic fits.
 * :func:`pressure_for_friction` -- the paper's Section 5 inverse: the pressure that gives a
   target friction, via N = (F - F0) / gamma and the cubic inverse.
+* :class:`SqueezeCurve` -- a validated tabulated squeeze curve N(P) with monotone (PCHIP)
+  interpolation, its slope dN/dP and its inverse P(N); the one interpolant of FE curves.
 * :class:`CurveInverse` -- the exact inverse of a tabulated (FE) curve N(P) by monotone (PCHIP)
   interpolation of P against N, which the paper lacked.
 * :func:`fit_gamma` -> :class:`GammaFit` -- gamma (Eq 7) from rig data with a CI.
@@ -26,6 +28,7 @@ Examples
 0.293
 """
 
+from exofric.friction._curve import SqueezeCurve
 from exofric.friction._fit import GammaFit, fit_gamma, match_squeeze, relative_errors
 from exofric.friction._inverse import CurveInverse
 from exofric.friction._model import CubicFit, FrictionModel, pressure_for_friction
@@ -49,5 +52,5 @@ __all__ = [
     "Deviation", "deviation", "fit_gamma", "FrictionModel", "GammaFit", "match_squeeze",
     "MeasuredCurve", "one_way_anova", "paper_structures", "predict", "Prediction", "PredictionSet",
     "pressure_for_friction", "relative_errors", "RigConfig", "RigRun", "simulate_rig",
-    "structures_from_dict", "torque", "TorqueCheck",
+    "SqueezeCurve", "structures_from_dict", "torque", "TorqueCheck",
 ]

@@ -29,25 +29,22 @@ absolute noise, where the classical OLS standard error (``ci="ols"``) covered on
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from exofric.errors import InputError, check_range
+from exofric.errors import InputError, check_range, check_series
+from exofric.friction._curve import SqueezeCurve
 from exofric.friction._model import FrictionModel
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["GammaFit", "fit_gamma", "match_squeeze", "relative_errors"]
 
 ModelKind = Literal["proportional", "affine"]
 CiMethod = Literal["analytic", "ols", "bootstrap"]
-
-
-def _arr(name: str, x: ArrayLike) -> NDArray[np.float64]:
-    a = np.asarray(x, dtype=float).ravel()
-    if a.size == 0 or not np.all(np.isfinite(a)):
-        raise InputError(f"{name} must be a non-empty list of finite numbers")
-    return a
 
 
 def match_squeeze(
@@ -62,7 +59,8 @@ def match_squeeze(
     Parameters
     ----------
     squeeze_pressure_mpa, squeeze_force_n : array_like
-        The squeeze curve (strictly increasing pressures, MPa; forces in N).
+        The squeeze curve (strictly increasing pressures, MPa; forces in N), as for
+        :class:`SqueezeCurve`, whose interpolant gives N.
     pressure_mpa : array_like
         Where N is wanted (MPa).
     edge_tol_mpa : float
@@ -82,22 +80,14 @@ def match_squeeze(
     >>> round(float(n[0]), 9), bool(ok[1])
     (30.0, False)
     """
-    from scipy.interpolate import PchipInterpolator
-
-    ps = _arr("squeeze pressure_mpa", squeeze_pressure_mpa)
-    ns = _arr("squeeze_force_n", squeeze_force_n)
-    if ps.size != ns.size or ps.size < 2:
-        raise InputError(
-            f"squeeze curve needs >= 2 (pressure_mpa, squeeze_force_n) pairs of equal length, "
-            f"got {ps.size} and {ns.size}"
-        )
-    if np.any(np.diff(ps) <= 0):
-        raise InputError("squeeze curve pressure_mpa must be strictly increasing")
-    p = _arr("pressure_mpa", pressure_mpa)
+    curve = SqueezeCurve(squeeze_pressure_mpa, squeeze_force_n)
+    p, _ = check_series("pressure_mpa", pressure_mpa, x_unit="MPa", increasing=False,
+                        min_points=1)
     tol = check_range("edge_tol_mpa", edge_tol_mpa, 0.0, 0.1, unit="MPa")
-    inside = (p >= ps[0] - tol) & (p <= ps[-1] + tol)
+    lo, hi = curve.pressure_range_mpa
+    inside = (p >= lo - tol) & (p <= hi + tol)
     out = np.full(p.shape, np.nan)
-    out[inside] = PchipInterpolator(ps, ns)(p[inside])
+    out[inside] = curve(p[inside], edge_tol_mpa=tol)
     return out, inside
 
 
@@ -205,6 +195,62 @@ class GammaFit:
             d["f0_ci95_n"] = None if self.f0_ci95_n is None else list(self.f0_ci95_n)
         return d
 
+    def to_frame(self) -> pd.DataFrame:
+        """The matched data points as a DataFrame: one row per point used (MPa, N, %).
+
+        Columns: ``pressure_mpa``, ``squeeze_force_n``, ``friction_n`` (measured),
+        ``predicted_friction_n``, ``residual_n`` and ``relative_error_pct``.
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> fit = fit_gamma([0.2, 0.4, 0.6], [70.0, 140.0, 190.0], [0.2, 0.4, 0.6],
+        ...                 [100.0, 200.0, 268.55])
+        >>> fit.to_frame()[["pressure_mpa", "friction_n"]].values.tolist()
+        [[0.2, 70.0], [0.4, 140.0], [0.6, 190.0]]
+        """
+        import pandas as pd
+
+        return pd.DataFrame({
+            "pressure_mpa": np.asarray(self.pressure_mpa, dtype=float),
+            "squeeze_force_n": np.asarray(self.squeeze_force_n, dtype=float),
+            "friction_n": np.asarray(self.friction_n, dtype=float),
+            "predicted_friction_n": np.asarray(self.predicted_friction_n, dtype=float),
+            "residual_n": self.residual_n,
+            "relative_error_pct": self.point_relative_error_pct,
+        })
+
+    def plot(self, fig: Any | None = None, *, title: str = "") -> Any:
+        """Draw measured vs fitted friction, residuals (N) and relative errors (%).
+
+        Three Axes (:func:`exofric.plots.plot_gamma_fit`); write the figure with
+        :func:`exofric.plots.save`.
+
+        Parameters
+        ----------
+        fig : matplotlib Figure, optional
+            Empty figure to draw on (default a new one).
+        title : str
+            Figure title.
+
+        Returns
+        -------
+        matplotlib Figure
+
+        Examples
+        --------
+        >>> fit = fit_gamma([0.2, 0.4, 0.6], [70.0, 140.0, 190.0], [0.2, 0.4, 0.6],
+        ...                 [100.0, 200.0, 268.55])
+        >>> len(fit.plot().axes)
+        3
+        """
+        from exofric.plots import plot_gamma_fit
+
+        return plot_gamma_fit(self, title, fig=fig)
+
 
 def _solve(n: NDArray[np.float64], f: NDArray[np.float64], affine: bool) -> NDArray[np.float64]:
     """Closed-form least squares; n, f shaped (..., m). Returns (..., 2): gamma, f0."""
@@ -285,10 +331,9 @@ def fit_gamma(
         raise InputError(f"model must be 'proportional' or 'affine', got {model!r}")
     if ci not in ("analytic", "ols", "bootstrap"):
         raise InputError(f"ci must be 'analytic', 'ols' or 'bootstrap', got {ci!r}")
-    pf = _arr("friction pressure_mpa", friction_pressure_mpa)
-    ff = _arr("friction_n", friction_n)
-    if pf.size != ff.size:
-        raise InputError(f"pressure_mpa and friction_n differ in length ({pf.size} vs {ff.size})")
+    pf, ff = check_series("friction_pressure_mpa", friction_pressure_mpa, "friction_n",
+                          friction_n, x_unit="MPa", y_unit="N", increasing=False,
+                          min_points=1)
     n_all, inside = match_squeeze(squeeze_pressure_mpa, squeeze_force_n, pf)
     affine = model == "affine"
     n_min = 3 if affine else 2

@@ -9,7 +9,7 @@ friction model (Eqs 1, 8, 9) lives.
 
 Examples
 --------
->>> inv = CurveInverse.from_curve([0.1, 0.2, 0.3], [-1.0, 0.0, 5.0])  # no contact at 0.1 MPa
+>>> inv = CurveInverse.from_curve([0.1, 0.2, 0.3], [0.0, 0.0, 5.0])  # contact from 0.2 MPa
 >>> inv.squeeze_force_n, inv.pressure_mpa
 ((0.0, 5.0), (0.2, 0.3))
 """
@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from exofric.errors import InputError, check_finite
+from exofric.friction._curve import SqueezeCurve
 
 if TYPE_CHECKING:
     from exofric.friction._model import FrictionModel
@@ -34,8 +35,13 @@ __all__ = ["CurveInverse"]
 class CurveInverse:
     """Exact inverse P(N) of a tabulated squeeze curve by monotone (PCHIP) interpolation.
 
-    Built with :meth:`from_curve` from FE output; leading points with N <= 0 (before
-    contact) are dropped except the last one, which brackets the contact onset.
+    Built with :meth:`from_curve` from FE output (validated as a :class:`SqueezeCurve`);
+    leading points with N = 0 (before contact) are dropped except the last one, which
+    brackets the contact onset.
+
+    Note that this interpolates P against N, which is not exactly the inverse of the PCHIP
+    of N against P that :class:`SqueezeCurve` evaluates (:meth:`SqueezeCurve.pressure` is);
+    the two agree at the nodes and differ between them by the interpolation error.
 
     Attributes
     ----------
@@ -54,18 +60,32 @@ class CurveInverse:
 
     @classmethod
     def from_curve(cls, pressure_mpa: ArrayLike, squeeze_force_n: ArrayLike) -> CurveInverse:
-        """Check that N(P) is strictly increasing (after contact) and build the inverse."""
-        p = np.asarray(pressure_mpa, dtype=float).ravel()
-        n = np.asarray(squeeze_force_n, dtype=float).ravel()
-        if p.shape != n.shape or p.size < 2:
-            raise InputError(
-                f"squeeze curve needs >= 2 (pressure, force) pairs of equal length, "
-                f"got {p.size} and {n.size}"
-            )
-        if not (np.all(np.isfinite(p)) and np.all(np.isfinite(n))):
-            raise InputError("squeeze curve must be finite numbers (no NaN/inf)")
-        if np.any(np.diff(p) <= 0):
-            raise InputError("squeeze curve pressures must be strictly increasing (MPa)")
+        """Check that N(P) is strictly increasing (after contact) and build the inverse.
+
+        ``pressure_mpa`` (MPa) and ``squeeze_force_n`` (N) are validated as a
+        :class:`SqueezeCurve` (finite, >= 0, equal lengths, pressures strictly increasing).
+        """
+        curve = SqueezeCurve(pressure_mpa, squeeze_force_n)
+        return cls.from_squeeze_curve(curve)
+
+    @classmethod
+    def from_squeeze_curve(cls, curve: SqueezeCurve) -> CurveInverse:
+        """The inverse of a :class:`SqueezeCurve` (N strictly increasing after contact).
+
+        Parameters
+        ----------
+        curve : SqueezeCurve
+            The curve N(P) (MPa, N); its leading zero-force nodes but the last are dropped.
+
+        Examples
+        --------
+        >>> from exofric.friction import SqueezeCurve
+        >>> inv = CurveInverse.from_squeeze_curve(SqueezeCurve([0.1, 0.2], [0.0, 4.0]))
+        >>> round(inv.pressure(2.0), 12)
+        0.15
+        """
+        p = np.asarray(curve.pressure_mpa)
+        n = np.asarray(curve.squeeze_force_n)
         nonpos = np.flatnonzero(n <= 0.0)
         start = int(nonpos[-1]) if nonpos.size else 0
         p, n = p[start:], n[start:]

@@ -31,17 +31,20 @@ import math
 import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from exofric.errors import InputError, check_positive, check_pressures
+from exofric.errors import InputError, check_positive, check_pressures, check_series
 from exofric.friction._fit import relative_errors
 from exofric.friction._model import FrictionModel
 from exofric.friction._stats import AnovaResult, anova_vs_base
 from exofric.friction._torque import TorqueCheck, torque
 from exofric.geometry import BASE, Structure
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = [
     "ApplicabilityWarning",
@@ -216,14 +219,9 @@ class MeasuredCurve:
     @classmethod
     def of(cls, pressure_mpa: ArrayLike, friction_n: ArrayLike) -> MeasuredCurve:
         """Validated curve (finite, equal lengths, distinct pressures), sorted by pressure."""
-        p = np.asarray(pressure_mpa, dtype=float).ravel()
-        f = np.asarray(friction_n, dtype=float).ravel()
-        if p.size != f.size or p.size == 0:
-            raise InputError(
-                f"measured curve needs equal, non-zero lengths, got {p.size} and {f.size}"
-            )
-        if not (np.all(np.isfinite(p)) and np.all(np.isfinite(f))) or np.any(p < 0):
-            raise InputError("measured curve must be finite, with pressures >= 0 MPa")
+        p, f = check_series("pressure_mpa", pressure_mpa, "friction_n", friction_n,
+                            x_unit="MPa", y_unit="N", increasing=False, min_points=1,
+                            x_min=0.0, where="measured curve")
         o = np.argsort(p, kind="stable")
         if np.any(np.diff(p[o]) == 0):
             raise InputError("measured curve has a repeated pressure")
@@ -278,6 +276,45 @@ class Prediction:
             d["max_relative_error_pct"] = self.max_relative_error_pct
         return d
 
+    def to_frame(self) -> pd.DataFrame:
+        """The predicted curve as a DataFrame: one row per pressure (MPa, N, %).
+
+        Columns: ``structure`` (name), ``pressure_mpa``, ``squeeze_force_n``,
+        ``predicted_friction_n``, and with a measured curve ``measured_friction_n`` and
+        ``relative_error_pct`` (NaN at pressures without a measurement; the measured
+        pressures are among the predicted ones).
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> from types import SimpleNamespace
+        >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
+        >>> r = predict(paper_structures()[:1], 0.5, None, [0.3, 0.6], squeeze_fn=fake)
+        >>> r.predictions[0].to_frame()["predicted_friction_n"].tolist()
+        [60.0, 120.0]
+        """
+        import pandas as pd
+
+        p = np.asarray(self.pressure_mpa, dtype=float)
+        cols: dict[str, Any] = {
+            "structure": [self.structure.name] * p.size,
+            "pressure_mpa": p,
+            "squeeze_force_n": np.asarray(self.squeeze_force_n, dtype=float),
+            "predicted_friction_n": np.asarray(self.predicted_friction_n, dtype=float),
+        }
+        if self.measured is not None:
+            at = np.searchsorted(p, np.asarray(self.measured.pressure_mpa, dtype=float))
+            meas = np.full(p.size, np.nan)
+            err = np.full(p.size, np.nan)
+            meas[at] = self.measured.friction_n
+            err[at] = self.relative_error_pct
+            cols["measured_friction_n"] = meas
+            cols["relative_error_pct"] = err
+        return pd.DataFrame(cols)
+
 
 @dataclass(frozen=True)
 class PredictionSet:
@@ -295,6 +332,62 @@ class PredictionSet:
             "structures": [p.to_dict() for p in self.predictions],
             "anova": [a.to_dict() for a in self.anova],
         }
+
+    def to_frame(self) -> pd.DataFrame:
+        """All predicted curves as one DataFrame: one row per structure and pressure.
+
+        The rows of each :meth:`Prediction.to_frame`, stacked in structure order (columns
+        ``structure``, ``pressure_mpa``, ``squeeze_force_n``, ``predicted_friction_n``, and
+        ``measured_friction_n``, ``relative_error_pct`` when any curve was measured).
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> from types import SimpleNamespace
+        >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
+        >>> r = predict(paper_structures()[:2], 0.5, None, [0.3, 0.6], squeeze_fn=fake)
+        >>> r.to_frame().groupby("structure").size().tolist()
+        [2, 2]
+        """
+        import pandas as pd
+
+        frames = [p.to_frame() for p in self.predictions]
+        if not frames:
+            return pd.DataFrame(columns=["structure", "pressure_mpa", "squeeze_force_n",
+                                         "predicted_friction_n"])
+        return pd.concat(frames, ignore_index=True)
+
+    def plot(self, fig: Any | None = None, *, title: str = "") -> Any:
+        """Draw predicted (black) vs tested (red) friction and the relative error, per structure.
+
+        One row of two Axes per structure (:func:`exofric.plots.plot_predictions`); write the
+        figure with :func:`exofric.plots.save`.
+
+        Parameters
+        ----------
+        fig : matplotlib Figure, optional
+            Empty figure to draw on (default a new one).
+        title : str
+            Figure title.
+
+        Returns
+        -------
+        matplotlib Figure
+
+        Examples
+        --------
+        >>> from types import SimpleNamespace
+        >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
+        >>> r = predict(paper_structures()[:2], 0.5, None, [0.3, 0.6], squeeze_fn=fake)
+        >>> len(r.plot().axes)
+        4
+        """
+        from exofric.plots import plot_predictions
+
+        return plot_predictions(self.predictions, title, fig=fig)
 
 
 SqueezeFn = Callable[[Structure, Any, np.ndarray], Any]

@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from exofric.errors import InputError, check_finite, check_positive, check_range
+from exofric.errors import InputError, check_finite, check_positive, check_range, check_series
 from exofric.friction._fit import match_squeeze
 
 __all__ = ["RigConfig", "RigRun", "simulate_rig"]
@@ -202,18 +202,16 @@ def simulate_rig(
     g = check_positive("gamma_true", gamma_true)
     if not isinstance(repeats, int) or not 1 <= repeats <= 100:
         raise InputError(f"repeats must be an integer in [1, 100], got {repeats!r}")
-    ps = np.asarray(squeeze_pressure_mpa, dtype=float).ravel()
-    ns = np.asarray(squeeze_force_n, dtype=float).ravel()
+    ps, ns = check_series("squeeze_pressure_mpa", squeeze_pressure_mpa, "squeeze_force_n",
+                          squeeze_force_n, x_unit="MPa", y_unit="N")
     if pressures_mpa is None:
-        if ps.size != ns.size:
-            raise InputError("squeeze curve pressure_mpa and squeeze_force_n differ in length")
         sp = ps[ns > 0.0]
     else:
         sp = np.asarray(pressures_mpa, dtype=float).ravel()
     if sp.size == 0:
         raise InputError("rig needs at least one pressure set point with squeeze force > 0")
-    if np.any(np.diff(sp) <= 0):
-        raise InputError("rig pressure set points must be strictly increasing (MPa)")
+    sp, _ = check_series("pressures_mpa", sp, x_unit="MPa", min_points=1,
+                         where="rig set points")
     n_set, inside = match_squeeze(ps, ns, sp, edge_tol_mpa=0.0)
     if not np.all(inside):
         bad = sp[~inside][0]

@@ -1,10 +1,18 @@
-"""Every file exofric reads or writes: unit-checked tables, JSON, VTU meshes.
+"""Every file exofric reads or writes: unit-checked tables, TOML, JSON, Parquet stores, VTU.
 
 * :func:`read_table` -- a CSV with units in the headers (``pressure_mpa``, ``friction_n``),
   validated: one line naming the file, the row or column and what is allowed.
-* :func:`jsonable`, :func:`write_json` -- JSON-ready values (NaN -> null) and an atomic write.
+* :func:`read_inflation_table`, :func:`read_squeeze_curve`, :func:`read_friction_table`,
+  :func:`read_step_response` -- the rig and curve files, as validated DataFrames
+  (``attrs["source"]`` is the file name); domain classes build themselves from them.
+* :func:`read_toml`, :func:`read_json` -- a dict, or one line naming the file, line and column.
+* :func:`jsonable`, :func:`write_json`, :func:`write_text`, :func:`atomic_path` -- JSON-ready
+  values (NaN -> null) and atomic writes (temporary file in the same directory, then
+  :func:`os.replace`): never a partial file under the final name.
+* :class:`ParquetStore` -- one Parquet file per key, written atomically, plus a JSON manifest.
 * :func:`write_vtu` -- a deformed FE mesh for ParaView.
 
+``io`` knows file formats, not exofric's domain types; it imports only :mod:`exofric.errors`.
 Units: whatever the column suffixes say (mm, N, MPa, s, Nm, %).
 
 Examples
@@ -16,7 +24,27 @@ Examples
 ['pressure_mpa', 'outer_diameter_mm']
 """
 
-from exofric.io._files import UNIT_SUFFIXES, jsonable, read_table, write_json
+from exofric.io._files import (
+    UNIT_SUFFIXES,
+    atomic_path,
+    jsonable,
+    read_json,
+    read_table,
+    read_toml,
+    write_json,
+    write_text,
+)
+from exofric.io._rig import (
+    read_friction_table,
+    read_inflation_table,
+    read_squeeze_curve,
+    read_step_response,
+)
+from exofric.io._store import ParquetStore
 from exofric.io._vtu import QUAD9_TO_VTK, write_vtu
 
-__all__ = ["jsonable", "QUAD9_TO_VTK", "read_table", "UNIT_SUFFIXES", "write_json", "write_vtu"]
+__all__ = [
+    "atomic_path", "jsonable", "ParquetStore", "QUAD9_TO_VTK", "read_friction_table",
+    "read_inflation_table", "read_json", "read_squeeze_curve", "read_step_response",
+    "read_table", "read_toml", "UNIT_SUFFIXES", "write_json", "write_text", "write_vtu",
+]

@@ -1,28 +1,42 @@
-"""Reading and validating rig data files (CSV with units in the headers).
+"""Generic file formats: unit-checked CSV tables, TOML, JSON, and atomic writes.
 
 Every reader here returns plain validated data or raises
 :class:`~exofric.errors.InputError` with one line naming the file, the row or
 column and what is allowed. Column names carry their unit (``pressure_mpa``,
 ``outer_diameter_mm``, ``friction_n``, ``time_s``); a column with the same
 quantity in another unit (``pressure_kpa``) is refused with a hint, never
-silently reinterpreted.
+silently reinterpreted. A missing file is an :class:`OSError` for TOML and JSON
+(the CLI prints it as one line) and an :class:`InputError` for tables.
+
+Every writer is atomic: it writes a hidden temporary file in the target's
+directory and renames it over the target (:func:`atomic_path`), so a crash or a
+kill never leaves a partial file under the final name.
 """
 
 from __future__ import annotations
 
+import contextlib
 import io as _io
 import json
 import math
-from collections.abc import Sequence
+import os
+import tomllib
+import uuid
+from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from exofric.errors import InputError
 
-__all__ = ["read_table", "write_json", "jsonable", "UNIT_SUFFIXES"]
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = [
+    "atomic_path", "jsonable", "read_json", "read_table", "read_toml", "UNIT_SUFFIXES",
+    "write_json", "write_text",
+]
 
 #: Unit suffixes exofric understands in column names, and their meaning.
 UNIT_SUFFIXES = {"mpa": "MPa", "mm": "mm", "n": "N", "s": "s", "nm": "Nm", "pct": "%"}
@@ -76,6 +90,8 @@ def read_table(
     >>> df["outer_diameter_mm"].tolist()
     [8.53, 8.78, 9.14, 9.44]
     """
+    import pandas as pd  # lazy: reading TOML/JSON or writing files must not load pandas
+
     p = Path(path)
     name = p.name
     if not p.is_file():
@@ -158,7 +174,22 @@ def read_table(
 def jsonable(obj: Any) -> Any:
     """Convert NumPy scalars/arrays, tuples and non-finite floats to JSON-ready values.
 
-    NaN and infinities become ``None`` (JSON has no NaN).
+    NaN and infinities become ``None`` (JSON has no NaN); paths become strings.
+
+    Parameters
+    ----------
+    obj : Any
+        A value, possibly nested in dicts, lists and tuples.
+
+    Returns
+    -------
+    Any
+        The same structure built of dicts (string keys), lists, plain numbers and strings.
+
+    Examples
+    --------
+    >>> jsonable({"gamma": np.float64(0.7168), "p_mpa": np.array([0.2, np.nan])})
+    {'gamma': 0.7168, 'p_mpa': [0.2, None]}
     """
     if isinstance(obj, dict):
         return {str(k): jsonable(v) for k, v in obj.items()}
@@ -175,9 +206,169 @@ def jsonable(obj: Any) -> Any:
     return obj
 
 
-def write_json(obj: Any, path: str | Path) -> Path:
-    """Write ``obj`` (see :func:`jsonable`) as indented JSON; return the path."""
+@contextlib.contextmanager
+def atomic_path(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary path beside ``path``; rename it onto ``path`` when the block succeeds.
+
+    The temporary file is ``.<name>.<random>.tmp`` in the same directory (so the final
+    :func:`os.replace` is atomic on one file system); parent directories are created. If the
+    block raises, the temporary file is deleted and ``path`` is left as it was (absent or the
+    previous complete version). A killed process can leave a ``.<name>.*.tmp`` file, never a
+    partial ``path``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The final file.
+
+    Yields
+    ------
+    Path
+        The temporary file to write (it does not exist yet).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> target = Path(tempfile.mkdtemp()) / "out.txt"
+    >>> with atomic_path(target) as tmp:
+    ...     _ = tmp.write_text("done")
+    >>> target.read_text(), sorted(p.name for p in target.parent.iterdir())
+    ('done', ['out.txt'])
+    """
+    final = Path(path)
+    final.parent.mkdir(parents=True, exist_ok=True)
+    tmp = final.parent / f".{final.name}.{uuid.uuid4().hex}.tmp"
+    try:
+        yield tmp
+        os.replace(tmp, final)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
+def write_text(path: str | Path, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` atomically (see :func:`atomic_path`); return the path.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to write (parent directories are created).
+    text : str
+        Its whole content.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> write_text(Path(tempfile.mkdtemp()) / "rig.csv", "pressure_mpa,friction_n\\n").name
+    'rig.csv'
+    """
     p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    p.write_text(json.dumps(jsonable(obj), indent=2) + "\n", encoding="utf-8")
+    with atomic_path(p) as tmp:
+        tmp.write_text(text, encoding="utf-8")
     return p
+
+
+def write_json(obj: Any, path: str | Path, *, indent: int = 2) -> Path:
+    """Write ``obj`` (see :func:`jsonable`) as indented JSON atomically; return the path.
+
+    Parameters
+    ----------
+    obj : Any
+        Dicts, lists, numbers, strings, NumPy values; NaN and infinities are written as null.
+    path : str or Path
+        The file to write (parent directories are created).
+    indent : int
+        Spaces per indentation level.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> p = write_json({"gamma": 0.7168, "f0_n": float("nan")}, Path(tempfile.mkdtemp()) / "r.json")
+    >>> read_json(p)
+    {'gamma': 0.7168, 'f0_n': None}
+    """
+    return write_text(path, json.dumps(jsonable(obj), indent=indent) + "\n")
+
+
+def _read_text(p: Path) -> str:
+    """UTF-8 text of ``p``; OSError (missing file...) passes through, bad bytes -> InputError."""
+    try:
+        return p.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{p}: cannot read as UTF-8 text ({exc.reason})") from None
+
+
+def read_toml(path: str | Path) -> dict[str, Any]:
+    """Read a TOML file into a dict.
+
+    Parameters
+    ----------
+    path : str or Path
+        A UTF-8 TOML file.
+
+    Returns
+    -------
+    dict
+        The document's tables and values.
+
+    Raises
+    ------
+    InputError
+        A syntax error (one line naming the file, the line and the column) or text that is
+        not UTF-8.
+    OSError
+        The file is missing or unreadable (:class:`FileNotFoundError` for a missing file).
+
+    Examples
+    --------
+    >>> from exofric import paper
+    >>> read_toml(paper.data_path("paper.toml"))["scalars"]["gamma"]["value"]
+    0.7168
+    """
+    p = Path(path)
+    text = _read_text(p)
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc).splitlines()[0]
+        if msg.endswith("(at end of document)"):
+            lines = text.split("\n")
+            msg = (msg.removesuffix("(at end of document)")
+                   + f"(at end of document, line {len(lines)}, column {len(lines[-1]) + 1})")
+        raise InputError(f"{p}: not valid TOML: {msg}") from None
+
+
+def read_json(path: str | Path) -> Any:
+    """Read a JSON file.
+
+    Parameters
+    ----------
+    path : str or Path
+        A UTF-8 JSON file.
+
+    Returns
+    -------
+    Any
+        The decoded value (usually a dict).
+
+    Raises
+    ------
+    InputError
+        Invalid JSON (one line naming the file, the line and the column) or text that is
+        not UTF-8.
+    OSError
+        The file is missing or unreadable.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> read_json(write_json({"pressure_mpa": [0.2, 0.4]}, Path(tempfile.mkdtemp()) / "a.json"))
+    {'pressure_mpa': [0.2, 0.4]}
+    """
+    p = Path(path)
+    text = _read_text(p)
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{p.name}: not valid JSON ({exc.msg} at line {exc.lineno}, column "
+                         f"{exc.colno})") from None

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from exofric.io._files import atomic_path
+
 __all__ = ["write_vtu", "QUAD9_TO_VTK"]
 
 #: exofric's quad9 local order (a = 3 j + i) to VTK's biquadratic quad order.
@@ -21,6 +23,22 @@ def write_vtu(
     cell_fields: dict[str, np.ndarray] | None = None,
 ) -> Path:
     """Write the deformed mesh (mm) with point displacement and cell fields to ``path``.
+
+    The format follows the suffix as in :func:`meshio.write` (VTU XML for ``.vtu`` and for an
+    unknown suffix); the file is written atomically (see :func:`~exofric.io.atomic_path`).
+
+    Parameters
+    ----------
+    path : str or Path
+        Output file (parent directories are created).
+    nodes : numpy.ndarray
+        Undeformed node coordinates, shape (n, 2), in mm.
+    elements : numpy.ndarray
+        Connectivity, shape (m, 9) for quad9 (exofric's local order) or (m, 4) for quad4.
+    displacement : numpy.ndarray
+        Node displacements, shape (n, 2), in mm; written as ``displacement_mm``.
+    cell_fields : dict of str to numpy.ndarray, optional
+        Per-element values (name them with their unit, e.g. ``von_mises_mpa``).
 
     Examples
     --------
@@ -43,6 +61,7 @@ def write_vtu(
         pts, [(kind, elements[:, perm])], point_data={"displacement_mm": disp3}, cell_data=cd
     )
     p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    mesh.write(p)
+    fmt = meshio.extension_to_filetypes.get(p.suffix.lower(), ["vtu"])[0]
+    with atomic_path(p) as tmp:
+        mesh.write(tmp, file_format=fmt)
     return p

@@ -35,7 +35,17 @@ __all__ = [
 
 
 class MaterialRangeWarning(UserWarning):
-    """A correlation is used outside the hardness range it was published for."""
+    """A correlation is used outside the hardness range it was published for.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     _ = shore_to_modulus(95.0)
+    >>> caught[0].category.__name__
+    'MaterialRangeWarning'
+    """
 
 
 def _paper(s: float) -> float:
@@ -69,6 +79,12 @@ class Correlation:
         Hardness range (Shore A) in which exofric uses it without a warning.
     reference : str
         Where it comes from.
+
+    Examples
+    --------
+    >>> c = CORRELATIONS["paper"]
+    >>> c.valid, round(c.func(62.5), 4)
+    ((20.0, 80.0), 4.0033)
     """
 
     name: str
@@ -254,7 +270,17 @@ class MooneyRivlin:
         return (3.0 * k - 2.0 * mu) / (2.0 * (3.0 * k + mu))
 
     def with_bulk_factor(self, factor: float) -> MooneyRivlin:
-        """Same shear behaviour, bulk modulus multiplied by ``factor`` (d divided)."""
+        """Same shear behaviour, bulk modulus multiplied by ``factor`` (d divided).
+
+        Parameters
+        ----------
+        factor : float
+            Bulk-modulus multiplier (unitless), > 0.
+
+        Returns
+        -------
+        MooneyRivlin
+        """
         f = check_positive("bulk factor", factor)
         return MooneyRivlin(self.c10, self.c01, self.d / f, self.shore, self.correlation)
 

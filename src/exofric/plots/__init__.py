@@ -1,23 +1,52 @@
 """Every picture exofric draws: the only package that imports matplotlib.
 
-Each function takes computed results (and an optional matplotlib ``Axes``) and returns the Axes
-or Figure it drew on; :func:`save` writes a figure to a file. Library code never selects a
-backend: the CLI selects a non-interactive one once at start-up.
+Each function takes computed results (read through their attributes, so this package sits
+below every computing stage) and an optional matplotlib ``ax`` -- or ``fig``, an empty Figure,
+when it needs several Axes -- and returns the Axes or Figure it drew on (a new pyplot figure
+when none is given). Nothing here writes files except :func:`save`, and nothing selects a
+backend: the CLI sets ``MPLBACKEND=Agg`` once at start-up. The result objects' ``.plot()``
+methods delegate here.
+
+* FE: :func:`plot_squeeze` (Figs 6-7), :func:`plot_squeeze_force` (Fig 7),
+  :func:`plot_squeeze_curves`, :func:`plot_inflation`, :func:`plot_inflation_curve`,
+  :func:`draw_section`, :func:`section_polygons`.
+* Calibration: :func:`plot_calibration` (Fig 5b), :func:`plot_table1`.
+* Friction: :func:`plot_gamma_fit` (Fig 4), :func:`plot_predictions` (Figs 8-10),
+  :func:`plot_cubic_fit` (Fig 11), :func:`plot_torque`.
+* Control: :func:`plot_simulation`, :func:`plot_control_cases` (Fig 12).
+* Design: :func:`plot_design_map`, :func:`map_axes`.
 
 Units: as the axes say (mm, N, MPa, s, Nm).
 
 Examples
 --------
->>> import matplotlib
->>> matplotlib.use("Agg")
->>> from exofric.plots import draw_section
+>>> from exofric.friction import fit_gamma
+>>> from exofric.plots import plot_gamma_fit, save
+>>> fit = fit_gamma([0.2, 0.4, 0.6], [70.0, 140.0, 193.0], [0.2, 0.4, 0.6],
+...                 [100.0, 200.0, 268.55])
+>>> fig = plot_gamma_fit(fit, "three points")
+>>> len(fig.axes)
+3
 """
 
+from exofric.plots._calibrate import plot_calibration, plot_table1
+from exofric.plots._common import save
+from exofric.plots._control import plot_control_cases, plot_simulation
 from exofric.plots._design import map_axes, plot_design_map
-from exofric.plots._fe import draw_section, plot_inflation, plot_squeeze, save, section_polygons
-from exofric.plots._friction import plot_gamma_fit, plot_predictions
+from exofric.plots._fe import (
+    draw_section,
+    plot_inflation,
+    plot_inflation_curve,
+    plot_squeeze,
+    plot_squeeze_curves,
+    plot_squeeze_force,
+    section_polygons,
+)
+from exofric.plots._friction import plot_cubic_fit, plot_gamma_fit, plot_predictions, plot_torque
 
 __all__ = [
-    "draw_section", "map_axes", "plot_design_map", "plot_gamma_fit", "plot_inflation",
-    "plot_predictions", "plot_squeeze", "save", "section_polygons",
+    "draw_section", "map_axes", "plot_calibration", "plot_control_cases", "plot_cubic_fit",
+    "plot_design_map", "plot_gamma_fit", "plot_inflation", "plot_inflation_curve",
+    "plot_predictions", "plot_simulation", "plot_squeeze", "plot_squeeze_curves",
+    "plot_squeeze_force", "plot_table1", "plot_torque", "save", "section_polygons",
 ]

@@ -1,4 +1,4 @@
-"""The design map: torque reachable at the pressure limit over two design dimensions (PNG).
+"""The design map: torque reachable at the pressure limit over two design dimensions.
 
 Units on the axes: mm (or Shore A); colour: torque T(pmax) in Nm. Where other dimensions
 vary too, each cell shows the design of largest torque over them (a red edge when that
@@ -8,11 +8,14 @@ designs; the star is the best-ranked design.
 
 from __future__ import annotations
 
-from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 
-from exofric.design import DesignSearch
+from exofric.plots._common import new_axes
+
+if TYPE_CHECKING:
+    from exofric.design import DesignSearch
 
 __all__ = ["plot_design_map", "map_axes"]
 
@@ -32,20 +35,20 @@ def map_axes(table: pd.DataFrame) -> tuple[str, str]:
 
 def plot_design_map(
     search: DesignSearch,
-    path: str | Path,
+    ax: Any | None = None,
     *,
     skipped: pd.DataFrame | None = None,
     x: str | None = None,
     y: str | None = None,
-) -> Path:
-    """Write the design map PNG and return its path.
+) -> Any:
+    """Draw the design map on ``ax`` (default a new figure) and return the Axes.
 
     Parameters
     ----------
     search : DesignSearch
         Ranked designs (torques in Nm at ``search.pmax_mpa`` MPa).
-    path : str or Path
-        Output PNG.
+    ax : matplotlib Axes, optional
+        Where to draw (a colour bar is added beside it).
     skipped : DataFrame, optional
         Impossible designs (rows with the design columns), drawn as grey crosses.
     x, y : str, optional
@@ -53,19 +56,22 @@ def plot_design_map(
 
     Returns
     -------
-    Path
+    matplotlib Axes
 
     Examples
     --------
-    >>> s = search_designs(frame, 40.0, 0.1, 0.6)            # doctest: +SKIP
-    >>> plot_design_map(s, "design-map.png")                 # doctest: +SKIP
-    PosixPath('design-map.png')
+    >>> from exofric.design import search_designs, sweep
+    >>> from exofric.plots import save
+    >>> frame = sweep({"pressures_mpa": [0.3, 0.6], "solver": {"n_radial": 1, "n_circ": 12},
+    ...                "grid": {"wire_mm": [1.1, 1.6]}}, tmp_dir / "sweep", serial=True)
+    >>> s = search_designs(frame, 12.0, 0.1, 0.6)            # 12 Nm on a 0.1 m arm
+    >>> save(plot_design_map(s), tmp_dir / "design-map.png").name
+    'design-map.png'
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    ax, created = new_axes(ax, (6.4, 5.2))
+    fig = ax.figure
+    if created:
+        fig.set_layout_engine("constrained")
     t = search.table
     dx, dy = map_axes(t)
     x, y = x or dx, y or dy
@@ -74,7 +80,6 @@ def plot_design_map(
     cell = pd.DataFrame({x: top[x].to_numpy(), y: top[y].to_numpy(),
                          "torque": top["torque_at_pmax_nm"].to_numpy(),
                          "valid": top["in_validated_region"].to_numpy(bool)})
-    fig, ax = plt.subplots(figsize=(6.4, 5.2), constrained_layout=True)
     sc = ax.scatter(cell[x], cell[y], c=cell["torque"], cmap="viridis", s=260, marker="s",
                     edgecolors=["black" if v else "red" for v in cell["valid"]], linewidths=1.5)
     fig.colorbar(sc, ax=ax, label=f"max torque at {search.pmax_mpa:g} MPa (Nm)")
@@ -99,9 +104,8 @@ def plot_design_map(
     ax.set_title(f"Target {search.target_torque_nm:g} Nm, R = {search.arm_radius_m:g} m, "
                  f"gamma = {search.gamma:g}, pmax = {search.pmax_mpa:g} MPa", fontsize=9)
     if ax.get_legend_handles_labels()[0]:
-        fig.legend(fontsize=7, loc="outside lower center", ncol=1, frameon=False)
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(p, dpi=120)
-    plt.close(fig)
-    return p
+        if created:
+            fig.legend(fontsize=7, loc="outside lower center", ncol=1, frameon=False)
+        else:
+            ax.legend(fontsize=7)
+    return ax

@@ -1,36 +1,40 @@
-"""Figures (matplotlib, Agg): deformed sections coloured by stress, curves.
+"""FE figures: deformed sections coloured by stress, N(P) and OD(P) curves (Figs 6-7).
 
-Presentation only: every function takes computed results and draws them.
+Presentation only: every function takes computed results (read through their attributes)
+and draws them on a given Axes/Figure or a new one, which it returns. Units: mm, N, MPa.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-__all__ = ["section_polygons", "draw_section", "plot_inflation", "plot_squeeze", "save"]
+from exofric.plots._common import finish, new_axes, new_figure
+
+if TYPE_CHECKING:
+    from exofric.simulate import InflationResult, SqueezeResult
+
+__all__ = ["section_polygons", "draw_section", "plot_inflation", "plot_inflation_curve",
+           "plot_squeeze", "plot_squeeze_force", "plot_squeeze_curves"]
 
 # boundary walk of a quad9 element (a = 3 j + i) and of a quad4 (a = 2 j + i)
 _Q9_RING = [0, 1, 2, 5, 8, 7, 6, 3]
 _Q4_RING = [0, 1, 3, 2]
 
 
-def _plt() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
 def section_polygons(
     nodes: np.ndarray, elements: np.ndarray, mirror: Sequence[str] = ()
 ) -> np.ndarray:
-    """Element outlines (e, k, 2) in mm; ``mirror`` adds copies reflected in 'x' and/or 'y'."""
+    """Element outlines (e, k, 2) in mm; ``mirror`` adds copies reflected in 'x' and/or 'y'.
+
+    Examples
+    --------
+    >>> nodes = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
+    >>> section_polygons(nodes, np.array([[0, 1, 2, 3]]), mirror=("x",)).shape
+    (2, 4, 2)
+    """
     ring = _Q9_RING if elements.shape[1] == 9 else _Q4_RING
     polys = nodes[elements[:, ring]]
     out = [polys]
@@ -52,7 +56,10 @@ def draw_section(
     edgecolor: str = "k",
     label: str = "von Mises stress (MPa)",
 ) -> Any:
-    """Draw a (deformed) section on ``ax``; colour by element ``values`` if given."""
+    """Draw a (deformed) section (mm) on ``ax``; colour by element ``values`` if given.
+
+    Returns the ``PolyCollection`` (for a colour bar).
+    """
     from matplotlib.collections import PolyCollection
 
     polys = section_polygons(nodes, elements, mirror)
@@ -65,85 +72,136 @@ def draw_section(
         )
         if vmax is not None:
             pc.set_clim(0.0, vmax)
+    pc.set_label(label)
     ax.add_collection(pc)
     ax.set_aspect("equal")
     ax.autoscale_view()
     return pc
 
 
-def save(fig: Any, path: str | Path) -> Path:
-    """Save and close a figure; return the path."""
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(p, dpi=130, bbox_inches="tight")
-    _plt().close(fig)
-    return p
+def plot_inflation_curve(result: InflationResult, ax: Any | None = None) -> Any:
+    """Outer diameter (mm) against pressure (MPa): FE beside the incompressible closed form.
+
+    Two lines: FE (markers) and the closed form (dashed). Returns the Axes.
+    """
+    ax, created = new_axes(ax, (5.6, 4.4))
+    ax.plot(result.pressure_mpa, result.outer_diameter_mm, "o-", label="FE (exofric)")
+    ax.plot(result.pressure_mpa, result.analytic_outer_diameter_mm(), "k--",
+            label="incompressible closed form")
+    ax.set_xlabel("pressure (MPa)")
+    ax.set_ylabel("outer diameter (mm)")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    finish(ax.figure, created)
+    return ax
 
 
-def plot_inflation(result: Any, path: str | Path) -> Path:
-    """Undeformed and deformed tube sections coloured by von Mises stress, and OD(P)."""
-    plt = _plt()
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.8))
+def plot_inflation(result: InflationResult, fig: Any | None = None) -> Any:
+    """Undeformed and deformed tube sections coloured by von Mises stress, and OD(P).
+
+    Draws two Axes on ``fig`` (an empty Figure; default a new one) and returns the Figure.
+    Without stored fields (``keep_fields=False``) the section panel shows the undeformed mesh.
+    """
+    fig, created = new_figure(fig, (11, 4.8))
+    a1, a2 = fig.subplots(1, 2)
     draw_section(a1, result.nodes, result.elements, None, mirror=("x", "y"), edgecolor="0.6")
-    vmax = float(max(v.max() for v in result.von_mises_mpa))
-    pc = None
-    for u, vm in zip(result.displacements[-1:], result.von_mises_mpa[-1:], strict=True):
-        pc = draw_section(a1, result.nodes + u, result.elements, vm, mirror=("x", "y"), vmax=vmax)
-    if pc is not None:
+    if result.displacements:
+        vmax = float(max(v.max() for v in result.von_mises_mpa))
+        pc = draw_section(a1, result.nodes + result.displacements[-1], result.elements,
+                          result.von_mises_mpa[-1], mirror=("x", "y"), vmax=vmax)
         fig.colorbar(pc, ax=a1, label="von Mises stress (MPa)")
     a1.set_title(f"Section at {result.pressure_mpa[-1]:g} MPa (grey: undeformed)")
     a1.set_xlabel("x (mm)")
     a1.set_ylabel("y (mm)")
-    a2.plot(result.pressure_mpa, result.outer_diameter_mm, "o-", label="FE (exofric)")
-    a2.plot(
-        result.pressure_mpa,
-        result.analytic_outer_diameter_mm(),
-        "k--",
-        label="incompressible closed form",
-    )
-    a2.set_xlabel("pressure (MPa)")
-    a2.set_ylabel("outer diameter (mm)")
-    a2.grid(alpha=0.3)
-    a2.legend()
-    return save(fig, path)
+    plot_inflation_curve(result, a2)
+    finish(fig, created)
+    return fig
+
+
+def plot_squeeze_force(
+    result: SqueezeResult,
+    ax: Any | None = None,
+    *,
+    reference: tuple[float, float, str] | None = None,
+    title: str = "",
+    label: str = "exofric FE",
+) -> Any:
+    """Squeezing force N (N, total over the tube length) against pressure (MPa) (Fig 7).
+
+    One line, a dotted vertical line at the contact onset (if reached), and an optional
+    ``reference`` point ``(pressure MPa, force N, label)`` drawn as a red star.
+    Returns the Axes.
+    """
+    ax, created = new_axes(ax, (6.4, 4.2))
+    ax.plot(result.pressure_mpa, result.squeeze_force_n, "o-", label=label)
+    if reference is not None:
+        ax.plot([reference[0]], [reference[1]], "*", ms=12, color="tab:red", label=reference[2])
+    if result.contact_onset_pressure_mpa is not None:
+        ax.axvline(result.contact_onset_pressure_mpa, color="0.6", ls=":", label="contact onset")
+    ax.set_xlabel("pressure P (MPa)")
+    ax.set_ylabel(f"squeezing force N (N, L = {result.structure.length_mm:g} mm)")
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    finish(ax.figure, created)
+    return ax
+
+
+def plot_squeeze_curves(
+    results: Sequence[SqueezeResult], ax: Any | None = None, *, title: str = ""
+) -> Any:
+    """N(P) (N against MPa) of several structures, one line each, labelled by name."""
+    ax, created = new_axes(ax, (6.4, 4.2))
+    for res in results:
+        ax.plot(res.pressure_mpa, res.squeeze_force_n, "o-", ms=3, label=res.structure.name)
+    ax.set_xlabel("pressure P (MPa)")
+    ax.set_ylabel("squeezing force N (N)")
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    finish(ax.figure, created)
+    return ax
 
 
 def plot_squeeze(
-    result: Any, path: str | Path, show_pressures: Sequence[float] = (0.2, 0.4, 0.6)
-) -> Path:
-    """Deformed sections with stress, the hole and the wire (Fig 6), and N(P) (Fig 7)."""
+    result: SqueezeResult,
+    fig: Any | None = None,
+    *,
+    show_pressures: Sequence[float] = (0.2, 0.4, 0.6),
+) -> Any:
+    """Deformed sections with stress, the hole and the wire (Fig 6), and N(P) (Fig 7).
+
+    One section per pressure of ``show_pressures`` (MPa; the nearest computed ones), then the
+    N(P) panel of :func:`plot_squeeze_force`, on ``fig`` (an empty Figure; default a new one).
+    Without stored fields (``keep_fields=False``) only the N(P) panel is drawn.
+    Returns the Figure.
+    """
     from matplotlib.patches import Circle
 
-    plt = _plt()
     p = np.asarray(result.pressure_mpa)
     idx = sorted({int(np.argmin(np.abs(p - q))) for q in show_pressures})
-    fig, axes = plt.subplots(1, len(idx) + 1, figsize=(4.2 * (len(idx) + 1), 4.4))
+    if not result.displacements:
+        idx = []
+    fig, created = new_figure(fig, (4.2 * (len(idx) + 1), 4.4))
+    axes = np.atleast_1d(fig.subplots(1, len(idx) + 1))
     s = result.structure
-    vmax = float(max(result.von_mises_mpa[i].max() for i in idx)) if result.von_mises_mpa else None
     pc = None
-    for ax, i in zip(axes[:-1], idx, strict=True):
-        pc = draw_section(
-            ax,
-            result.nodes + result.displacements[i],
-            result.elements,
-            result.von_mises_mpa[i],
-            mirror=("x",),
-            vmax=vmax,
-        )
-        ax.add_patch(Circle((0, 0), 0.5 * s.hole_mm, fill=False, color="0.3", lw=1.2))
-        ax.add_patch(Circle(s.wire_center_mm, 0.5 * s.wire_mm, color="0.55"))
-        ax.set_xlim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
-        ax.set_ylim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
-        ax.set_title(f"P = {p[i]:g} MPa, N = {result.squeeze_force_n[i]:.1f} N")
-        ax.set_xlabel("x (mm)")
+    if idx:
+        vmax = float(max(result.von_mises_mpa[i].max() for i in idx))
+        for ax, i in zip(axes[:-1], idx, strict=True):
+            pc = draw_section(ax, result.nodes + result.displacements[i], result.elements,
+                              result.von_mises_mpa[i], mirror=("x",), vmax=vmax)
+            ax.add_patch(Circle((0, 0), 0.5 * s.hole_mm, fill=False, color="0.3", lw=1.2))
+            ax.add_patch(Circle(s.wire_center_mm, 0.5 * s.wire_mm, color="0.55"))
+            ax.set_xlim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
+            ax.set_ylim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
+            ax.set_title(f"P = {p[i]:g} MPa, N = {result.squeeze_force_n[i]:.1f} N")
+            ax.set_xlabel("x (mm)")
     if pc is not None:
         fig.colorbar(pc, ax=list(axes[:-1]), label="von Mises stress (MPa)", shrink=0.8)
-    ax = axes[-1]
-    ax.plot(p, result.squeeze_force_n, "o-", label="exofric FE")
-    if result.contact_onset_pressure_mpa is not None:
-        ax.axvline(result.contact_onset_pressure_mpa, color="0.6", ls=":", label="contact onset")
-    ax.set_xlabel("pressure (MPa)")
-    ax.set_ylabel(f"squeezing force N (N, L = {s.length_mm:g} mm)")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    return save(fig, path)
+    plot_squeeze_force(result, axes[-1])
+    if created and pc is None:
+        fig.tight_layout()
+    return fig

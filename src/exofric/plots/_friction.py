@@ -1,32 +1,27 @@
-"""Figures for the friction model (matplotlib, Agg): gamma fit with residuals, predictions.
+"""Figures for the friction model: gamma fit with residuals, predictions, cubic fit, torque.
 
-Presentation only: each function takes computed results and returns a matplotlib Figure
-(save it with :func:`exofric.plots.save`). Units: MPa, N, %.
+Presentation only: each function takes computed results (read through their attributes) and
+draws on a given Axes/Figure or a new one, which it returns (write it with
+:func:`exofric.plots.save`). Units: MPa, N, %, Nm.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from exofric.friction import GammaFit, Prediction
+from exofric.plots._common import finish, new_axes, new_figure
 
-__all__ = ["plot_gamma_fit", "plot_predictions"]
+if TYPE_CHECKING:
+    from exofric.friction import GammaFit, Prediction
 
-
-def _plt() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+__all__ = ["plot_gamma_fit", "plot_predictions", "plot_cubic_fit", "plot_torque"]
 
 
-def plot_gamma_fit(fit: GammaFit, title: str = "") -> Any:
-    """Measured vs fitted friction (left), residuals in N and % (right).
+def plot_gamma_fit(fit: GammaFit, title: str = "", *, fig: Any | None = None) -> Any:
+    """Measured vs fitted friction (left), residuals in N (middle) and in % (right).
 
     Parameters
     ----------
@@ -34,9 +29,15 @@ def plot_gamma_fit(fit: GammaFit, title: str = "") -> Any:
         Result of :func:`exofric.friction.fit_gamma`.
     title : str
         Figure title (e.g. ``"SYNTHETIC rig data"``).
+    fig : matplotlib Figure, optional
+        Empty figure to draw the three Axes on (default a new one).
+
+    Returns
+    -------
+    matplotlib Figure
     """
-    plt = _plt()
-    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(13, 4))
+    fig, created = new_figure(fig, (13, 4))
+    a1, a2, a3 = fig.subplots(1, 3)
     p = np.asarray(fit.pressure_mpa)
     a1.plot(p, fit.friction_n, "o", color="tab:red", label="measured F")
     lab = f"gamma N (gamma = {fit.gamma:.4f})"
@@ -61,15 +62,21 @@ def plot_gamma_fit(fit: GammaFit, title: str = "") -> Any:
         ax.axhline(0.0, color="0.5", lw=0.8)
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
+    finish(fig, created)
     return fig
 
 
-def plot_predictions(preds: Sequence[Prediction], title: str = "") -> Any:
-    """Per structure: predicted (black) vs tested (red) friction and the relative error curve."""
-    plt = _plt()
+def plot_predictions(
+    preds: Sequence[Prediction], title: str = "", *, fig: Any | None = None
+) -> Any:
+    """Per structure: predicted (black) vs tested (red) friction and the relative error curve.
+
+    One row of two Axes per prediction on ``fig`` (an empty Figure; default a new one).
+    Returns the Figure.
+    """
     k = max(len(preds), 1)
-    fig, axes = plt.subplots(k, 2, figsize=(10, 3.2 * k), squeeze=False)
+    fig, created = new_figure(fig, (10, 3.2 * k))
+    axes = fig.subplots(k, 2, squeeze=False)
     for (a1, a2), pr in zip(axes, preds, strict=False):
         a1.plot(pr.pressure_mpa, pr.predicted_friction_n, "-", color="k", label="predicted")
         if pr.measured is not None:
@@ -94,5 +101,84 @@ def plot_predictions(preds: Sequence[Prediction], title: str = "") -> Any:
         a2.grid(alpha=0.3)
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
+    finish(fig, created)
     return fig
+
+
+def plot_cubic_fit(
+    pressure_mpa: Sequence[float],
+    squeeze_force_n: Sequence[float],
+    ours: Any,
+    paper_eq8: Any,
+    inverse_mpa: Mapping[str, float],
+    target_n: float,
+    ax: Any | None = None,
+) -> Any:
+    """FE N(P) points, our cubic and the paper's Eq 8, and the pressures for a target (Fig 11).
+
+    Parameters
+    ----------
+    pressure_mpa, squeeze_force_n : sequence of float
+        FE points (MPa, N).
+    ours, paper_eq8 : CubicFit
+        Cubics N(P) (callable on MPa, with ``p_min_mpa``, ``p_max_mpa``; ``ours.r2``).
+    inverse_mpa : mapping
+        Pressures (MPa) for ``target_n``: keys ``eq9_mpa``, ``paper_printed_mpa``,
+        ``our_exact_curve_mpa`` (each a dotted vertical line).
+    target_n : float
+        Target friction (N), for the labels.
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    ax, created = new_axes(ax, (6.4, 4.2))
+    pp = np.linspace(ours.p_min_mpa, ours.p_max_mpa, 101)
+    ax.plot(pressure_mpa, squeeze_force_n, "o", label="exofric FE, test 5")
+    ax.plot(pp, ours(pp), "-", label=f"exofric cubic (R^2 = {ours.r2:.5f})")
+    ax.plot(pp, paper_eq8(pp), "k--", label="paper Eq 8")
+    for key, lab, col in (("eq9_mpa", "Eq 9 inverse", "k"),
+                          ("paper_printed_mpa", "paper's printed 0.26", "tab:red"),
+                          ("our_exact_curve_mpa", "ours (FE + our gamma)", "tab:blue")):
+        ax.axvline(inverse_mpa[key], color=col, ls=":", lw=1,
+                   label=f"{target_n:g} N: {lab} {inverse_mpa[key]:.4f} MPa")
+    ax.set_xlabel("pressure P (MPa)")
+    ax.set_ylabel("squeezing force N (N)")
+    ax.set_title("Fig 11: cubic fit for test 5", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    finish(ax.figure, created)
+    return ax
+
+
+def plot_torque(
+    names: Sequence[str],
+    torque_nm: Sequence[float],
+    ax: Any | None = None,
+    *,
+    reference: tuple[Sequence[float], Sequence[float], str] | None = None,
+    limit_nm: float | None = None,
+    limit_label: str = "required torque (max)",
+    pressure_mpa: float = 0.6,
+) -> Any:
+    """Bar chart of the torque T = F R (Nm) per structure at ``pressure_mpa`` (MPa).
+
+    ``reference`` = (bar positions, torques in Nm, label) adds red stars (e.g. the paper's
+    measured values); ``limit_nm`` a dashed horizontal line. Returns the Axes.
+    """
+    ax, created = new_axes(ax, (6.4, 4.0))
+    x = np.arange(len(names))
+    ax.bar(x, list(torque_nm), color="tab:blue", label="exofric (predicted)")
+    if reference is not None:
+        ax.plot(list(reference[0]), list(reference[1]), "*", ms=12, color="tab:red",
+                label=reference[2])
+    if limit_nm is not None:
+        ax.axhline(limit_nm, color="k", ls="--", label=limit_label)
+        ax.set_ylim(0.0, 1.3 * max([limit_nm, *torque_nm]))   # room for the legend
+    ax.set_xticks(x, list(names), rotation=30)
+    ax.set_ylabel(f"torque T = F R at {pressure_mpa:g} MPa (Nm)")
+    ax.grid(alpha=0.3, axis="y")
+    ax.legend(fontsize=8)
+    finish(ax.figure, created)
+    return ax

@@ -1,8 +1,8 @@
 """The reproduction report: figures (PNG), ``results.json`` and a self-contained ``report.html``.
 
 :func:`write_report` takes a :class:`~exofric.reproduce.ReproduceResult`, draws every figure
-(matplotlib, Agg), writes them as PNG, embeds them as base64 in ``report.html`` (no network
-needed; responsive and printable, see :mod:`exofric.report`; the stylesheet
+(with :mod:`exofric.plots`), writes them as PNG, embeds them as base64 in ``report.html``
+(no network needed; responsive and printable, see :mod:`exofric.report`; the stylesheet
 :data:`REPORT_CSS` is in :mod:`exofric.report` and importable from here) and writes
 ``results.json`` with every number of the report, the stage wall times and the software
 versions. The paper's inconsistencies are read from ``docs/paper-notes*.md``.
@@ -11,9 +11,9 @@ Units: mm, N, MPa, s, Nm.
 
 Examples
 --------
->>> from exofric.reproduce import reproduce, ReproduceConfig      # doctest: +SKIP
->>> files = write_report(reproduce(ReproduceConfig.for_mode(fast=True)), "out")  # doctest: +SKIP
->>> files.report_html.name                                                        # doctest: +SKIP
+>>> # fast_result = reproduce(ReproduceConfig.for_mode(fast=True)), computed once by the tests
+>>> files = write_report(fast_result, tmp_dir)
+>>> files.report_html.name
 'report.html'
 """
 
@@ -25,11 +25,20 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from exofric import paper
 from exofric.io import jsonable, write_json
-from exofric.plots import plot_gamma_fit, plot_predictions, plot_squeeze, save
+from exofric.plots import (
+    plot_control_cases,
+    plot_cubic_fit,
+    plot_gamma_fit,
+    plot_predictions,
+    plot_squeeze,
+    plot_squeeze_curves,
+    plot_squeeze_force,
+    plot_table1,
+    plot_torque,
+    save,
+)
 from exofric.report._style import REPORT_CSS
 from exofric.reproduce import ReproduceResult
 
@@ -37,15 +46,6 @@ __all__ = ["FigureFile", "ReportFiles", "write_report", "find_notes_dir", "read_
            "make_figures", "REPORT_CSS"]
 
 _KNEE = "knee 0-40 Nm"
-
-
-def _plt() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 @dataclass(frozen=True)
@@ -120,65 +120,21 @@ def read_notes(notes_dir: Path | None) -> list[tuple[str, str]]:
 
 
 def _fig_table1(r: ReproduceResult) -> Any:
-    plt = _plt()
-    cal = r.calibration
-    t1 = paper.table1()
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4.2))
-    for i, col in enumerate(cal.columns):
-        c = f"C{i}"
-        a1.plot(col["pressure_mpa"], col["paper_outer_diameter_mm"], "o", color=c,
-                label=f"paper ANSYS {col['shore']:g} Hs")
-        a1.plot(col["pressure_mpa"], col["our_outer_diameter_mm"], "-", color=c,
-                label=f"exofric FE {col['shore']:g} Hs")
-    a1.set_title(f"Table 1 columns; tube ID fitted = {cal.tube_id_mm:.4f} mm", fontsize=10)
-    for res, lab, sty in ((cal.bisection, "bisection", "-"), (cal.bounded, "bounded", "--")):
-        a2.plot(res.data.pressure_mpa, res.simulated_mm, sty,
-                label=f"exofric {lab}: Shore {res.shore:.2f} ({res.average_error_pct:.2f}%)")
-    a2.plot(t1["pressure_mpa"], t1["simulated_outer_diameter_mm"][3], "s", mfc="none",
-            color="0.4", label="paper ANSYS 62.5 Hs (0.46%)")
-    a2.plot(t1["pressure_mpa"], t1["test_outer_diameter_mm"], "o", color="tab:red",
-            label="test (Table 1)")
-    a2.set_title("Shore from the test column (Fig 5b)", fontsize=10)
-    for ax in (a1, a2):
-        ax.set_xlabel("pressure P (MPa)")
-        ax.set_ylabel("tube outer diameter (mm)")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    return fig
+    return plot_table1(r.calibration, paper.table1())
 
 
 def _fig_squeeze_n(r: ReproduceResult) -> Any:
-    plt = _plt()
     s = r.squeeze.result
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    ax.plot(s.pressure_mpa, s.squeeze_force_n, "o-", label="exofric FE, base group")
-    ax.plot([0.6], [paper.scalar("base_squeeze_force_at_0_6_mpa_n")], "*", ms=12,
-            color="tab:red", label="paper (Fig 7): 268.55 N")
-    if s.contact_onset_pressure_mpa is not None:
-        ax.axvline(s.contact_onset_pressure_mpa, color="0.6", ls=":", label="contact onset")
-    ax.set_xlabel("pressure P (MPa)")
-    ax.set_ylabel("squeezing force N (N, L = 116 mm)")
-    ax.set_title(f"Fig 7: tube ID {s.structure.tube_id_mm:.4f} mm, Shore "
-                 f"{s.material.shore:.2f}", fontsize=10)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+    n_paper = paper.scalar("base_squeeze_force_at_0_6_mpa_n")
+    return plot_squeeze_force(
+        s, reference=(0.6, n_paper, f"paper (Fig 7): {n_paper:g} N"),
+        label="exofric FE, base group",
+        title=f"Fig 7: tube ID {s.structure.tube_id_mm:.4f} mm, Shore {s.material.shore:.2f}")
 
 
 def _fig_all_curves(r: ReproduceResult) -> Any:
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    for res in r.prediction.squeezes:
-        ax.plot(res.pressure_mpa, res.squeeze_force_n, "o-", ms=3, label=res.structure.name)
-    ax.set_xlabel("pressure P (MPa)")
-    ax.set_ylabel("squeezing force N (N)")
-    ax.set_title("exofric FE N(P) for the Table 3 structures", fontsize=10)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+    return plot_squeeze_curves(r.prediction.squeezes,
+                               title="exofric FE N(P) for the Table 3 structures")
 
 
 def _fig_predictions(r: ReproduceResult, names: tuple[str, ...], fig_no: int) -> Any:
@@ -187,69 +143,22 @@ def _fig_predictions(r: ReproduceResult, names: tuple[str, ...], fig_no: int) ->
 
 
 def _fig_cubic(r: ReproduceResult) -> Any:
-    plt = _plt()
     cu = r.cubic
-    pp = np.linspace(cu.ours.p_min_mpa, cu.ours.p_max_mpa, 101)
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    ax.plot(cu.pressure_mpa, cu.squeeze_force_n, "o", label="exofric FE, test 5")
-    ax.plot(pp, cu.ours(pp), "-", label=f"exofric cubic (R^2 = {cu.ours.r2:.5f})")
-    ax.plot(pp, cu.paper_eq8(pp), "k--", label="paper Eq 8")
-    tgt = r.config.target_friction_n
-    for key, lab, col in (("eq9_mpa", "Eq 9 inverse", "k"), ("paper_printed_mpa",
-                          "paper's printed 0.26", "tab:red"),
-                          ("our_exact_curve_mpa", "ours (FE + our gamma)", "tab:blue")):
-        ax.axvline(cu.inverse[key], color=col, ls=":", lw=1,
-                   label=f"{tgt:g} N: {lab} {cu.inverse[key]:.4f} MPa")
-    ax.set_xlabel("pressure P (MPa)")
-    ax.set_ylabel("squeezing force N (N)")
-    ax.set_title("Fig 11: cubic fit for test 5", fontsize=10)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    return fig
+    return plot_cubic_fit(cu.pressure_mpa, cu.squeeze_force_n, cu.ours, cu.paper_eq8,
+                          cu.inverse, r.config.target_friction_n)
 
 
 def _fig_control(r: ReproduceResult) -> Any:
-    plt = _plt()
-    res = r.control.paper_map
-    kinds = ("pd", "pi", "pid")
-    fig, axes = plt.subplots(1, 3, figsize=(12, 3.8), sharey=True)
-    for ax, kind in zip(axes, kinds, strict=True):
-        for c in (c for c in res.cases if c.controller == kind):
-            s = c.simulation
-            ts = c.metrics.settling_time_s
-            lab = "with model" if c.feedforward else "without model"
-            ax.plot(s.time_s, s.friction_n, color="tab:blue" if c.feedforward else "tab:red",
-                    label=f"{lab}: " + (f"{ts:.2f} s" if ts is not None else "not settled"))
-        tgt = res.target_n
-        ax.axhline(tgt, color="k", lw=1)
-        ax.axhspan(tgt * 0.98, tgt * 1.02, color="0.88")
-        paper_t = [c.paper_settling_time_s for c in res.cases if c.controller == kind]
-        ptxt = ", ".join("-" if v is None else f"{v:g} s" for v in paper_t)
-        ax.set_title(f"{kind.upper()} (paper: {ptxt})", fontsize=10)
-        ax.set_xlabel("time (s)")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="lower right")
-    axes[0].set_ylabel("friction F (N)")
-    fig.tight_layout()
-    return fig
+    return plot_control_cases(r.control.paper_map.cases, pressure=False)
 
 
 def _fig_torque(r: ReproduceResult) -> Any:
-    plt = _plt()
     rows = r.torque.rows
-    fig, ax = plt.subplots(figsize=(6.4, 4.0))
-    x = np.arange(len(rows))
-    ax.bar(x, [t["torque_nm"] for t in rows], color="tab:blue", label="exofric (predicted)")
-    ax.plot([0, 2], [paper.scalar("base_friction_moment_nm"), paper.scalar("test3_torque_nm")],
-            "*", ms=12, color="tab:red", label="paper (measured friction x 0.10 m)")
-    ax.axhline(paper.scalar("knee_torque_max_nm"), color="k", ls="--", label=_KNEE + " (max)")
-    ax.set_xticks(x, [t["name"] for t in rows], rotation=30)
-    ax.set_ylabel("torque T = F R at 0.6 MPa (Nm)")
-    ax.grid(alpha=0.3, axis="y")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+    ref = ([0, 2], [paper.scalar("base_friction_moment_nm"), paper.scalar("test3_torque_nm")],
+           "paper (measured friction x 0.10 m)")
+    return plot_torque([t["name"] for t in rows], [t["torque_nm"] for t in rows],
+                       reference=ref, limit_nm=paper.scalar("knee_torque_max_nm"),
+                       limit_label=_KNEE + " (max)")
 
 
 def make_figures(r: ReproduceResult, out_dir: Path) -> tuple[FigureFile, ...]:
@@ -257,8 +166,8 @@ def make_figures(r: ReproduceResult, out_dir: Path) -> tuple[FigureFile, ...]:
 
     Examples
     --------
-    >>> figs = make_figures(reproduce(ReproduceConfig.for_mode(True)), out)  # doctest: +SKIP
-    >>> [f.path.name for f in figs][:2]                                       # doctest: +SKIP
+    >>> figs = make_figures(fast_result, tmp_dir)   # reproduce(ReproduceConfig.for_mode(True))
+    >>> [f.path.name for f in figs][:2]
     ['table1.png', 'fig6.png']
     """
     gm = r.gamma
@@ -299,10 +208,7 @@ def make_figures(r: ReproduceResult, out_dir: Path) -> tuple[FigureFile, ...]:
     out = []
     for key, title, stage, caption, draw in specs:
         path = out_dir / f"{key}.png"
-        if draw is None:
-            plot_squeeze(r.squeeze.result, path)
-        else:
-            save(draw(), path)
+        save(plot_squeeze(r.squeeze.result) if draw is None else draw(), path)
         out.append(FigureFile(key, path, title, caption, stage))
     return tuple(out)
 

@@ -141,8 +141,8 @@ def render_html(data: dict[str, Any], figures: Sequence[Any],
 
     Examples
     --------
-    >>> data = json.loads(Path("exofric-report/results.json").read_text())  # doctest: +SKIP
-    >>> render_html(data, [], [])[:15]                                     # doctest: +SKIP
+    >>> from exofric.io import jsonable     # results.json holds jsonable(result.to_dict())
+    >>> render_html(jsonable(fast_result.to_dict()), [], [])[:15]
     '<!DOCTYPE html>'
     """
     from exofric.reproduce import STAGES

@@ -19,7 +19,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Any, Literal, Protocol
+from typing import TYPE_CHECKING, Any, Literal, Protocol
 
 from exofric import paper
 from exofric.control import (
@@ -39,6 +39,9 @@ from exofric.control import (
     step_metrics,
 )
 from exofric.errors import InputError, check_positive, check_range
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["FrictionMapLike", "ControlSetup", "CaseResult", "CompareResult", "run_case",
            "compare", "PAPER_SETTLING_S"]
@@ -180,6 +183,53 @@ class CaseResult:
             "paper_settling_time_s": self.paper_settling_time_s,
         }
 
+    def to_frame(self) -> pd.DataFrame:
+        """The step response as a DataFrame: one row per time sample (s, N, MPa).
+
+        The columns of :meth:`exofric.control.SimulationResult.to_frame` (``time_s``,
+        ``setpoint_n``, ``friction_n``, ``measured_friction_n``, ``command_mpa``,
+        ``pressure_mpa``).
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> r = run_case(ControlSetup.default(duration_s=2.0), "pi", feedforward=True)
+        >>> df = r.to_frame()
+        >>> len(df), float(df["time_s"].iloc[-1])
+        (201, 2.0)
+        """
+        return self.simulation.to_frame()
+
+    def plot(self, fig: Any | None = None) -> Any:
+        """Draw the step response: friction (N) and pressure (MPa) against time (s).
+
+        :func:`exofric.plots.plot_control_cases` with this case alone (target and settling
+        band, the paper's settling time in the title); write the figure with
+        :func:`exofric.plots.save`.
+
+        Parameters
+        ----------
+        fig : matplotlib Figure, optional
+            Empty figure to draw on (default a new one).
+
+        Returns
+        -------
+        matplotlib Figure
+
+        Examples
+        --------
+        >>> r = run_case(ControlSetup.default(duration_s=2.0), "pi", feedforward=True)
+        >>> len(r.plot().axes)      # friction above, pressure below
+        2
+        """
+        from exofric.plots import plot_control_cases
+
+        return plot_control_cases([self], fig,
+                                  title=f"target {self.metrics.reference:g} N")
+
 
 def run_case(
     setup: ControlSetup,
@@ -252,6 +302,61 @@ class CompareResult:
             "settling_reduction_pct": red,
             "paper_settling_reduction_pct": paper_red,
         }
+
+    def to_frame(self) -> pd.DataFrame:
+        """Every case's step response in one DataFrame: one row per case and time sample.
+
+        Columns ``controller``, ``feedforward`` (bool), then those of
+        :meth:`CaseResult.to_frame` (s, N, MPa).
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> c = compare(ControlSetup.default(duration_s=2.0))
+        >>> c.to_frame().groupby(["controller", "feedforward"]).size().tolist()
+        [201, 201, 201, 201, 201, 201]
+        """
+        import pandas as pd
+
+        frames = []
+        for c in self.cases:
+            f = c.to_frame()
+            f.insert(0, "feedforward", c.feedforward)
+            f.insert(0, "controller", c.controller)
+            frames.append(f)
+        return pd.concat(frames, ignore_index=True)
+
+    def plot(self, fig: Any | None = None, *, pressure: bool = True) -> Any:
+        """Draw Fig 12: friction (and pressure) against time, one column per controller.
+
+        :func:`exofric.plots.plot_control_cases` (red without, blue with the model; the
+        paper's settling times in the titles); write the figure with
+        :func:`exofric.plots.save`.
+
+        Parameters
+        ----------
+        fig : matplotlib Figure, optional
+            Empty figure to draw on (default a new one).
+        pressure : bool
+            Add the pressure row under the friction row.
+
+        Returns
+        -------
+        matplotlib Figure
+
+        Examples
+        --------
+        >>> c = compare(ControlSetup.default(duration_s=2.0))
+        >>> len(c.plot(pressure=False).axes)
+        3
+        """
+        from exofric.plots import plot_control_cases
+
+        return plot_control_cases(self.cases, fig, title=f"target {self.target_n:g} N",
+                                  pressure=pressure)
 
 
 def compare(setup: ControlSetup) -> CompareResult:

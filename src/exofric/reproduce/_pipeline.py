@@ -116,8 +116,8 @@ class ReproduceConfig:
     """
 
     fast: bool = False
-    squeeze_mesh: MeshSpec = defaults.SQUEEZE_MESH
-    inflation_mesh: MeshSpec = defaults.INFLATION_MESH
+    squeeze_mesh: MeshSpec = MeshSpec(**defaults.SQUEEZE_MESH)
+    inflation_mesh: MeshSpec = MeshSpec(**defaults.INFLATION_MESH)
     sensitivity_mesh: MeshSpec = FAST_SQUEEZE_MESH
     pressures_mpa: tuple[float, ...] = tuple(round(0.05 * i, 10) for i in range(1, 13))
     rig_pressures_mpa: tuple[float, ...] = tuple(round(0.2 + 0.05 * i, 10) for i in range(9))
@@ -246,8 +246,8 @@ def reproduce(
 
     Examples
     --------
-    >>> r = reproduce(ReproduceConfig.for_mode(fast=True))        # doctest: +SKIP
-    >>> round(r.cubic.inverse["eq9_mpa"], 3), len(r.stage_times)  # doctest: +SKIP
+    >>> r = fast_result             # = reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> round(r.cubic.inverse["eq9_mpa"], 3), len(r.stage_times)
     (0.293, 8)
     """
     cfg = config or ReproduceConfig()

@@ -94,8 +94,8 @@ def stage_prediction(
 
     Examples
     --------
-    >>> r = reproduce(ReproduceConfig.for_mode(fast=True))        # doctest: +SKIP
-    >>> [row["in_validated_region"] for row in r.prediction.rows]  # doctest: +SKIP
+    >>> r = fast_result             # = reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> [row["in_validated_region"] for row in r.prediction.rows]
     [True, True, True, True, True, False, False]
     """
     from exofric.simulate import squeeze
@@ -189,8 +189,8 @@ def stage_torque(pred: PredictionStage, arm_radius_m: float) -> TorqueStage:
 
     Examples
     --------
-    >>> r = reproduce(ReproduceConfig.for_mode(fast=True))        # doctest: +SKIP
-    >>> [round(t["torque_nm"], 1) for t in r.torque.rows][:3]     # doctest: +SKIP
+    >>> r = fast_result             # = reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> [round(t["torque_nm"], 1) for t in r.torque.rows][:3]
     [17.2, 12.0, 21.3]
     """
     lo, hi = paper.scalar("knee_torque_min_nm"), paper.scalar("knee_torque_max_nm")

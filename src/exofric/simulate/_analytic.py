@@ -44,7 +44,24 @@ __all__ = [
 
 @dataclass(frozen=True)
 class InflationCurve:
-    """Tube diameters (mm) at each pressure (MPa) from a reference solution."""
+    """Tube diameters (mm) at each pressure (MPa) from a reference solution.
+
+    Attributes
+    ----------
+    pressure_mpa : ndarray
+        Pressures (MPa).
+    outer_diameter_mm, inner_diameter_mm : ndarray
+        Deformed outer and inner diameters (mm) at each pressure.
+    method : str
+        Which reference produced the curve (e.g. ``"incompressible closed form
+        (plane strain)"``).
+
+    Examples
+    --------
+    >>> c = incompressible_inflation(8.3, 4.97, 1.4, [0.2])
+    >>> round(float(c.outer_diameter_mm[0]), 3)
+    8.72
+    """
 
     pressure_mpa: np.ndarray
     outer_diameter_mm: np.ndarray
@@ -72,6 +89,20 @@ def _radii(tube_od_mm: float, tube_id_mm: float) -> tuple[float, float]:
 def incompressible_pressure(a: float | np.ndarray, A: float, B: float, mu: float) -> np.ndarray:
     """Pressure (MPa) that inflates the inner radius from ``A`` to ``a`` (mm), J = 1.
 
+    Parameters
+    ----------
+    a : float or array-like
+        Deformed inner radius (mm), ``a >= A``.
+    A, B : float
+        Undeformed inner and outer radii (mm), ``0 < A < B``.
+    mu : float
+        Shear modulus (MPa).
+
+    Returns
+    -------
+    numpy.ndarray
+        Internal pressure (MPa), same shape as ``a``.
+
     Examples
     --------
     >>> float(incompressible_pressure(2.485, 2.485, 4.15, 1.0))
@@ -84,7 +115,25 @@ def incompressible_pressure(a: float | np.ndarray, A: float, B: float, mu: float
 
 
 def incompressible_limit_pressure(tube_od_mm: float, tube_id_mm: float, mu_mpa: float) -> float:
-    """Asymptotic pressure ``mu ln(B/A)`` (MPa): no free-inflation equilibrium above it."""
+    """Asymptotic pressure ``mu ln(B/A)`` (MPa): no free-inflation equilibrium above it.
+
+    Parameters
+    ----------
+    tube_od_mm, tube_id_mm : float
+        Undeformed outer and inner diameters (mm), ``0 < tube_id_mm < tube_od_mm``.
+    mu_mpa : float
+        Shear modulus (MPa).
+
+    Returns
+    -------
+    float
+        Limit pressure (MPa).
+
+    Examples
+    --------
+    >>> round(incompressible_limit_pressure(8.3, 4.97, 1.4), 3)
+    0.718
+    """
     A, B = _radii(tube_od_mm, tube_id_mm)
     return float(mu_mpa * np.log(B / A))
 
@@ -189,7 +238,7 @@ def compressible_inflation(
     pressures_mpa : array-like
         Strictly increasing pressures (MPa).
     tol : float
-        Collocation tolerance of solve_bvp.
+        Collocation tolerance of solve_bvp (unitless, relative), > 0.
 
     Returns
     -------

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -17,6 +17,9 @@ from exofric.fe import InflationProblem, MeshSpec, NewtonSettings, solve_path, v
 from exofric.material import MooneyRivlin
 from exofric.simulate._analytic import incompressible_inflation, incompressible_limit_pressure
 from exofric.simulate._stretch import check_stretch
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["InflationResult", "inflate"]
 
@@ -32,8 +35,8 @@ class InflationResult:
     outer_diameter_mm, inner_diameter_mm : ndarray
         Deformed diameters (mm), measured on the symmetry axis.
     max_stretch : ndarray
-        Largest principal stretch in the tube at each pressure (a StretchWarning is
-        issued above :data:`exofric.defaults.MR_STRETCH_LIMIT`).
+        Largest principal stretch (unitless) in the tube at each pressure (a StretchWarning
+        is issued above :data:`exofric.defaults.MR_STRETCH_LIMIT`).
     newton_iterations : ndarray of int
         Newton iterations spent reaching each pressure (all sub-steps).
     dofs : int
@@ -42,14 +45,29 @@ class InflationResult:
         Wall time of the solve alone (s).
     symmetry : str
         Which symmetry was used.
+    tube_od_mm, tube_id_mm : float
+        Undeformed outer and inner tube diameters (mm).
+    material : MooneyRivlin
+        Tube material.
+    mesh : MeshSpec
+        Mesh used.
     nodes : ndarray (n, 2)
         Undeformed node coordinates (mm), quarter model.
     elements : ndarray (e, 9)
         Element connectivity (quad9).
+    element_kind : str
+        Element type of ``elements`` (``"quad9"``).
     displacements : tuple of ndarray (n, 2)
         Nodal displacements (mm) per pressure.
     von_mises_mpa : tuple of ndarray (e,)
         Element-mean von Mises Cauchy stress (MPa) per pressure.
+
+    Examples
+    --------
+    >>> from exofric.material import MooneyRivlin
+    >>> r = inflate(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.2], keep_fields=False)
+    >>> round(float(r.outer_diameter_mm[0]), 2)
+    8.75
     """
 
     pressure_mpa: np.ndarray
@@ -93,6 +111,61 @@ class InflationResult:
             "material": self.material.to_dict(),
             "mesh": self.mesh.to_dict(),
         }
+
+    def to_frame(self) -> pd.DataFrame:
+        """The per-pressure diameters as a DataFrame: one row per pressure (MPa, mm).
+
+        Columns: ``pressure_mpa``, ``outer_diameter_mm``, ``inner_diameter_mm``,
+        ``analytic_outer_diameter_mm`` (incompressible closed form), ``max_stretch``
+        (unitless) and ``newton_iterations`` (count).
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> from exofric.material import MooneyRivlin
+        >>> r = inflate(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.1, 0.2])
+        >>> r.to_frame()[["pressure_mpa", "outer_diameter_mm"]].round(2).values.tolist()
+        [[0.1, 8.5], [0.2, 8.75]]
+        """
+        import pandas as pd
+
+        return pd.DataFrame({
+            "pressure_mpa": self.pressure_mpa,
+            "outer_diameter_mm": self.outer_diameter_mm,
+            "inner_diameter_mm": self.inner_diameter_mm,
+            "analytic_outer_diameter_mm": self.analytic_outer_diameter_mm(),
+            "max_stretch": self.max_stretch,
+            "newton_iterations": np.asarray(self.newton_iterations, dtype=int),
+        })
+
+    def plot(self, ax: Any | None = None) -> Any:
+        """Draw the outer diameter (mm) against pressure (MPa), FE beside the closed form.
+
+        Two lines (:func:`exofric.plots.plot_inflation_curve`); the deformed section is
+        :func:`exofric.plots.plot_inflation`. Write it with :func:`exofric.plots.save`.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Where to draw (default a new figure).
+
+        Returns
+        -------
+        matplotlib Axes
+
+        Examples
+        --------
+        >>> from exofric.material import MooneyRivlin
+        >>> r = inflate(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.1, 0.2])
+        >>> len(r.plot().lines)
+        2
+        """
+        from exofric.plots import plot_inflation_curve
+
+        return plot_inflation_curve(self, ax)
 
 
 def inflate(
@@ -156,10 +229,10 @@ def inflate(
             f"(mu ln(OD/ID)): free inflation has no equilibrium near and above it; "
             f"allowed range [0, {0.99 * plim:.4g}) MPa"
         )
-    spec = mesh or defaults.INFLATION_MESH
+    spec = mesh or MeshSpec(**defaults.INFLATION_MESH)
     prob = InflationProblem(od, idm, material, spec)
     t0 = time.perf_counter()
-    pts = solve_path(prob, p, settings or defaults.INFLATION_NEWTON)
+    pts = solve_path(prob, p, settings or NewtonSettings(**defaults.INFLATION_NEWTON))
     dt = time.perf_counter() - t0
     g = prob.mesh.grid
     stretch = np.array([prob.body.max_stretch(pt.u) for pt in pts])

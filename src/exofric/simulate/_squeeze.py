@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -26,6 +26,9 @@ from exofric.fe import (
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
 from exofric.simulate._stretch import check_stretch
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["SqueezeResult", "squeeze"]
 
@@ -52,9 +55,45 @@ class SqueezeResult:
     max_penetration_mm : ndarray
         Largest penalty penetration into the hole or the wire (mm).
     max_stretch : ndarray
-        Largest principal stretch in the tube (StretchWarning above 2.5).
+        Largest principal stretch (unitless) in the tube (StretchWarning above 2.5).
+    newton_iterations : ndarray of int
+        Newton iterations spent reaching each pressure (all sub-steps).
     contact_onset_pressure_mpa : float or None
         Pressure at which the tube first touches the wire (None if not reached).
+    weight_n_per_mm : float
+        Self-weight of the tube section per unit depth (N/mm), the regulariser's load.
+    dofs : int
+        Degrees of freedom of the model (incl. constrained).
+    solve_time_s : float
+        Wall time of the solve alone (s).
+    structure : Structure
+        Hole, tube and wire (mm).
+    material : MooneyRivlin
+        Tube material.
+    mesh : MeshSpec
+        Mesh used.
+    penalty : float
+        Contact penalty used (N/mm^3).
+    density : float
+        Tube density used for the self-weight (t/mm^3).
+    symmetry : str
+        Which symmetry was used.
+    nodes : ndarray (n, 2)
+        Undeformed node coordinates (mm), half model.
+    elements : ndarray (e, 9)
+        Element connectivity (quad9).
+    displacements : tuple of ndarray (n, 2)
+        Nodal displacements (mm) per pressure (empty unless ``keep_fields``).
+    von_mises_mpa : tuple of ndarray (e,)
+        Element-mean von Mises Cauchy stress (MPa) per pressure (empty unless ``keep_fields``).
+
+    Examples
+    --------
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.6], keep_fields=False)
+    >>> round(float(r.squeeze_force_n[0]))
+    240
     """
 
     pressure_mpa: np.ndarray
@@ -112,6 +151,73 @@ class SqueezeResult:
             "density_t_per_mm3": self.density,
             "symmetry": self.symmetry,
         }
+
+    def to_frame(self) -> pd.DataFrame:
+        """The per-pressure curves as a DataFrame: one row per pressure (MPa, N, N/mm, mm).
+
+        Columns: ``pressure_mpa``, ``squeeze_force_n`` (total over the tube length),
+        ``squeeze_force_per_depth_n_per_mm``, ``wall_force_n``,
+        ``wall_force_per_depth_n_per_mm``, ``wire_contact_halfwidth_mm``,
+        ``wall_contact_arc_mm``, ``max_penetration_mm``, ``max_stretch`` (unitless) and
+        ``newton_iterations`` (count).
+
+        Returns
+        -------
+        pandas.DataFrame
+
+        Examples
+        --------
+        >>> from exofric.fe import MeshSpec
+        >>> from exofric.geometry import BASE
+        >>> from exofric.material import MooneyRivlin
+        >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6], mesh=MeshSpec(2, 12))
+        >>> df = r.to_frame()
+        >>> list(df.columns[:3]), len(df)
+        (['pressure_mpa', 'squeeze_force_n', 'squeeze_force_per_depth_n_per_mm'], 2)
+        """
+        import pandas as pd
+
+        return pd.DataFrame({
+            "pressure_mpa": self.pressure_mpa,
+            "squeeze_force_n": self.squeeze_force_n,
+            "squeeze_force_per_depth_n_per_mm": self.squeeze_force_n_per_mm,
+            "wall_force_n": self.wall_force_n,
+            "wall_force_per_depth_n_per_mm": self.wall_force_n_per_mm,
+            "wire_contact_halfwidth_mm": self.wire_contact_halfwidth_mm,
+            "wall_contact_arc_mm": self.wall_contact_arc_mm,
+            "max_penetration_mm": self.max_penetration_mm,
+            "max_stretch": self.max_stretch,
+            "newton_iterations": np.asarray(self.newton_iterations, dtype=int),
+        })
+
+    def plot(self, ax: Any | None = None) -> Any:
+        """Draw N(P), the squeezing force (N) against pressure (MPa) (Fig 7).
+
+        One line, plus a dotted vertical line at the contact onset when reached
+        (:func:`exofric.plots.plot_squeeze_force`); the deformed sections of Fig 6 are
+        :func:`exofric.plots.plot_squeeze`. Write it with :func:`exofric.plots.save`.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Where to draw (default a new figure).
+
+        Returns
+        -------
+        matplotlib Axes
+
+        Examples
+        --------
+        >>> from exofric.fe import MeshSpec
+        >>> from exofric.geometry import BASE
+        >>> from exofric.material import MooneyRivlin
+        >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6], mesh=MeshSpec(2, 12))
+        >>> r.plot().get_xlabel()
+        'pressure P (MPa)'
+        """
+        from exofric.plots import plot_squeeze_force
+
+        return plot_squeeze_force(self, ax)
 
 
 def _onset(path: list[tuple[float, float]]) -> float | None:
@@ -178,14 +284,14 @@ def squeeze(
     p = check_pressures("pressures_mpa", pressures_mpa, max_mpa=2.0)
     check_positive("penalty", penalty, "N/mm^3")
     check_positive("density", density, "t/mm^3")
-    spec = mesh or defaults.SQUEEZE_MESH
+    spec = mesh or MeshSpec(**defaults.SQUEEZE_MESH)
     prob = SqueezeProblem(structure, material, spec, penalty, density)
     path: list[tuple[float, float]] = []
     t0 = time.perf_counter()
     pts = solve_path(
         prob,
         p,
-        settings or defaults.SQUEEZE_NEWTON,
+        settings or NewtonSettings(**defaults.SQUEEZE_NEWTON),
         on_step=lambda lam, u: path.append((lam, prob.wire_gap(u))),
     )
     dt = time.perf_counter() - t0

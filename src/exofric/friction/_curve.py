@@ -1,0 +1,267 @@
+"""A tabulated squeeze curve N(P) and its monotone interpolation: :class:`SqueezeCurve`.
+
+The FE gives the squeezing force N (N, total over the tube length) at a list of pressures P
+(MPa). Everything downstream -- gamma fitting, the virtual rig, the friction map of the
+controller, the design search -- reads N between those pressures off one interpolant: the
+monotone piecewise cubic Hermite interpolant (PCHIP, Fritsch-Carlson) of N against P. It passes
+through every node, is C1, and is monotone on every interval between nodes, so it never
+overshoots the data (a cubic spline does, around the contact onset). Its inverse
+:meth:`SqueezeCurve.pressure` is the first root of that same interpolant, so a round trip
+``curve(curve.pressure(n)) == n`` holds to round-off.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from exofric.errors import InputError, check_finite, check_series
+
+if TYPE_CHECKING:
+    from exofric.simulate import SqueezeResult
+
+__all__ = ["SqueezeCurve"]
+
+
+@dataclass(frozen=True, init=False)
+class SqueezeCurve:
+    """A validated squeeze curve N(P) with monotone (PCHIP) interpolation and its inverse.
+
+    Parameters
+    ----------
+    pressure_mpa : array_like
+        Pressures P in MPa: finite, >= 0, strictly increasing, at least 2.
+    squeeze_force_n : array_like
+        Squeezing forces N in N (totals over the tube length), finite, >= 0, one per pressure.
+        N need not be monotone: before contact onset it is 0.
+
+    Attributes
+    ----------
+    pressure_mpa, squeeze_force_n : tuple of float
+        The nodes (MPa, N).
+
+    Notes
+    -----
+    * ``curve(p)`` is the PCHIP of N on P, defined on the nodes' range
+      :attr:`pressure_range_mpa` (``edge_tol_mpa`` admits points slightly outside, evaluated by
+      the end cubic pieces); :meth:`slope` is its derivative dN/dP in N/MPa.
+    * :meth:`pressure` is the least pressure at which the interpolant reaches a force: the
+      first crossing, i.e. on the rising part above contact onset (for N equal to the first
+      node's force, the last node of the leading plateau -- the contact onset when N starts
+      at 0). Forces outside :attr:`force_range_n` raise :class:`InputError`.
+    * The curve says nothing below its first pressure; :meth:`with_origin` adds the point
+      (0 MPa, 0 N) -- no pressure, no squeeze -- as a node, as the design search does.
+
+    Raises
+    ------
+    InputError
+        NaN/inf, negative values, unequal lengths, fewer than 2 points, or pressures not
+        strictly increasing; the message names the field.
+
+    Examples
+    --------
+    >>> c = SqueezeCurve([0.1, 0.2, 0.3, 0.4], [0.0, 0.0, 40.0, 90.0])   # contact at 0.2 MPa
+    >>> c(0.3), round(c(0.35), 3)
+    (40.0, 63.681)
+    >>> round(c.pressure(c(0.35)), 9), c.pressure(0.0)
+    (0.35, 0.2)
+    >>> c.force_range_n
+    (0.0, 90.0)
+    """
+
+    pressure_mpa: tuple[float, ...]
+    squeeze_force_n: tuple[float, ...]
+
+    def __init__(self, pressure_mpa: ArrayLike, squeeze_force_n: ArrayLike) -> None:
+        p, n = check_series("pressure_mpa", pressure_mpa, "squeeze_force_n", squeeze_force_n,
+                            x_unit="MPa", y_unit="N", x_min=0.0, y_min=0.0,
+                            where="squeeze curve")
+        object.__setattr__(self, "pressure_mpa", tuple(p.tolist()))
+        object.__setattr__(self, "squeeze_force_n", tuple(n.tolist()))
+
+    # -- construction ------------------------------------------------------------------------
+
+    @classmethod
+    def from_result(cls, result: SqueezeResult) -> SqueezeCurve:
+        """The curve of an FE squeeze (:func:`exofric.simulate.squeeze`): P in MPa, N in N.
+
+        Parameters
+        ----------
+        result : SqueezeResult
+            Its ``pressure_mpa`` (MPa) and ``squeeze_force_n`` (N, total over the tube length).
+
+        Examples
+        --------
+        >>> from types import SimpleNamespace        # stands in for a SqueezeResult
+        >>> r = SimpleNamespace(pressure_mpa=np.array([0.2, 0.4]),
+        ...                     squeeze_force_n=np.array([10.0, 30.0]))
+        >>> SqueezeCurve.from_result(r).to_dict()
+        {'pressure_mpa': [0.2, 0.4], 'squeeze_force_n': [10.0, 30.0]}
+        """
+        return cls(result.pressure_mpa, result.squeeze_force_n)
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> SqueezeCurve:
+        """From ``{"pressure_mpa": [...], "squeeze_force_n": [...]}`` (as :meth:`to_dict`).
+
+        Parameters
+        ----------
+        data : mapping
+            ``pressure_mpa`` (list, MPa) and ``squeeze_force_n`` (list, N); other keys are
+            ignored.
+
+        Examples
+        --------
+        >>> SqueezeCurve.from_dict({"pressure_mpa": [0, 1], "squeeze_force_n": [0, 5]})(0.5)
+        2.5
+        """
+        for key in ("pressure_mpa", "squeeze_force_n"):
+            if key not in data:
+                raise InputError(f"squeeze curve: missing key {key!r} (need pressure_mpa in "
+                                 "MPa, squeeze_force_n in N)", param=key)
+        return cls(data["pressure_mpa"], data["squeeze_force_n"])
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready nodes: ``pressure_mpa`` (MPa), ``squeeze_force_n`` (N)."""
+        return {"pressure_mpa": list(self.pressure_mpa),
+                "squeeze_force_n": list(self.squeeze_force_n)}
+
+    def with_origin(self) -> SqueezeCurve:
+        """This curve with the node (0 MPa, 0 N) prepended when it starts above 0 MPa.
+
+        Examples
+        --------
+        >>> SqueezeCurve([0.2, 0.4], [10.0, 30.0]).with_origin().pressure_mpa
+        (0.0, 0.2, 0.4)
+        """
+        if self.pressure_mpa[0] <= 0.0:
+            return self
+        return SqueezeCurve((0.0, *self.pressure_mpa), (0.0, *self.squeeze_force_n))
+
+    # -- ranges ------------------------------------------------------------------------------
+
+    @property
+    def pressure_range_mpa(self) -> tuple[float, float]:
+        """(first, last) node pressure in MPa: where the curve is defined."""
+        return self.pressure_mpa[0], self.pressure_mpa[-1]
+
+    @property
+    def force_range_n(self) -> tuple[float, float]:
+        """(first node's force, largest force) in N: the forces :meth:`pressure` can invert."""
+        return self.squeeze_force_n[0], max(self.squeeze_force_n)
+
+    # -- interpolation -----------------------------------------------------------------------
+
+    def _interp(self) -> Any:
+        cached = self.__dict__.get("_pchip")
+        if cached is None:
+            from scipy.interpolate import PchipInterpolator
+
+            cached = PchipInterpolator(np.array(self.pressure_mpa),
+                                       np.array(self.squeeze_force_n))
+            object.__setattr__(self, "_pchip", cached)
+        return cached
+
+    def _points(self, pressure_mpa: Any, edge_tol_mpa: float) -> tuple[NDArray[np.float64], bool]:
+        x = np.asarray(pressure_mpa, dtype=float)
+        lo, hi = self.pressure_range_mpa
+        tol = float(edge_tol_mpa)
+        if not 0.0 <= tol <= 0.1:
+            raise InputError(f"edge_tol_mpa must be in [0, 0.1] MPa, got {edge_tol_mpa!r}")
+        out = ~((x >= lo - tol) & (x <= hi + tol))
+        if np.any(out):
+            bad = x[out].ravel()[0]
+            raise InputError(f"pressure_mpa must be in the squeeze curve's range [{lo:g}, "
+                             f"{hi:g}] MPa, got {bad:g}")
+        return x, x.ndim == 0
+
+    def __call__(self, pressure_mpa: Any, *, edge_tol_mpa: float = 0.0) -> Any:
+        """Squeezing force N in N at pressure(s) in MPa (float in, float out; array in, array out).
+
+        Parameters
+        ----------
+        pressure_mpa : float or array_like
+            Pressures in MPa, inside :attr:`pressure_range_mpa` (InputError otherwise).
+        edge_tol_mpa : float
+            0-0.1 MPa: pressures up to this far outside the nodes' range are admitted and
+            evaluated by the end cubic pieces (a rig logging 0.6002 MPa at a 0.6 MPa set
+            point). Default 0.
+
+        Examples
+        --------
+        >>> SqueezeCurve([0.2, 0.4], [10.0, 30.0])([0.2, 0.3])
+        array([10., 20.])
+        """
+        x, scalar = self._points(pressure_mpa, edge_tol_mpa)
+        y = self._interp()(x)
+        return float(y) if scalar else np.asarray(y, dtype=float)
+
+    def slope(self, pressure_mpa: Any, *, edge_tol_mpa: float = 0.0) -> Any:
+        """dN/dP in N/MPa at pressure(s) in MPa: the derivative of the interpolant.
+
+        Parameters
+        ----------
+        pressure_mpa : float or array_like
+            Pressures in MPa, inside :attr:`pressure_range_mpa` (InputError otherwise).
+        edge_tol_mpa : float
+            Admitted distance (0-0.1 MPa) outside the nodes' range, as for ``__call__``.
+
+        Examples
+        --------
+        >>> SqueezeCurve([0.0, 0.5, 1.0], [0.0, 50.0, 100.0]).slope(0.25)
+        100.0
+        """
+        x, scalar = self._points(pressure_mpa, edge_tol_mpa)
+        y = self._interp().derivative()(x)
+        return float(y) if scalar else np.asarray(y, dtype=float)
+
+    def pressure(self, squeeze_force_n: float) -> float:
+        """Least pressure (MPa) at which the curve reaches ``squeeze_force_n`` (N).
+
+        The first root of the interpolant (Brent, 1e-12 MPa): on each interval between nodes
+        the PCHIP is monotone, so the first interval whose end node reaches the force holds
+        the unique first crossing. A force equal to the first node's gives the end of the
+        leading plateau (the contact onset for a curve starting at 0 N).
+
+        Parameters
+        ----------
+        squeeze_force_n : float
+            The force in N, inside :attr:`force_range_n`.
+
+        Returns
+        -------
+        float
+            Pressure in MPa.
+
+        Raises
+        ------
+        InputError
+            The force is outside :attr:`force_range_n`, or the curve never rises.
+
+        Examples
+        --------
+        >>> round(SqueezeCurve([0.2, 0.4], [10.0, 30.0]).pressure(20.0), 12)
+        0.3
+        """
+        from scipy.optimize import brentq
+
+        v = check_finite("squeeze_force_n", squeeze_force_n)
+        nn = np.asarray(self.squeeze_force_n)
+        pp = np.asarray(self.pressure_mpa)
+        lo, hi = self.force_range_n
+        if not lo <= v <= hi:
+            raise InputError(f"squeeze_force_n must be in the squeeze curve's reachable range "
+                             f"[{lo:.6g}, {hi:.6g}] N, got {v:g}")
+        if v == lo:
+            rise = np.flatnonzero(nn > lo)
+            if not rise.size:
+                raise InputError(f"squeeze_force_n: the squeeze curve stays at {lo:g} N; "
+                                 "no pressure is singled out")
+            return float(pp[int(rise[0]) - 1])
+        i = int(np.flatnonzero(nn >= v)[0])
+        f = self._interp()
+        return float(brentq(lambda x: float(f(x)) - v, pp[i - 1], pp[i], xtol=1e-12))

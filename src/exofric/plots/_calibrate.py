@@ -1,0 +1,102 @@
+"""Calibration figures: Fig 5b (diameter against pressure with the trials) and Table 1.
+
+Presentation only: results are read through their attributes (MPa, mm, %); each function
+draws on a given Axes/Figure or a new one, which it returns.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from exofric.plots._common import finish, new_axes, new_figure
+
+if TYPE_CHECKING:
+    from exofric.calibrate import CalibrationResult
+    from exofric.reproduce import CalibrationStage
+
+__all__ = ["plot_calibration", "plot_table1"]
+
+
+def plot_calibration(result: CalibrationResult, ax: Any | None = None) -> Any:
+    """Fig 5b: measured and simulated outer diameter (mm) against pressure (MPa).
+
+    Per hardness group: the measured points and the final model curve (bold); without
+    known hardness also every finite trial of the history (thin, grey, the first six
+    labelled with their Shore A). Simulated curves start from the undeformed OD at 0 MPa.
+    Returns the Axes.
+    """
+    ax, created = new_axes(ax, (6.0, 4.2))
+    d = result.data
+    od = result.tube_od_mm
+    for gi, (g, idx) in enumerate(d.groups()):
+        p = d.pressure_mpa[idx]
+        pc = p if p[0] == 0.0 else np.concatenate([[0.0], p])
+
+        def curve(sim: np.ndarray, p: np.ndarray = p) -> np.ndarray:
+            return sim if p[0] == 0.0 else np.concatenate([[od], sim])
+
+        colour = f"C{gi % 10}"
+        if g is None:
+            for k, t in enumerate(result.history):
+                sim = np.asarray(t.outer_diameter_mm)[idx]
+                if not np.all(np.isfinite(sim)):
+                    continue
+                ax.plot(pc, curve(sim), "-", color="0.7", lw=0.8, zorder=1)
+                if k < 6:  # label the first trials only (later ones crowd together)
+                    ax.annotate(f"{t.shore:.4g}", (p[-1], sim[-1]), fontsize=6,
+                                color="0.5", xytext=(2, 0), textcoords="offset points")
+        label = "" if g is None else f" (Shore {g:g})"
+        ax.plot(p, d.outer_diameter_mm[idx], "o", color=colour, label=f"measured{label}",
+                zorder=3)
+        ax.plot(pc, curve(result.simulated_mm[idx]), "-", color=colour, lw=2, zorder=2,
+                label=None if g is not None else f"model, Shore {result.shore:.4g}")
+    ax.set_xlabel("inflation pressure P (MPa)")
+    ax.set_ylabel("tube outer diameter (mm)")
+    shore_txt = "known" if result.shore is None else f"{result.shore:.4g}"
+    ax.set_title(f"{result.method} ({result.model}): Shore {shore_txt}, ID "
+                 f"{result.tube_id_mm:.4g} mm, avg error {result.average_error_pct:.2f}%",
+                 fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    finish(ax.figure, created)
+    return ax
+
+
+def plot_table1(
+    stage: CalibrationStage, table1: Mapping[str, Any], fig: Any | None = None
+) -> Any:
+    """Table 1 and Fig 5b of the reproduction: ANSYS vs our diameters, Shore from the test.
+
+    Left: per Table 1 Shore column, the paper's ANSYS diameters (markers) and ours (lines) at
+    the fitted tube ID. Right: the bisection and bounded fits to the test column, the paper's
+    62.5 Hs column and the test points. ``table1`` holds ``pressure_mpa``,
+    ``simulated_outer_diameter_mm`` (four columns) and ``test_outer_diameter_mm`` (MPa, mm).
+    Returns the Figure.
+    """
+    fig, created = new_figure(fig, (10, 4.2))
+    a1, a2 = fig.subplots(1, 2)
+    for i, col in enumerate(stage.columns):
+        c = f"C{i}"
+        a1.plot(col["pressure_mpa"], col["paper_outer_diameter_mm"], "o", color=c,
+                label=f"paper ANSYS {col['shore']:g} Hs")
+        a1.plot(col["pressure_mpa"], col["our_outer_diameter_mm"], "-", color=c,
+                label=f"exofric FE {col['shore']:g} Hs")
+    a1.set_title(f"Table 1 columns; tube ID fitted = {stage.tube_id_mm:.4f} mm", fontsize=10)
+    for res, lab, sty in ((stage.bisection, "bisection", "-"), (stage.bounded, "bounded", "--")):
+        a2.plot(res.data.pressure_mpa, res.simulated_mm, sty,
+                label=f"exofric {lab}: Shore {res.shore:.2f} ({res.average_error_pct:.2f}%)")
+    a2.plot(table1["pressure_mpa"], table1["simulated_outer_diameter_mm"][3], "s", mfc="none",
+            color="0.4", label="paper ANSYS 62.5 Hs (0.46%)")
+    a2.plot(table1["pressure_mpa"], table1["test_outer_diameter_mm"], "o", color="tab:red",
+            label="test (Table 1)")
+    a2.set_title("Shore from the test column (Fig 5b)", fontsize=10)
+    for ax in (a1, a2):
+        ax.set_xlabel("pressure P (MPa)")
+        ax.set_ylabel("tube outer diameter (mm)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    finish(fig, created)
+    return fig

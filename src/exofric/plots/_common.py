@@ -1,0 +1,83 @@
+"""Shared plumbing of the figures: new Axes/Figure on demand, and :func:`save`.
+
+No backend is selected here (library code never calls ``matplotlib.use``): matplotlib picks
+its default, and the CLI sets ``MPLBACKEND=Agg`` once at start-up.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+__all__ = ["new_axes", "new_figure", "finish", "save"]
+
+
+def new_axes(ax: Any | None, figsize: tuple[float, float]) -> tuple[Any, bool]:
+    """``(ax, created)``: ``ax`` itself, or the single Axes of a new pyplot figure (inches)."""
+    if ax is not None:
+        return ax, False
+    import matplotlib.pyplot as plt
+
+    _, new = plt.subplots(figsize=figsize)
+    return new, True
+
+
+def new_figure(fig: Any | None, figsize: tuple[float, float]) -> tuple[Any, bool]:
+    """``(fig, created)``: ``fig`` itself (should be empty), or a new pyplot figure (inches)."""
+    if fig is not None:
+        return fig, False
+    import matplotlib.pyplot as plt
+
+    return plt.figure(figsize=figsize), True
+
+
+def finish(fig: Any, created: bool) -> None:
+    """Lay out a figure this package created (a caller's figure is left as it is)."""
+    if created:
+        fig.tight_layout()
+
+
+def save(fig: Any, path: str | Path, *, dpi: int = 130, close: bool = True) -> Path:
+    """Write a figure (or the figure of an Axes) to ``path`` and return the path.
+
+    The format follows the suffix (``.png``, ``.svg``, ``.pdf``). Only the image file is
+    written: the parent directory must exist. The figure is closed afterwards unless
+    ``close=False``.
+
+    Parameters
+    ----------
+    fig : matplotlib Figure or Axes
+        What to write (an Axes writes its whole figure).
+    path : str or Path
+        Output file; its directory must exist.
+    dpi : int
+        Resolution in dots per inch (raster formats).
+    close : bool
+        Close the figure after writing (frees it from pyplot).
+
+    Returns
+    -------
+    Path
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> import matplotlib.pyplot as plt
+    >>> from exofric.plots import save
+    >>> fig, ax = plt.subplots()
+    >>> _ = ax.plot([0.0, 0.6], [0.0, 268.55])
+    >>> out = save(fig, pathlib.Path(tempfile.mkdtemp()) / "n.png")
+    >>> out.stat().st_size > 0
+    True
+    """
+    from matplotlib.axes import Axes
+
+    figure: Any = fig.figure if isinstance(fig, Axes) else fig
+    figure = getattr(figure, "figure", figure)  # the root figure of a SubFigure
+    p = Path(path)
+    figure.savefig(p, dpi=dpi, bbox_inches="tight")
+    if close:
+        import matplotlib.pyplot as plt
+
+        plt.close(figure)
+    return p

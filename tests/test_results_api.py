@@ -1,0 +1,283 @@
+"""The result objects' table and picture API: ``.to_frame()`` and ``.plot()``, and plots.save.
+
+Structural checks: every frame has unit-suffixed columns whose values are the result's own
+arrays (one row per pressure / time sample / trial / design), every ``.plot()`` returns the
+Axes or Figure it drew on with the expected artists and leaves the matplotlib backend alone,
+``plots.save`` writes one non-empty PNG and nothing else, and no library module selects a
+backend.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+import matplotlib
+import numpy as np
+import pandas as pd
+import pytest
+
+from exofric import plots
+from exofric.calibrate import InflationData, calibrate
+from exofric.control import Controller, PIDGains, PlantParams, simulate
+from exofric.design import parse_sweep, run_sweep, search_designs
+from exofric.fe import MeshSpec
+from exofric.friction import MeasuredCurve, fit_gamma, paper_structures, predict
+from exofric.geometry import BASE
+from exofric.material import MooneyRivlin
+from exofric.reproduce import ControlSetup, compare, run_case
+from exofric.simulate import inflate, squeeze
+
+SRC = Path(__file__).resolve().parents[1] / "src" / "exofric"
+
+UNIT_SUFFIXES = ("_mpa", "_per_mpa", "_n", "_n_per_mm", "_mm", "_s", "_pct", "_nm", "_m")
+# numeric columns that carry no unit (ratios, counts, indices, hardness, coefficients)
+UNITLESS = {"max_stretch", "newton_iterations", "trial", "shore", "gamma", "design_index",
+            "dofs"}
+
+MAT = MooneyRivlin.from_shore(62.5)
+
+
+def assert_unit_columns(df: pd.DataFrame) -> None:
+    """Every numeric (non-bool) column names its unit, or is a known unitless quantity."""
+    for col in df.columns:
+        s = df[col]
+        if pd.api.types.is_bool_dtype(s) or not pd.api.types.is_numeric_dtype(s):
+            continue
+        assert col.endswith(UNIT_SUFFIXES) or col in UNITLESS, f"column {col!r} has no unit"
+
+
+def assert_columns_equal(df: pd.DataFrame, pairs: dict[str, object]) -> None:
+    for col, values in pairs.items():
+        np.testing.assert_array_equal(df[col].to_numpy(), np.asarray(values, dtype=float),
+                                      err_msg=col)
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    import matplotlib.pyplot as plt
+
+    yield
+    plt.close("all")
+
+
+@pytest.fixture
+def same_backend():
+    """Fails the test if anything it called switched the matplotlib backend."""
+    before = matplotlib.get_backend()
+    yield
+    assert matplotlib.get_backend() == before
+
+
+# ----------------------------------------------------------------------------- FE results
+
+
+@pytest.fixture(scope="module")
+def squeezed():
+    return squeeze(BASE, MAT, [0.3, 0.6], mesh=MeshSpec(2, 12))
+
+
+@pytest.fixture(scope="module")
+def inflated():
+    return inflate(8.3, 4.97, MAT, [0.1, 0.2, 0.3])
+
+
+def test_squeeze_frame_and_plot(squeezed, same_backend) -> None:
+    r = squeezed
+    df = r.to_frame()
+    assert len(df) == r.pressure_mpa.size
+    assert_unit_columns(df)
+    assert_columns_equal(df, {
+        "pressure_mpa": r.pressure_mpa, "squeeze_force_n": r.squeeze_force_n,
+        "squeeze_force_per_depth_n_per_mm": r.squeeze_force_n_per_mm,
+        "wall_force_n": r.wall_force_n, "wall_force_per_depth_n_per_mm": r.wall_force_n_per_mm,
+        "wire_contact_halfwidth_mm": r.wire_contact_halfwidth_mm,
+        "max_penetration_mm": r.max_penetration_mm, "newton_iterations": r.newton_iterations})
+    ax = r.plot()
+    assert len(ax.lines) == 1 + (r.contact_onset_pressure_mpa is not None)
+    np.testing.assert_array_equal(ax.lines[0].get_ydata(), r.squeeze_force_n)
+    # Figs 6-7: one section per distinct nearest pressure (0.3, 0.6), N(P), one colour bar
+    fig = plots.plot_squeeze(r)
+    assert len(fig.axes) == 2 + 1 + 1
+    assert r.to_dict()["squeeze_force_n"] == r.squeeze_force_n.tolist()
+
+
+def test_inflation_frame_and_plot(inflated, same_backend) -> None:
+    r = inflated
+    df = r.to_frame()
+    assert_unit_columns(df)
+    assert_columns_equal(df, {
+        "pressure_mpa": r.pressure_mpa, "outer_diameter_mm": r.outer_diameter_mm,
+        "inner_diameter_mm": r.inner_diameter_mm,
+        "analytic_outer_diameter_mm": r.analytic_outer_diameter_mm(),
+        "max_stretch": r.max_stretch})
+    ax = r.plot()
+    assert len(ax.lines) == 2          # FE and the closed form
+    fig = plots.plot_inflation(r)
+    assert len(fig.axes) == 3          # section, OD(P), colour bar
+
+
+def test_plot_draws_on_a_given_axes_or_figure(squeezed, same_backend) -> None:
+    import matplotlib.pyplot as plt
+
+    fig, (a1, a2) = plt.subplots(1, 2)
+    assert squeezed.plot(ax=a2) is a2 and not a1.lines
+    empty = plt.figure()
+    assert plots.plot_squeeze(squeezed, empty) is empty
+
+
+# ----------------------------------------------------------------------------- calibration
+
+
+def test_calibration_frame_and_plot(same_backend) -> None:
+    r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97, model="paper-table1")
+    df = r.to_frame()
+    assert len(df) == len(r.history)
+    assert_unit_columns(df)
+    assert_columns_equal(df, {
+        "trial": np.arange(1, len(r.history) + 1),
+        "shore": [t.shore for t in r.history],
+        "tube_id_mm": [t.tube_id_mm for t in r.history],
+        "average_error_pct": [t.average_error_pct for t in r.history],
+        "max_error_pct": [t.max_error_pct for t in r.history]})
+    ax = r.plot()
+    assert len(ax.lines) == len(r.history) + 2     # trials, measured points, final curve
+
+
+# ----------------------------------------------------------------------------- friction
+
+
+def _fake_squeeze(structure, material, p):
+    p = np.asarray(p, dtype=float)
+    return SimpleNamespace(pressure_mpa=p, squeeze_force_n=400.0 * p * structure.tube_od_mm / 8.3)
+
+
+def test_gamma_fit_frame_and_plot(same_backend) -> None:
+    fit = fit_gamma([0.2, 0.4, 0.6], [70.0, 140.0, 190.0], [0.2, 0.4, 0.6],
+                    [100.0, 200.0, 268.55])
+    df = fit.to_frame()
+    assert len(df) == fit.n_points
+    assert_unit_columns(df)
+    assert_columns_equal(df, {
+        "pressure_mpa": fit.pressure_mpa, "squeeze_force_n": fit.squeeze_force_n,
+        "friction_n": fit.friction_n, "predicted_friction_n": fit.predicted_friction_n,
+        "residual_n": fit.residual_n, "relative_error_pct": fit.point_relative_error_pct})
+    fig = fit.plot()
+    assert len(fig.axes) == 3 and len(fig.axes[0].lines) == 2
+
+
+def test_predictions_frame_and_plot(same_backend) -> None:
+    structs = paper_structures()[:2]
+    meas = {structs[0].name: MeasuredCurve.of([0.25, 0.5], [40.0, 81.0])}
+    res = predict(structs, 0.5, None, [0.2, 0.4, 0.6], squeeze_fn=_fake_squeeze, measured=meas)
+    one = res.predictions[0]
+    df1 = one.to_frame()
+    assert_unit_columns(df1)
+    assert len(df1) == len(one.pressure_mpa) == 5          # grid + the measured pressures
+    assert_columns_equal(df1, {"pressure_mpa": one.pressure_mpa,
+                               "squeeze_force_n": one.squeeze_force_n,
+                               "predicted_friction_n": one.predicted_friction_n})
+    at = df1["measured_friction_n"].notna()
+    assert df1.loc[at, "pressure_mpa"].tolist() == [0.25, 0.5]
+    assert df1.loc[at, "measured_friction_n"].tolist() == [40.0, 81.0]
+    np.testing.assert_array_equal(df1.loc[at, "relative_error_pct"], one.relative_error_pct)
+    df = res.to_frame()
+    assert len(df) == sum(len(p.pressure_mpa) for p in res.predictions)
+    assert df["structure"].unique().tolist() == [s.name for s in structs]
+    assert_unit_columns(df)
+    fig = res.plot()
+    assert len(fig.axes) == 2 * len(structs)
+    assert len(fig.axes[0].lines) == 2                     # predicted and tested
+
+
+# ----------------------------------------------------------------------------- control
+
+
+def test_simulation_frame_and_plot(same_backend) -> None:
+    sim = simulate(Controller(PIDGains(0.002, 0.01, 0.0), u_max=0.6), PlantParams(),
+                   lambda p: 200.0 * p, 50.0, duration_s=1.0, dt=0.01)
+    df = sim.to_frame()
+    assert len(df) == sim.time_s.size
+    assert_unit_columns(df)
+    assert_columns_equal(df, {
+        "time_s": sim.time_s, "setpoint_n": sim.setpoint_n, "friction_n": sim.friction_n,
+        "measured_friction_n": sim.measured_n, "command_mpa": sim.command_mpa,
+        "pressure_mpa": sim.pressure_mpa})
+    assert len(sim.plot().lines) == 2
+
+
+def test_fig12_case_and_compare(same_backend) -> None:
+    setup = ControlSetup.default(duration_s=3.0)
+    case = run_case(setup, "pid", feedforward=False)
+    df = case.to_frame()
+    assert_unit_columns(df)
+    assert_columns_equal(df, {"time_s": case.simulation.time_s,
+                              "friction_n": case.simulation.friction_n})
+    fig = case.plot()
+    assert len(fig.axes) == 2                    # friction, pressure
+    assert len(fig.axes[0].lines) == 1 + 1       # response and the target line
+    assert len(fig.axes[1].lines) == 2           # pressure and command
+    cmp = compare(setup)
+    big = cmp.to_frame()
+    assert len(big) == 6 * case.simulation.time_s.size
+    assert_unit_columns(big)
+    fig = cmp.plot()
+    assert len(fig.axes) == 6
+    assert all(len(ax.lines) == 3 for ax in fig.axes[:3])   # without, with, target
+    assert len(cmp.plot(pressure=False).axes) == 3
+
+
+# ----------------------------------------------------------------------------- design
+
+
+def test_design_search_and_sweep_frames(tmp_path, same_backend) -> None:
+    spec = parse_sweep({"pressures_mpa": [0.3, 0.6], "grid": {"tube_od_mm": [7.8, 8.3]},
+                        "solver": {"n_radial": 1, "n_circ": 12}})
+    run = run_sweep(spec, tmp_path / "sweep", serial=True)
+    rows = run.to_frame()
+    pd.testing.assert_frame_equal(rows, run.frame)
+    assert rows is not run.frame                       # a copy: editing it leaves the run
+    assert len(rows) == 2 * 2                          # one row per design and pressure
+    assert_unit_columns(rows)
+    s = search_designs(run.frame, 5.0, 0.1, 0.6, gamma=0.7168)
+    t = s.to_frame()
+    pd.testing.assert_frame_equal(t, s.table)
+    assert len(t) == 2
+    assert_unit_columns(t)
+    ax = s.plot()
+    assert ax.get_xlabel() == "tube OD d1 (mm)"
+    assert len(ax.collections) >= 1                    # the map's cells (and the best star)
+
+
+# ----------------------------------------------------------------------------- save, backend
+
+
+def test_save_writes_one_png_and_nothing_else(tmp_path, inflated, same_backend) -> None:
+    out = plots.save(inflated.plot(), tmp_path / "od.png")
+    assert out == tmp_path / "od.png"
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 1000
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["od.png"]
+    with pytest.raises(FileNotFoundError):          # creates no directory
+        plots.save(inflated.plot(), tmp_path / "missing" / "od.png")
+    assert not (tmp_path / "missing").exists()
+
+
+def test_no_library_module_selects_a_backend() -> None:
+    hits = [f"{p.relative_to(SRC)}:{i}" for p in SRC.rglob("*.py")
+            for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+            if re.search(r"matplotlib\.use\(|mpl\.use\(", line)]
+    assert hits == []
+
+
+def test_cli_selects_agg_without_importing_matplotlib() -> None:
+    code = ("import os, sys; os.environ.pop('MPLBACKEND', None); from exofric.cli import run; "
+            "run(['--version']); print(os.environ['MPLBACKEND'], 'matplotlib' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         env={k: v for k, v in os.environ.items() if k != "MPLBACKEND"},
+                         timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split()[-2:] == ["Agg", "False"]
