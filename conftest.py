@@ -19,8 +19,8 @@ ROOT = Path(__file__).resolve().parent
 
 @pytest.fixture(scope="session")
 def fast_result() -> Any:
-    """The fast-mode :class:`exofric.reproduce.ReproduceResult`, computed once per session."""
-    from exofric.reproduce import ReproduceConfig, reproduce
+    """The fast-mode :class:`exofric.reproduction.ReproduceResult`, computed once per session."""
+    from exofric.reproduction import ReproduceConfig, reproduce
 
     return reproduce(ReproduceConfig.for_mode(fast=True))
 

@@ -28,7 +28,7 @@ import statistics  # noqa: E402
 import time  # noqa: E402
 from typing import Any  # noqa: E402
 
-from exofric.calibrate import InflationData, calibrate  # noqa: E402
+from exofric.calibration import InflationData, calibrate  # noqa: E402
 from exofric.cli import run as cli_run  # noqa: E402
 
 TARGET_JOINT_S = 10.0

@@ -10,7 +10,7 @@ import time
 import timeit
 
 from exofric.control import Controller
-from exofric.reproduce import ControlSetup, compare, run_case
+from exofric.reproduction import ControlSetup, compare, run_case
 
 
 def _per_call_us(fn: object, number: int = 20000, repeat: int = 5) -> float:

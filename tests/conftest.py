@@ -42,7 +42,7 @@ def paper_columns_fits() -> dict:
     computed once (~1 s each) for tests/test_calibrate.py (acceptance against the printed
     diameters) and tests/test_regression_calibrate.py (pins of the fitted numbers).
     """
-    from exofric.calibrate import InflationData, calibrate
+    from exofric.calibration import InflationData, calibrate
 
     sim = InflationData.paper_simulated()
     return {c: calibrate(sim, 8.3, model="fe", c10_convention=c) for c in ("eq4", "paper-slip")}

@@ -13,7 +13,7 @@ import statsmodels.api as sm
 from scipy.optimize import brentq
 
 from exofric import paper
-from exofric.calibrate import (
+from exofric.calibration import (
     CachedModel,
     InflationData,
     calibrate,

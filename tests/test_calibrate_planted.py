@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from exofric.calibrate import CachedModel, InflationData, calibrate, make_model
+from exofric.calibration import CachedModel, InflationData, calibrate, make_model
 
 P = np.linspace(0.04, 0.4, 10)
 TRUTH = (57.0, 5.3)

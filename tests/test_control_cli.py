@@ -13,7 +13,7 @@ import pytest
 from exofric import paper
 from exofric.cli import run
 from exofric.control import PlantParams
-from exofric.reproduce import ControlSetup, run_case
+from exofric.reproduction import ControlSetup, run_case
 
 CASE_KEYS = {"settling_time_s", "rise_time_s", "overshoot_pct", "steady_state_error_n",
              "final_friction_n", "final_pressure_mpa", "gains", "controller", "feedforward"}

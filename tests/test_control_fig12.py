@@ -14,7 +14,7 @@ import pytest
 
 from exofric import paper
 from exofric.control import PlantParams
-from exofric.reproduce import CompareResult, ControlSetup, compare
+from exofric.reproduction import CompareResult, ControlSetup, compare
 
 TARGET = 54.40
 

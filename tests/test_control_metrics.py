@@ -10,7 +10,7 @@ import pytest
 
 from exofric.control import PlantParams, itae, step_metrics
 from exofric.errors import InputError
-from exofric.reproduce import ControlSetup, run_case
+from exofric.reproduction import ControlSetup, run_case
 
 
 @pytest.mark.parametrize(

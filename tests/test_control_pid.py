@@ -8,7 +8,7 @@ import pytest
 
 from exofric.control import Controller, ModelFeedforward, PIDGains, setpoint_profile, simulate
 from exofric.errors import InputError
-from exofric.reproduce import ControlSetup
+from exofric.reproduction import ControlSetup
 
 DT = 0.01
 

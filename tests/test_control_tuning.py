@@ -10,7 +10,7 @@ import pytest
 
 from exofric.control import Controller, itae, itae_gains, rule_gains, simulate
 from exofric.errors import InputError
-from exofric.reproduce import ControlSetup
+from exofric.reproduction import ControlSetup
 
 K, TAU, THETA = 471.0, 0.8, 0.2
 

@@ -167,7 +167,7 @@ def test_read_friction_table_labels_and_synthetic_flag(tmp_path):
 
 
 def test_read_step_response_and_inflation_table(tmp_path):
-    from exofric.calibrate import InflationData
+    from exofric.calibration import InflationData
     from exofric.io import read_inflation_table, read_step_response
 
     rows = "\n".join(f"{0.1 * i:.1f},{min(i, 5) * 0.05:.2f},0.25" for i in range(10))

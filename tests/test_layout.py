@@ -21,8 +21,8 @@ import pytest
 import exofric
 
 SRC = Path(exofric.__file__).resolve().parent
-STAGES = ("paper", "material", "fe", "simulate", "calibrate", "friction", "control", "design",
-          "reproduce", "io", "plots", "report")
+STAGES = ("paper", "material", "fe", "simulate", "calibration", "friction", "control", "design",
+          "reproduction", "io", "plots", "report")
 #: single-module homes at the top level (no stage prefix, no split)
 TOP_MODULES = ("errors", "defaults", "geometry")
 

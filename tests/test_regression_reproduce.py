@@ -3,7 +3,7 @@
 Not independent references (those are in tests/test_reproduce.py: the paper's printed values,
 hand arithmetic, np.roots). They only catch unintended changes. Provenance: the shared
 ``exofric reproduce --fast --json`` run of tests/test_reproduce.py (``fast_report_dir``),
-stage 2 (``exofric.reproduce.stage_calibration`` on the fast 1 x 4 inflation mesh), on the
+stage 2 (``exofric.reproduction.stage_calibration`` on the fast 1 x 4 inflation mesh), on the
 working tree of commit 5b6499e: tube ID 4.966476 mm, Shore 62.568 (the default 2 x 6 mesh
 gives 4.9666 mm and 62.57, as documented in docs/paper-notes.md: 4.9666 +- 0.011 mm).
 Tolerances: 0.002 mm (the fast mesh is within 2e-4 mm of the default) and 0.05 Shore.

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from exofric.reproduce import Comparison, paper_checks, printed_decimals
+from exofric.reproduction import Comparison, paper_checks, printed_decimals
 
 
 def fast_report_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:

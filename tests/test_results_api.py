@@ -22,14 +22,14 @@ import pandas as pd
 import pytest
 
 from exofric import plots
-from exofric.calibrate import InflationData, calibrate
+from exofric.calibration import InflationData, calibrate
 from exofric.control import Controller, PIDGains, PlantParams, simulate
 from exofric.design import parse_sweep, run_sweep, search_designs
 from exofric.fe import MeshSpec
 from exofric.friction import MeasuredCurve, fit_gamma, paper_structures, predict
 from exofric.geometry import BASE
 from exofric.material import MooneyRivlin
-from exofric.reproduce import ControlSetup, compare, run_case
+from exofric.reproduction import ControlSetup, compare, run_case
 from exofric.simulate import inflate, squeeze
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "exofric"

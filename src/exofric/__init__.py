@@ -4,9 +4,9 @@ structures (Ma et al., Actuators 2021).
 The package reads as the paper's pipeline, one subpackage per stage:
 :mod:`~exofric.paper` (the paper as data) -> :mod:`~exofric.material` (Shore to Mooney-Rivlin),
 :mod:`~exofric.geometry` -> :mod:`~exofric.fe` (discretisation and solver) ->
-:mod:`~exofric.simulate` (inflate, squeeze) -> :mod:`~exofric.calibrate`,
+:mod:`~exofric.simulate` (inflate, squeeze) -> :mod:`~exofric.calibration`,
 :mod:`~exofric.friction` -> :mod:`~exofric.control` -> :mod:`~exofric.design`,
-:mod:`~exofric.reproduce` -> :mod:`~exofric.report` -> :mod:`~exofric.cli`, with files in
+:mod:`~exofric.reproduction` -> :mod:`~exofric.report` -> :mod:`~exofric.cli`, with files in
 :mod:`~exofric.io`, pictures in :mod:`~exofric.plots` and defaults in :mod:`~exofric.defaults`.
 
 The names a researcher reaches for first are importable from here; each has one home in its
@@ -32,9 +32,9 @@ from exofric._version import __version__
 # Lazy facade (SPEC 1 style): ``import exofric`` stays cheap (the CLI and every Dask worker
 # import it), and each name is loaded from its one home on first use.
 _HOME: dict[str, str] = {
-    "CalibrationResult": "exofric.calibrate",
-    "InflationData": "exofric.calibrate",
-    "calibrate": "exofric.calibrate",
+    "CalibrationResult": "exofric.calibration",
+    "InflationData": "exofric.calibration",
+    "calibrate": "exofric.calibration",
     "Controller": "exofric.control",
     "PIDGains": "exofric.control",
     "PlantParams": "exofric.control",
@@ -58,9 +58,9 @@ _HOME: dict[str, str] = {
     "Structure": "exofric.geometry",
     "MooneyRivlin": "exofric.material",
     "shore_to_modulus": "exofric.material",
-    "ReproduceConfig": "exofric.reproduce",
-    "ReproduceResult": "exofric.reproduce",
-    "reproduce": "exofric.reproduce",
+    "ReproduceConfig": "exofric.reproduction",
+    "ReproduceResult": "exofric.reproduction",
+    "reproduce": "exofric.reproduction",
     "InflationResult": "exofric.simulate",
     "SqueezeResult": "exofric.simulate",
     "inflate": "exofric.simulate",
@@ -68,7 +68,7 @@ _HOME: dict[str, str] = {
 }
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
-    from exofric.calibrate import CalibrationResult, InflationData, calibrate
+    from exofric.calibration import CalibrationResult, InflationData, calibrate
     from exofric.control import Controller, PIDGains, PlantParams
     from exofric.design import SweepSpec, parse_sweep, run_sweep, search_designs
     from exofric.errors import ConvergenceError, InputError
@@ -86,7 +86,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from exofric.geometry import BASE, Structure
     from exofric.material import MooneyRivlin, shore_to_modulus
-    from exofric.reproduce import ReproduceConfig, ReproduceResult, reproduce
+    from exofric.reproduction import ReproduceConfig, ReproduceResult, reproduce
     from exofric.simulate import InflationResult, SqueezeResult, inflate, squeeze
 
 

@@ -56,7 +56,7 @@ def register(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Identify Shore A hardness (and tube ID, mm) from inflation data. MPa, mm, %."""
-        from exofric.calibrate import InflationData, calibrate
+        from exofric.calibration import InflationData, calibrate
         from exofric.io import read_inflation_table
 
         lohi = parse_floats("--bracket", bracket)

@@ -18,7 +18,7 @@ from exofric.cli._common import JSON_OPTION, console, emit, kv_table, save_figur
 from exofric.errors import InputError
 
 if TYPE_CHECKING:
-    from exofric.reproduce import CaseResult, CompareResult, ControlSetup
+    from exofric.reproduction import CaseResult, CompareResult, ControlSetup
 
 _COMMON_HELP = "Units: N, MPa, s."
 
@@ -101,7 +101,7 @@ def _setup(target: float, structure: str, gamma: float | None, plant: str | None
     from exofric import paper
     from exofric.control import PlantParams
     from exofric.errors import check_range
-    from exofric.reproduce import ControlSetup
+    from exofric.reproduction import ControlSetup
 
     params = _plant_from_file(plant) if plant else {}
     if step_csv:
@@ -173,7 +173,7 @@ def register(app: typer.Typer) -> None:
         from dataclasses import replace
 
         from exofric.control import CONTROLLERS, PIDGains, itae_gains
-        from exofric.reproduce import run_case
+        from exofric.reproduction import run_case
 
         kind = controller.lower()
         if kind not in CONTROLLERS:
@@ -229,7 +229,7 @@ def register(app: typer.Typer) -> None:
         band: float = BAND, plot: str | None = PLOT, as_json: bool = JSON_OPTION,
     ) -> None:
         """The six cases of Fig 12 (PD, PI, PID; without/with the model) beside the paper."""
-        from exofric.reproduce import compare
+        from exofric.reproduction import compare
 
         setup = _setup(target_friction, structure, gamma, plant, step_csv, mismatch, tau_c,
                        ff_mode, antiwindup, dt, duration, band)

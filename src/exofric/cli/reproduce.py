@@ -35,7 +35,7 @@ def register(app: typer.Typer) -> None:
         from exofric.errors import InputError
         from exofric.io import jsonable
         from exofric.report import write_report
-        from exofric.reproduce import STAGES, ReproduceConfig, reproduce
+        from exofric.reproduction import STAGES, ReproduceConfig, reproduce
 
         if notes_dir is not None and not notes_dir.is_dir():
             raise InputError(f"--notes-dir {notes_dir}: not a directory")

@@ -11,7 +11,7 @@
 * :func:`rule_gains`, :func:`itae_gains` -- IMC/SIMC rule and ITAE optimisation under saturation.
 
 The paper's Fig 12 experiment (its plant, Eq 9 map and settling times) is in
-:mod:`exofric.reproduce`.
+:mod:`exofric.reproduction`.
 
 Units: friction N, pressure MPa, time s; gains kp MPa/N, ki MPa/(N s), kd MPa s/N.
 

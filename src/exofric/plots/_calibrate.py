@@ -14,8 +14,8 @@ import numpy as np
 from exofric.plots._common import finish, new_axes, new_figure
 
 if TYPE_CHECKING:
-    from exofric.calibrate import CalibrationResult
-    from exofric.reproduce import CalibrationStage
+    from exofric.calibration import CalibrationResult
+    from exofric.reproduction import CalibrationStage
 
 __all__ = ["plot_calibration", "plot_table1"]
 

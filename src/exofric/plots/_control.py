@@ -13,7 +13,7 @@ from exofric.plots._common import finish, new_axes, new_figure
 
 if TYPE_CHECKING:
     from exofric.control import SimulationResult
-    from exofric.reproduce import CaseResult
+    from exofric.reproduction import CaseResult
 
 __all__ = ["plot_simulation", "plot_control_cases"]
 
@@ -55,7 +55,7 @@ def plot_control_cases(
     Parameters
     ----------
     cases : sequence of CaseResult
-        From :func:`exofric.reproduce.run_case` or ``compare(...).cases``.
+        From :func:`exofric.reproduction.run_case` or ``compare(...).cases``.
     fig : matplotlib Figure, optional
         Empty figure to draw on (default a new one).
     title : str

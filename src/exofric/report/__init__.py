@@ -1,6 +1,6 @@
 """The reproduction report: figures (PNG), ``results.json`` and a self-contained ``report.html``.
 
-:func:`write_report` takes a :class:`~exofric.reproduce.ReproduceResult`, draws every figure,
+:func:`write_report` takes a :class:`~exofric.reproduction.ReproduceResult`, draws every figure,
 writes them as PNG, embeds them as base64 in ``report.html`` (no network needed; responsive and
 printable) and writes ``results.json`` with every number of the report, the stage wall times and
 the software versions. The paper's inconsistencies are read from the shipped paper notes.

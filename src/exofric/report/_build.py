@@ -1,6 +1,6 @@
 """The reproduction report: figures (PNG), ``results.json`` and a self-contained ``report.html``.
 
-:func:`write_report` takes a :class:`~exofric.reproduce.ReproduceResult`, draws every figure
+:func:`write_report` takes a :class:`~exofric.reproduction.ReproduceResult`, draws every figure
 (with :mod:`exofric.plots`), writes them as PNG, embeds them as base64 in ``report.html``
 (no network needed; responsive and printable, see :mod:`exofric.report`; the stylesheet
 :data:`REPORT_CSS` is in :mod:`exofric.report` and importable from here) and writes
@@ -40,7 +40,7 @@ from exofric.plots import (
     save,
 )
 from exofric.report._style import REPORT_CSS
-from exofric.reproduce import ReproduceResult
+from exofric.reproduction import ReproduceResult
 
 __all__ = ["FigureFile", "ReportFiles", "write_report", "find_notes_dir", "read_notes",
            "make_figures", "REPORT_CSS"]
@@ -224,7 +224,7 @@ def write_report(
     Parameters
     ----------
     result : ReproduceResult
-        Output of :func:`exofric.reproduce.reproduce`.
+        Output of :func:`exofric.reproduction.reproduce`.
     out_dir : str or Path
         Output directory (created).
     notes_dir : Path, optional

@@ -97,7 +97,7 @@ def _inconsistencies(d: dict[str, Any], notes: Sequence[tuple[str, str]]) -> str
         return out + "<p class=\"muted\">docs/paper-notes*.md not found.</p>"
     out += ("<p>The notes below give the arithmetic for every inconsistency found while "
             "building exofric (from <code>docs/paper-notes*.md</code>).</p>")
-    from exofric.reproduce import STAGES
+    from exofric.reproduction import STAGES
 
     seen = {k: 1 for k in ("glance", "synthetic", "inconsistencies", "run",
                            *(key for key, _ in STAGES))}
@@ -145,7 +145,7 @@ def render_html(data: dict[str, Any], figures: Sequence[Any],
     >>> render_html(jsonable(fast_result.to_dict()), [], [])[:15]
     '<!DOCTYPE html>'
     """
-    from exofric.reproduce import STAGES
+    from exofric.reproduction import STAGES
 
     times = {t["key"]: t["wall_time_s"] for t in data["stage_times"]}
     glance = [c for st, pre in _GLANCE if (c := _pick(data, st, pre)) is not None]

@@ -3,7 +3,7 @@
 Each ``_s_<stage>(data)`` renders the explanatory text and tables of one stage of
 ``exofric reproduce`` from the results dict that is also written to ``results.json``
 (``data["stages"][<stage>]``); :data:`_SECTIONS` maps the stage keys of
-:data:`exofric.reproduce.STAGES` to them. :mod:`exofric.report` assembles them, with
+:data:`exofric.reproduction.STAGES` to them. :mod:`exofric.report` assembles them, with
 each stage's comparison table and figures, into the page.
 
 Units: mm, N, MPa, s, Nm; differences in %.

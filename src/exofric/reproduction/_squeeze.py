@@ -6,8 +6,8 @@
   on that curve, and the gamma implied by the paper's one published measured point.
 
 Pure computation (no printing, no files); each stage returns a frozen result with
-``to_dict()`` and its :class:`~exofric.reproduce.Comparison` rows. These names are
-also importable from :mod:`exofric.reproduce`.
+``to_dict()`` and its :class:`~exofric.reproduction.Comparison` rows. These names are
+also importable from :mod:`exofric.reproduction`.
 
 Units: mm, N, MPa; errors and differences in %.
 """
@@ -24,7 +24,7 @@ from exofric.fe import MeshSpec
 from exofric.friction import GammaFit, RigConfig, RigRun, fit_gamma, simulate_rig
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
-from exofric.reproduce._compare import Comparison
+from exofric.reproduction._compare import Comparison
 from exofric.simulate import SqueezeResult, squeeze
 
 __all__ = ["ID_STEP_MM", "SqueezeStage", "GammaStage", "stage_squeeze", "stage_gamma"]

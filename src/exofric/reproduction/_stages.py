@@ -1,18 +1,18 @@
 """Stages 1-2 of ``exofric reproduce``: Table 2 (Eqs 3-6) and the calibration (Table 1, Fig 5b).
 
 Each ``stage_*`` function is a pure computation (no printing, no files) returning a frozen
-result with ``to_dict()``; :mod:`exofric.reproduce` runs them in order and times them.
+result with ``to_dict()``; :mod:`exofric.reproduction` runs them in order and times them.
 Every printed number of the paper that a stage checks becomes a
-:class:`~exofric.reproduce.Comparison` row (paper value, our value, difference).
+:class:`~exofric.reproduction.Comparison` row (paper value, our value, difference).
 Rows built on the virtual rig's output are flagged ``synthetic``: the paper's raw friction
 curves are not published.
 
 Stages here: 1 Table 2 (Eqs 3-6), 2 calibration (Table 1, Fig 5b). The other stages:
-3 base squeeze (Figs 6-7) and 4 gamma (Fig 4, Eq 7) in :mod:`exofric.reproduce`
+3 base squeeze (Figs 6-7) and 4 gamma (Fig 4, Eq 7) in :mod:`exofric.reproduction`
 (their names are also importable from here), 5 prediction and ANOVA and 8 torque in
-:mod:`exofric.reproduce`, 6 cubic fit and inverse and 7 control in
-:mod:`exofric.reproduce`; the pipeline itself is in :mod:`exofric.reproduce`.
-:class:`Comparison` and :func:`printed_decimals` (from :mod:`exofric.reproduce`) are
+:mod:`exofric.reproduction`, 6 cubic fit and inverse and 7 control in
+:mod:`exofric.reproduction`; the pipeline itself is in :mod:`exofric.reproduction`.
+:class:`Comparison` and :func:`printed_decimals` (from :mod:`exofric.reproduction`) are
 importable from here too.
 
 Units: mm, N, MPa, s, Nm; errors and differences in %.
@@ -27,12 +27,12 @@ from typing import Any
 import numpy as np
 
 from exofric import paper
-from exofric.calibrate import CalibrationResult, InflationData, calibrate, make_model, material_for
+from exofric.calibration import CalibrationResult, InflationData, calibrate, make_model, material_for
 from exofric.fe import MeshSpec
 from exofric.material import MooneyRivlin
-from exofric.reproduce._compare import Comparison, printed_decimals
-from exofric.reproduce._squeeze import ID_STEP_MM as ID_STEP_MM
-from exofric.reproduce._squeeze import GammaStage, SqueezeStage, stage_gamma, stage_squeeze
+from exofric.reproduction._compare import Comparison, printed_decimals
+from exofric.reproduction._squeeze import ID_STEP_MM as ID_STEP_MM
+from exofric.reproduction._squeeze import GammaStage, SqueezeStage, stage_gamma, stage_squeeze
 
 __all__ = [
     "Comparison",

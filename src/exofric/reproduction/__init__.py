@@ -18,15 +18,15 @@ Units: mm, N, MPa, s, Nm; differences in %.
 
 Examples
 --------
->>> from exofric.reproduce import ControlSetup, run_case
+>>> from exofric.reproduction import ControlSetup, run_case
 >>> r = run_case(ControlSetup.default(), "pi", feedforward=True)
 >>> round(r.metrics.steady_state_error, 3) + 0.0
 0.0
 """
 
-from exofric.reproduce._compare import Comparison, paper_checks, printed_decimals
-from exofric.reproduce._control import ControlStage, CubicStage, stage_control, stage_cubic
-from exofric.reproduce._fig12 import (
+from exofric.reproduction._compare import Comparison, paper_checks, printed_decimals
+from exofric.reproduction._control import ControlStage, CubicStage, stage_control, stage_cubic
+from exofric.reproduction._fig12 import (
     PAPER_SETTLING_S,
     CaseResult,
     CompareResult,
@@ -35,7 +35,7 @@ from exofric.reproduce._fig12 import (
     compare,
     run_case,
 )
-from exofric.reproduce._pipeline import (
+from exofric.reproduction._pipeline import (
     FAST_INFLATION_MESH,
     FAST_SQUEEZE_MESH,
     STAGES,
@@ -45,15 +45,15 @@ from exofric.reproduce._pipeline import (
     reproduce,
     software_versions,
 )
-from exofric.reproduce._predict import PredictionStage, TorqueStage, stage_prediction, stage_torque
-from exofric.reproduce._squeeze import (
+from exofric.reproduction._predict import PredictionStage, TorqueStage, stage_prediction, stage_torque
+from exofric.reproduction._squeeze import (
     ID_STEP_MM,
     GammaStage,
     SqueezeStage,
     stage_gamma,
     stage_squeeze,
 )
-from exofric.reproduce._stages import CalibrationStage, Table2Stage, stage_calibration, stage_table2
+from exofric.reproduction._stages import CalibrationStage, Table2Stage, stage_calibration, stage_table2
 
 __all__ = [
     "CalibrationStage", "CaseResult", "compare", "CompareResult", "Comparison", "ControlSetup",

@@ -7,8 +7,8 @@
   feedforward, on Eq 9 and on our test-5 FE curve.
 
 Pure computation (no printing, no files); each stage returns a frozen result with
-``to_dict()`` and its :class:`~exofric.reproduce.Comparison` rows. These names are
-also importable from :mod:`exofric.reproduce`.
+``to_dict()`` and its :class:`~exofric.reproduction.Comparison` rows. These names are
+also importable from :mod:`exofric.reproduction`.
 
 Units: N, MPa, s; differences in %.
 """
@@ -23,8 +23,8 @@ import numpy as np
 from exofric import paper
 from exofric.control import CurveFrictionMap
 from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction
-from exofric.reproduce._compare import Comparison
-from exofric.reproduce._fig12 import CompareResult, ControlSetup, compare
+from exofric.reproduction._compare import Comparison
+from exofric.reproduction._fig12 import CompareResult, ControlSetup, compare
 from exofric.simulate import SqueezeResult
 
 __all__ = ["CubicStage", "ControlStage", "stage_cubic", "stage_control"]

@@ -284,7 +284,7 @@ class CalibrationResult:
 
     Examples
     --------
-    >>> from exofric.calibrate import calibrate
+    >>> from exofric.calibration import calibrate
     >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97, model="paper-table1")
     >>> r.method, r.shore, [t.shore for t in r.history]
     ('bisection', 62.5, [60.0, 65.0, 70.0, 62.5])
@@ -376,7 +376,7 @@ class CalibrationResult:
 
         Examples
         --------
-        >>> from exofric.calibrate import InflationData, calibrate
+        >>> from exofric.calibration import InflationData, calibrate
         >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97,
         ...               model="paper-table1")
         >>> r.to_frame()[["trial", "shore"]].values.tolist()   # the paper's trial order
@@ -412,7 +412,7 @@ class CalibrationResult:
 
         Examples
         --------
-        >>> from exofric.calibrate import InflationData, calibrate
+        >>> from exofric.calibration import InflationData, calibrate
         >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97,
         ...               model="paper-table1")
         >>> ax = r.plot()

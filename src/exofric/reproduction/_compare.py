@@ -7,7 +7,7 @@
 * :func:`paper_checks` -- printed numbers against the same quantity recomputed from the
   paper's own equations and numbers (no FE, no rig).
 
-Every stage of ``exofric reproduce`` (:mod:`exofric.reproduce`) reports its checks as
+Every stage of ``exofric reproduce`` (:mod:`exofric.reproduction`) reports its checks as
 :class:`Comparison` rows. Pure computation: no printing, no files.
 
 Units: per row (mm, N, MPa, s, Nm, or '' for unitless); differences in %.

@@ -10,7 +10,7 @@ Units: friction N, pressure MPa, time s.
 
 Examples
 --------
->>> from exofric.reproduce import ControlSetup, run_case
+>>> from exofric.reproduction import ControlSetup, run_case
 >>> r = run_case(ControlSetup.default(), "pi", feedforward=True)
 >>> round(r.metrics.steady_state_error, 3) + 0.0
 0.0

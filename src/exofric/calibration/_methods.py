@@ -1,8 +1,8 @@
 """Calibration methods: bisection (the paper's), bounded minimisation, joint least squares.
 
-Each method takes validated :class:`~exofric.calibrate.InflationData`, a
+Each method takes validated :class:`~exofric.calibration.InflationData`, a
 (memoised) forward model ``model(shore, tube_id_mm, pressures_mpa) -> OD (mm)``
-and returns a :class:`~exofric.calibrate.CalibrationResult`.
+and returns a :class:`~exofric.calibration.CalibrationResult`.
 
 * :func:`bisection`: the paper's §3.3 procedure. The trial hardnesses are the
   bracket ends and its midpoint first (the paper's 60, 65, 70), then midpoints of
@@ -30,7 +30,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
-from exofric.calibrate._result import InflationData, Trial, relative_errors_pct
+from exofric.calibration._result import InflationData, Trial, relative_errors_pct
 from exofric.errors import ConvergenceError, InputError
 
 __all__ = ["Evaluator", "bisection", "bounded", "joint", "known_hardness", "Fit"]
@@ -51,7 +51,7 @@ class Evaluator:
 
     Examples
     --------
-    >>> from exofric.calibrate import paper_table1_model
+    >>> from exofric.calibration import paper_table1_model
     >>> ev = Evaluator(paper_table1_model(), InflationData.paper_test())
     >>> t = ev.trial(62.5, 4.97)
     >>> round(t.average_error_pct, 2), len(ev.history)
@@ -171,7 +171,7 @@ def bisection(
 
     Examples
     --------
-    >>> from exofric.calibrate import paper_table1_model
+    >>> from exofric.calibration import paper_table1_model
     >>> ev = Evaluator(paper_table1_model(), InflationData.paper_test())
     >>> t, ok, _ = bisection(ev, 5.0)
     >>> [h.shore for h in ev.history], t.shore
@@ -258,7 +258,7 @@ def bounded(
 
     Examples
     --------
-    >>> from exofric.calibrate import paper_table1_model
+    >>> from exofric.calibration import paper_table1_model
     >>> ev = Evaluator(paper_table1_model(), InflationData.paper_test())
     >>> t, ok, notes = bounded(ev, 4.97)
     >>> round(t.shore, 1), ok

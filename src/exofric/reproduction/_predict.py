@@ -6,8 +6,8 @@
   the knee's 0-40 Nm.
 
 Pure computation (no printing, no files); each stage returns a frozen result with
-``to_dict()`` and its :class:`~exofric.reproduce.Comparison` rows. These names are
-also importable from :mod:`exofric.reproduce`.
+``to_dict()`` and its :class:`~exofric.reproduction.Comparison` rows. These names are
+also importable from :mod:`exofric.reproduction`.
 
 Units: mm, N, MPa, m, Nm; errors and differences in %.
 """
@@ -34,12 +34,12 @@ from exofric.friction import (
 )
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
-from exofric.reproduce._compare import Comparison
-from exofric.reproduce._squeeze import GammaStage
+from exofric.reproduction._compare import Comparison
+from exofric.reproduction._squeeze import GammaStage
 from exofric.simulate import SqueezeResult
 
 if TYPE_CHECKING:
-    from exofric.reproduce._pipeline import ReproduceConfig
+    from exofric.reproduction._pipeline import ReproduceConfig
 
 __all__ = ["PredictionStage", "TorqueStage", "stage_prediction", "stage_torque"]
 

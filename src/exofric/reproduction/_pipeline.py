@@ -3,10 +3,10 @@
 :func:`reproduce` runs eight stages in order and returns a frozen :class:`ReproduceResult`;
 :mod:`exofric.report` turns it into ``report.html``, figures and ``results.json``. Pure
 computation: no printing, no files. This module holds the configuration, the pipeline and its
-result; the stages live in :mod:`exofric.reproduce` (1-2),
-:mod:`exofric.reproduce` (3-4), :mod:`exofric.reproduce` (5, 8) and
-:mod:`exofric.reproduce` (6-7), the comparison rows and :func:`paper_checks` in
-:mod:`exofric.reproduce`; the stage names of 5-8 and :func:`paper_checks` are
+result; the stages live in :mod:`exofric.reproduction` (1-2),
+:mod:`exofric.reproduction` (3-4), :mod:`exofric.reproduction` (5, 8) and
+:mod:`exofric.reproduction` (6-7), the comparison rows and :func:`paper_checks` in
+:mod:`exofric.reproduction`; the stage names of 5-8 and :func:`paper_checks` are
 importable from here too.
 
 1. Table 2 from Eqs 3-6 (with the printed C10 slip).
@@ -43,16 +43,16 @@ from exofric.fe import MeshSpec
 from exofric.friction import RigConfig
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
-from exofric.reproduce._compare import Comparison, paper_checks
-from exofric.reproduce._control import ControlStage, CubicStage, stage_control, stage_cubic
-from exofric.reproduce._predict import (
+from exofric.reproduction._compare import Comparison, paper_checks
+from exofric.reproduction._control import ControlStage, CubicStage, stage_control, stage_cubic
+from exofric.reproduction._predict import (
     PredictionStage,
     TorqueStage,
     _rig_points,
     stage_prediction,
     stage_torque,
 )
-from exofric.reproduce._stages import (
+from exofric.reproduction._stages import (
     CalibrationStage,
     GammaStage,
     SqueezeStage,

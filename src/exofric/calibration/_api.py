@@ -6,8 +6,8 @@ import time
 
 import numpy as np
 
-from exofric.calibrate._methods import Evaluator, bisection, bounded, joint, known_hardness
-from exofric.calibrate._models import (
+from exofric.calibration._methods import Evaluator, bisection, bounded, joint, known_hardness
+from exofric.calibration._models import (
     DEFAULT_MODEL,
     C10Convention,
     CachedModel,
@@ -15,7 +15,7 @@ from exofric.calibrate._models import (
     make_model,
     material_for,
 )
-from exofric.calibrate._result import CalibrationResult, InflationData
+from exofric.calibration._result import CalibrationResult, InflationData
 from exofric.errors import InputError, check_positive, check_range
 
 __all__ = ["METHODS", "calibrate"]

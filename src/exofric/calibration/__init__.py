@@ -7,23 +7,23 @@ fell below 0.5% (60 -> 1.47%, 65 -> 0.87%, 70 -> 2.47%, 62.5 -> 0.46%). The tube
 inner diameter is not printed, so exofric can identify it too.
 
 :func:`calibrate` is the entry point; the methods live in
-:mod:`exofric.calibrate`, the forward models (FE, 1D, the paper's own
-columns) in :mod:`exofric.calibrate`, data and results in
-:mod:`exofric.calibrate`.
+:mod:`exofric.calibration`, the forward models (FE, 1D, the paper's own
+columns) in :mod:`exofric.calibration`, data and results in
+:mod:`exofric.calibration`.
 
 Units: mm, MPa, errors in %, time in s.
 
 Examples
 --------
->>> from exofric.calibrate import InflationData, calibrate
+>>> from exofric.calibration import InflationData, calibrate
 >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97, model="paper-table1")
 >>> [t.shore for t in r.history], r.shore, round(r.average_error_pct, 2)
 ([60.0, 65.0, 70.0, 62.5], 62.5, 0.46)
 """
 
-from exofric.calibrate._api import METHODS, calibrate
-from exofric.calibrate._methods import Evaluator, Fit, bisection, bounded, joint, known_hardness
-from exofric.calibrate._models import (
+from exofric.calibration._api import METHODS, calibrate
+from exofric.calibration._methods import Evaluator, Fit, bisection, bounded, joint, known_hardness
+from exofric.calibration._models import (
     DEFAULT_MODEL,
     MODEL_KINDS,
     C10Convention,
@@ -33,7 +33,7 @@ from exofric.calibrate._models import (
     material_for,
     paper_table1_model,
 )
-from exofric.calibrate._result import CalibrationResult, InflationData, Trial, relative_errors_pct
+from exofric.calibration._result import CalibrationResult, InflationData, Trial, relative_errors_pct
 
 __all__ = [
     "bisection", "bounded", "C10Convention", "CachedModel", "calibrate", "CalibrationResult",
