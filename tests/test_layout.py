@@ -39,7 +39,7 @@ def test_top_level_holds_only_stage_packages_and_single_modules() -> None:
 @pytest.mark.parametrize("pkg", STAGES)
 def test_stage_package_has_curated_all(pkg: str) -> None:
     mod = importlib.import_module(f"exofric.{pkg}")
-    assert mod.__doc__ and "Examples" in mod.__doc__, f"exofric.{pkg} needs a docstring with Examples"
+    assert mod.__doc__ and "Examples" in mod.__doc__, f"exofric.{pkg}: docstring with Examples"
     names = getattr(mod, "__all__", None)
     assert names, f"exofric.{pkg} has no __all__"
     assert len(names) == len(set(names)), f"duplicate names in exofric.{pkg}.__all__"
@@ -71,7 +71,7 @@ def test_top_level_names_are_their_homes_objects() -> None:
             continue
         assert n in homes, f"exofric.{n} has no home subpackage"
         home = importlib.import_module(f"exofric.{homes[n][0]}")
-        assert getattr(exofric, n) is getattr(home, n), f"exofric.{n} is not exofric.{homes[n][0]}.{n}"
+        assert getattr(exofric, n) is getattr(home, n), f"exofric.{n} is not its home's {n}"
 
 
 def test_import_exofric_is_lazy() -> None:

@@ -54,7 +54,18 @@ class IdentifiedPlant:
     stderr_time_constant_s, stderr_delay_s, stderr_gain : float
         Standard errors (s, s, MPa/MPa; NaN if not estimable).
     n_samples : int
+        Number of samples fitted.
     gain_assumed : bool
+        True when no command was recorded and the gain was taken as 1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(-0.5, 4.0, 0.01)
+    >>> p = 0.05 + 0.3 * (1 - np.exp(-np.clip(t - 0.1, 0, None) / 0.5))
+    >>> r = identify_step(t, p)
+    >>> round(r.time_constant_s, 4), round(r.delay_s, 4), round(r.offset_mpa, 4), r.gain_assumed
+    (0.5, 0.1, 0.05, True)
     """
 
     gain: float
@@ -71,7 +82,26 @@ class IdentifiedPlant:
     gain_assumed: bool
 
     def to_plant(self, base: PlantParams | None = None) -> PlantParams:
-        """A :class:`PlantParams` with this gain, lag and delay (other fields from ``base``)."""
+        """A :class:`PlantParams` with this gain, lag and delay (other fields from ``base``).
+
+        Parameters
+        ----------
+        base : PlantParams or None
+            Supplies the other fields (p_max_mpa in MPa, noise_n in N, PWM period in s, ...);
+            default ``PlantParams()``.
+
+        Returns
+        -------
+        PlantParams
+
+        Examples
+        --------
+        >>> ip = IdentifiedPlant(1.0, 0.5, 0.1, 0.0, 0.3, 1.0, 0.0, 0.0, 0.0, float("nan"),
+        ...                      100, True)
+        >>> pp = ip.to_plant(PlantParams(p_max_mpa=0.8))
+        >>> pp.time_constant_s, pp.delay_s, pp.p_max_mpa
+        (0.5, 0.1, 0.8)
+        """
         from dataclasses import replace
 
         return replace(base or PlantParams(), gain=self.gain,
@@ -113,6 +143,29 @@ def fopdt_response(
     offset_mpa: float = 0.0,
 ) -> NDArray[np.float64]:
     """Exact FOPDT response (MPa) to a zero-order-hold command sampled at ``time_s``.
+
+    The plant is at rest under ``command_mpa[0]`` before the first sample; each later command
+    holds from its sample time on.
+
+    Parameters
+    ----------
+    time_s : array_like
+        Sample times in s.
+    command_mpa : array_like
+        Pressure command in MPa at each sample (zero-order hold).
+    gain : float
+        Static gain K in MPa/MPa.
+    time_constant_s : float
+        Lag tau in s (> 0).
+    delay_s : float
+        Dead time theta in s (>= 0).
+    offset_mpa : float
+        Pressure offset b in MPa added to the response.
+
+    Returns
+    -------
+    ndarray
+        Pressure in MPa at each sample time.
 
     Examples
     --------

@@ -33,7 +33,32 @@ class StepMetrics:
     """Metrics of one step response (s, %, and the response's unit, N for friction).
 
     ``None`` marks a quantity the response never reached (e.g. no settling into the band of the
-    target when a steady-state error remains).
+    target when a steady-state error remains). Built by :func:`step_metrics`.
+
+    Attributes
+    ----------
+    rise_time_s : float or None
+        10-90 % rise time in s.
+    settling_time_s : float or None
+        Time in s from the first sample to entering the band for good; None if never.
+    overshoot_pct : float
+        Largest excursion beyond the reference, in % of the step (0 if none).
+    steady_state_error : float
+        reference - final value, in the response's unit (N for friction).
+    final_value : float
+        Mean of the response over the final window, in the response's unit (N).
+    reference : float
+        The target, in the response's unit (N).
+    band : float
+        Settling band as a fraction of the step (0.02 = 2 %).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 10.0, 1001)
+    >>> m = step_metrics(t, 50.0 * (1.0 - np.exp(-t)), 50.0)
+    >>> round(m.steady_state_error, 2), m.overshoot_pct, m.to_dict()["settling_band_pct"]
+    (0.0, 0.0, 2.0)
     """
 
     rise_time_s: float | None
@@ -136,6 +161,18 @@ def itae(t: ArrayLike, error: ArrayLike) -> float:
     """Integral of time-weighted absolute error, sum t |e| dt (trapezoid), in (unit) s^2.
 
     Time is measured from ``t[0]``.
+
+    Parameters
+    ----------
+    t : array_like
+        Sample times in s, strictly increasing.
+    error : array_like
+        Error samples (e.g. set-point - friction, in N), one per time.
+
+    Returns
+    -------
+    float
+        ITAE in the error's unit times s^2 (N s^2 for friction).
 
     Examples
     --------

@@ -161,13 +161,49 @@ class ModelFeedforward:
         return self._model is not None
 
     def reset(self, command_mpa: float = 0.0) -> None:
-        """Restart the pressure model at rest under a held command ``command_mpa`` (MPa)."""
+        """Restart the pressure model at rest under a held command ``command_mpa`` (MPa).
+
+        Parameters
+        ----------
+        command_mpa : float
+            Command in MPa held so far; the model pressure starts at clip(gain x command, 0,
+            p_max) MPa (no effect on static feedforward).
+
+        Examples
+        --------
+        >>> ff = ModelFeedforward(lambda f: f / 100.0, lambda p: 100.0 * p, time_constant_s=1.0)
+        >>> ff.reset(0.3)
+        >>> ff.update(30.0, 0.1)        # model already at 0.3 MPa: expects 30 N
+        (0.3, 30.0)
+        """
         m = self._model
         self._plant = None if m is None else PressurePlant(
             m, min(max(m.gain * command_mpa, 0.0), m.p_max_mpa))
 
     def update(self, setpoint: float, dt: float) -> tuple[float, float]:
-        """Feedforward command (MPa) and the reference for the feedback (N) for this sample."""
+        """Feedforward command (MPa) and the reference for the feedback (N) for this sample.
+
+        The inverse model is evaluated only when the set-point changes; with 2-DOF the
+        pressure model is then advanced by ``dt``.
+
+        Parameters
+        ----------
+        setpoint : float
+            Friction set-point r in N.
+        dt : float
+            Sample time in s (> 0).
+
+        Returns
+        -------
+        (float, float)
+            u_ff in MPa, and the feedback reference in N: r itself (static), or the friction
+            r_m the model expects at this sample (2-DOF).
+
+        Examples
+        --------
+        >>> ModelFeedforward(lambda f: f / 100.0).update(50.0, 0.01)    # static
+        (0.5, 50.0)
+        """
         if setpoint != self._r:
             self._u = float(self.pressure_for_friction(setpoint))
             self._r = setpoint
@@ -264,6 +300,19 @@ class Controller:
 
         With integral action the integral absorbs the difference; without it (PD) the bias
         does (the PD's manual reset).
+
+        Parameters
+        ----------
+        output : float or None
+            The command in MPa currently applied (e.g. in manual mode), returned by the next
+            :meth:`step`; None to start from a zero state.
+
+        Examples
+        --------
+        >>> c = Controller(PIDGains(kp=0.002, ki=0.004))
+        >>> c.reset(output=0.3)
+        >>> round(c.step(54.4, 50.0, 0.01), 6)      # bumpless: the held 0.3 MPa
+        0.3
         """
         self.integral_mpa = 0.0
         self.derivative_mpa = 0.0
@@ -279,10 +328,32 @@ class Controller:
     def step(self, setpoint: float, measurement: float, dt: float) -> float:
         """One control sample: friction set-point and measurement (N), dt (s) -> command (MPa).
 
+        Parameters
+        ----------
+        setpoint : float
+            Friction set-point r in N.
+        measurement : float
+            Measured friction y in N.
+        dt : float
+            Time since the previous call in s (> 0; the measured elapsed time).
+
+        Returns
+        -------
+        float
+            Pressure command in MPa, within [u_min, u_max].
+
         Raises
         ------
         InputError
             Non-finite set-point/measurement or dt <= 0.
+
+        Examples
+        --------
+        >>> c = Controller(PIDGains(kp=0.002), u_max=0.6)
+        >>> round(c.step(54.4, 4.4, 0.01), 6)      # 0.002 MPa/N x 50 N
+        0.1
+        >>> c.step(1000.0, 0.0, 0.01)             # saturated at u_max
+        0.6
         """
         if not (math.isfinite(setpoint) and math.isfinite(measurement)):
             raise InputError(f"setpoint and measurement must be finite (N), got {setpoint}, "

@@ -116,6 +116,21 @@ class PlantParams:
         """Build from a dict (e.g. the ``[plant]`` table of a plant TOML file).
 
         Unknown keys raise :class:`InputError` naming them and the known keys.
+
+        Parameters
+        ----------
+        data : mapping
+            Field name -> value, keys as the fields (``time_constant_s`` in s,
+            ``p_max_mpa`` in MPa, ...); missing keys take their defaults.
+
+        Returns
+        -------
+        PlantParams
+
+        Examples
+        --------
+        >>> PlantParams.from_mapping({"time_constant_s": 0.5, "delay_s": 0.1}).delay_s
+        0.1
         """
         known = {f.name for f in fields(cls)}
         extra = sorted(set(data) - known)
@@ -168,6 +183,25 @@ class PressurePlant:
         """Hold ``command_mpa`` (MPa) for ``dt`` s; return the tube pressure (MPa) at the end.
 
         NaN commands raise :class:`InputError`; the command is saturated physically.
+
+        Parameters
+        ----------
+        command_mpa : float
+            Pressure command in MPa, held constant over the step (zero-order hold); the valve
+            input is clip(gain x command, 0, p_max).
+        dt : float
+            Step length in s (> 0).
+
+        Returns
+        -------
+        float
+            Tube pressure in MPa at the end of the step.
+
+        Examples
+        --------
+        >>> pl = PressurePlant(PlantParams(time_constant_s=1.0, delay_s=0.0))
+        >>> round(pl.advance(5.0, 1.0), 4)          # saturated at p_max = 0.6 MPa
+        0.3793
         """
         if not math.isfinite(command_mpa):
             raise InputError(f"pressure command must be a finite number in MPa, got {command_mpa}")
@@ -272,11 +306,45 @@ class CubicFrictionMap:
         """Pressure (MPa) inside the fit range giving friction ``friction_n`` (N).
 
         Raises :class:`InputError` outside the friction range covered by the fit.
+
+        Parameters
+        ----------
+        friction_n : float
+            Target friction in N, reachable over the cubic's fitted pressure range.
+
+        Returns
+        -------
+        float
+            Pressure in MPa.
+
+        Examples
+        --------
+        >>> from exofric.friction import CubicFit
+        >>> g = CubicFrictionMap(CubicFit((0.0, 0.0, 100.0, 0.0), 0.2, 0.6), 0.5)
+        >>> round(g.inverse(15.0), 12)
+        0.3
         """
         return pressure_for_friction(friction_n, self.cubic, FrictionModel(self.gamma * self.scale))
 
     def scaled(self, factor: float) -> CubicFrictionMap:
-        """The same map multiplied by ``factor`` (true plant = model x (1 + mismatch))."""
+        """The same map multiplied by ``factor`` (true plant = model x (1 + mismatch)).
+
+        Parameters
+        ----------
+        factor : float
+            Multiplier (> 0, unitless), e.g. 1 + mismatch.
+
+        Returns
+        -------
+        CubicFrictionMap
+
+        Examples
+        --------
+        >>> from exofric.friction import CubicFit
+        >>> g = CubicFrictionMap(CubicFit((0.0, 0.0, 100.0, 0.0), 0.2, 0.6), 0.5)
+        >>> round(g.scaled(1.2)(0.4), 9)
+        24.0
+        """
         return CubicFrictionMap(self.cubic, self.gamma, self.scale * factor)
 
     def to_dict(self) -> dict[str, Any]:
@@ -339,12 +407,44 @@ class CurveFrictionMap:
         return float(f) if scalar else f
 
     def inverse(self, friction_n: float) -> float:
-        """Pressure (MPa) on the curve giving friction ``friction_n`` (N); InputError outside."""
+        """Pressure (MPa) on the curve giving friction ``friction_n`` (N); InputError outside.
+
+        Parameters
+        ----------
+        friction_n : float
+            Target friction in N, inside the range the given points reach.
+
+        Returns
+        -------
+        float
+            Pressure in MPa.
+
+        Examples
+        --------
+        >>> g = CurveFrictionMap((0.2, 0.4), (20.0, 60.0), 0.5)
+        >>> round(g.inverse(20.0), 12)
+        0.3
+        """
         inv: CurveInverse = self._inverse  # type: ignore[attr-defined]
         return inv.pressure_for_friction(friction_n, FrictionModel(self.gamma * self.scale))
 
     def scaled(self, factor: float) -> CurveFrictionMap:
-        """The same map multiplied by ``factor``."""
+        """The same map multiplied by ``factor``.
+
+        Parameters
+        ----------
+        factor : float
+            Multiplier (> 0, unitless), e.g. 1 + mismatch.
+
+        Returns
+        -------
+        CurveFrictionMap
+
+        Examples
+        --------
+        >>> CurveFrictionMap((0.2, 0.4), (20.0, 60.0), 0.5).scaled(2.0)(0.4)
+        60.0
+        """
         return CurveFrictionMap(self.pressure_mpa, self.squeeze_force_n, self.gamma,
                                 self.scale * factor)
 
@@ -357,6 +457,20 @@ class CurveFrictionMap:
 
 def local_slope(friction_of_pressure: FrictionFn, pressure_mpa: float, h: float = 1e-4) -> float:
     """dF/dP in N/MPa at ``pressure_mpa`` by a central difference (step ``h`` MPa).
+
+    Parameters
+    ----------
+    friction_of_pressure : callable
+        Friction map F(P): pressure in MPa -> friction in N.
+    pressure_mpa : float
+        Operating pressure in MPa.
+    h : float
+        Difference step in MPa; the lower point is clipped at 0 MPa (one-sided there).
+
+    Returns
+    -------
+    float
+        Slope in N/MPa.
 
     Examples
     --------

@@ -49,6 +49,14 @@ class SimulationResult:
         Tube pressure in MPa.
     dt_s : float
         Sample time in s.
+
+    Examples
+    --------
+    >>> from exofric.control import Controller, PIDGains, PlantParams
+    >>> sim = simulate(Controller(PIDGains(0.002, 0.003)), PlantParams(), lambda p: 200.0 * p,
+    ...                40.0, duration_s=2.0, dt=0.01)
+    >>> sim.time_s.size, sim.dt_s, float(sim.pressure_mpa[0]), float(sim.command_mpa[0])
+    (201, 0.01, 0.0, 0.08)
     """
 
     time_s: NDArray[np.float64]
@@ -133,6 +141,18 @@ def setpoint_profile(
     steps: list[tuple[float, float]],
 ) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """Piecewise-constant set-point from ``[(t_start_s, value_n), ...]`` (vectorised).
+
+    Parameters
+    ----------
+    steps : list of (float, float)
+        (start time in s, set-point in N) pairs, start times strictly increasing; before the
+        first start time the first value holds.
+
+    Returns
+    -------
+    callable
+        ``f(t_s) -> setpoint_n``: array of times in s to array of set-points in N (as the
+        ``setpoint_n`` of :func:`simulate`).
 
     Examples
     --------

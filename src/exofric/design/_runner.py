@@ -59,6 +59,35 @@ class SweepSummary:
     ``designs`` = ``computed`` + ``cached`` + ``skipped``; ``computed`` counts the solves run
     now (successful or not), ``cached`` the designs found finished in ``out``, ``failed``
     the designs whose solve failed (now or cached).
+
+    Attributes
+    ----------
+    designs : int
+        Designs in the sweep.
+    computed : int
+        Solves run by this call (successful or failed).
+    cached : int
+        Designs found finished in ``out`` and not solved again.
+    skipped : int
+        Impossible designs (never solved).
+    failed : int
+        Designs whose solve failed, now or in a cached run.
+    out : str
+        The result directory.
+    wall_time_s : float
+        Wall time of the call (s).
+    scheduler : str
+        ``"serial"``, the LocalCluster description or the scheduler address.
+    workers : int
+        Dask workers used (1 when serial, 0 when nothing was solved).
+    run_id : str
+        Random id of this call, stored in its rows.
+
+    Examples
+    --------
+    >>> s = SweepSummary(3, 1, 1, 1, 0, "out", 12.5, "serial", 1, "0123456789ab")
+    >>> s.computed + s.cached + s.skipped == s.designs, s.to_dict()["wall_time_s"]
+    (True, 12.5)
     """
 
     designs: int
@@ -82,7 +111,27 @@ class SweepSummary:
 
 @dataclass(frozen=True)
 class SweepRun:
-    """Summary and rows (one per design and pressure) of a sweep."""
+    """Summary and rows (one per design and pressure) of a sweep.
+
+    Attributes
+    ----------
+    summary : SweepSummary
+        What the run did (counts, directory, wall time in s, scheduler).
+    frame : pandas.DataFrame
+        The rows, one per design and pressure (one row for a skipped or failed design);
+        columns of :data:`exofric.design.SCHEMA` (mm, MPa, N, N/mm, Nm, m, %, s).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> spec = parse_sweep({"pressures_mpa": [0.6], "grid": {"wire_mm": [1.6, 2.0]},
+    ...                     "solver": {"n_radial": 1, "n_circ": 12}})   # coarse mesh
+    >>> run = run_sweep(spec, tempfile.mkdtemp(), serial=True)
+    >>> run.summary.computed, run.summary.skipped, list(run.frame["status"])
+    (1, 1, ['ok', 'skipped'])
+    >>> run.to_dict()["skipped_designs"][0]["name"]
+    'd2=2'
+    """
 
     summary: SweepSummary
     frame: pd.DataFrame = field(repr=False)
@@ -398,6 +447,22 @@ def sweep(
     ``cached``, ``skipped``, ``failed``, ``out``, ``wall_time_s``) is in
     ``frame.attrs["summary"]``. Columns: see :data:`exofric.design.SCHEMA`
     (mm, MPa, N, N/mm, Nm, m, %, s).
+
+    Parameters
+    ----------
+    config : str, Path, mapping or SweepSpec
+        Sweep TOML file (:func:`exofric.design.load_sweep`), its parsed content
+        (:func:`parse_sweep`) or a parsed spec.
+    out : str or Path
+        Result directory (Parquet dataset), reused as the cache.
+    **kwargs
+        Keyword arguments of :func:`run_sweep` (``workers``, ``scheduler``, ``serial``,
+        ``retry_failed``, ``progress``, ``solve_fn``, ``timeout_s`` in s).
+
+    Returns
+    -------
+    pandas.DataFrame
+        :attr:`SweepRun.frame`, with the summary in ``attrs["summary"]``.
 
     Examples
     --------

@@ -58,9 +58,37 @@ class DesignSearch:
 
     Attributes
     ----------
+    target_torque_nm : float
+        Required joint torque T* (Nm).
+    arm_radius_m : float
+        Lever arm R (m).
+    pmax_mpa : float
+        Highest allowed pressure (MPa).
+    gamma : float
+        Friction coefficient of F = gamma N + F0 (unitless).
+    f0_n : float
+        Friction offset F0 (N).
+    objective : str
+        Ranking: ``'pressure'`` (least pressure reaching T*) or ``'margin'`` (largest
+        torque margin).
+    validated_only : bool
+        Whether :attr:`ranked` keeps only designs inside the validated region.
     table : DataFrame
         One row per solved design (columns of :data:`_CANDIDATE_COLS` plus
         ``reaches_target``), reaching designs first in objective order.
+
+    Examples
+    --------
+    >>> p = [0.2, 0.4, 0.6]
+    >>> rows = pd.DataFrame({"key": ["a"] * 3 + ["b"] * 3, "design_index": [0] * 3 + [1] * 3,
+    ...     "name": ["a"] * 3 + ["b"] * 3, "family": "", "status": "ok",
+    ...     "pressure_mpa": p + p, "squeeze_force_n": [200.0, 400.0, 600.0, 50, 100, 150],
+    ...     "hole_mm": 10.0, "tube_od_mm": 8.3, "tube_id_mm": 4.97, "wire_mm": 1.6,
+    ...     "length_mm": 116.0, "shore": 62.5, "deviation_pct": 0.0,
+    ...     "in_validated_region": True, "contact_onset_pressure_mpa": 0.0})
+    >>> s = search_designs(rows, 40.0, 0.1, 0.6, gamma=1.0)    # 40 Nm at 0.1 m: F = 400 N
+    >>> list(s.ranked["name"]), list(s.closest["name"]), round(s.best["torque_margin_nm"], 6)
+    (['a'], ['b'], 20.0)
     """
 
     target_torque_nm: float
@@ -98,7 +126,19 @@ class DesignSearch:
 
     def to_dict(self, top: int = 10) -> dict[str, Any]:
         """JSON-ready summary: the ``top`` ranked ``candidates`` and the ``closest`` designs
-        that do not reach the target (MPa, Nm, mm, %)."""
+        that do not reach the target (MPa, Nm, mm, %).
+
+        Parameters
+        ----------
+        top : int
+            How many ranked candidates and closest non-reaching designs to list.
+
+        Returns
+        -------
+        dict
+            The search settings, counts (``evaluated``, ``reaching``, ...), ``best``,
+            ``best_validated``, ``candidates`` and ``closest``.
+        """
         reach = self.table[self.table["reaches_target"]]
         return {
             "target_torque_nm": self.target_torque_nm, "arm_radius_m": self.arm_radius_m,

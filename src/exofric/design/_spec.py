@@ -60,6 +60,28 @@ class SolverSpec:
     Mesh ``n_radial`` x ``n_circ`` quad9 graded ``grading``:1 toward the wire; contact
     penalty (N/mm^3); tube density of the self-weight regulariser (t/mm^3); largest pressure
     sub-step (MPa); Newton iterations per sub-step before a cut-back.
+
+    Attributes
+    ----------
+    n_radial, n_circ : int
+        Elements through the wall and around the half tube.
+    grading : float
+        Ratio of the largest to the smallest circumferential element, finest toward the
+        wire (unitless, >= 1).
+    penalty_n_per_mm3 : float
+        Contact penalty stiffness (N/mm^3).
+    density_t_per_mm3 : float
+        Tube density of the self-weight regulariser (t/mm^3).
+    max_step_mpa : float
+        Largest pressure sub-step of the load path (MPa).
+    max_iter : int
+        Newton iterations per sub-step before the step is cut back.
+
+    Examples
+    --------
+    >>> s = SolverSpec(n_radial=1, n_circ=12, grading=6.0)     # a coarse mesh for a quick look
+    >>> s.mesh().n_circ, s.to_dict()["max_step_mpa"] == s.newton().max_step
+    (12, True)
     """
 
     n_radial: int = defaults.SQUEEZE_MESH["n_radial"]
@@ -85,14 +107,41 @@ class SolverSpec:
 
 @dataclass(frozen=True)
 class MaterialSpec:
-    """How a design's Shore A hardness becomes a Mooney-Rivlin material (paper Eqs 3-6)."""
+    """How a design's Shore A hardness becomes a Mooney-Rivlin material (paper Eqs 3-6).
+
+    Attributes
+    ----------
+    correlation : str
+        Shore-to-modulus correlation of :meth:`~exofric.material.MooneyRivlin.from_shore`:
+        ``'paper'`` (Eq 3), ``'gent'``, ``'qi'`` or ``'astm-log10'``.
+    c01_ratio : float
+        C01 / C10 (the paper's 0.05).
+    poisson : float
+        Poisson's ratio that sets the compressibility d (the paper's 0.498).
+
+    Examples
+    --------
+    >>> m = MaterialSpec().material(62.5)                    # Table 2's hardness
+    >>> round(m.c10, 4), round(m.c01 / m.c10, 2)            # MPa, unitless
+    (0.6354, 0.05)
+    """
 
     correlation: str = "paper"
     c01_ratio: float = 0.05
     poisson: float = 0.498
 
     def material(self, shore: float) -> MooneyRivlin:
-        """:meth:`MooneyRivlin.from_shore` with these options (constants in MPa, 1/MPa)."""
+        """:meth:`MooneyRivlin.from_shore` with these options (constants in MPa, 1/MPa).
+
+        Parameters
+        ----------
+        shore : float
+            Hardness (Shore A), within the correlation's range.
+
+        Returns
+        -------
+        MooneyRivlin
+        """
         return MooneyRivlin.from_shore(shore, self.correlation, self.c01_ratio, self.poisson)
 
     def to_dict(self) -> dict[str, Any]:
@@ -102,7 +151,33 @@ class MaterialSpec:
 
 @dataclass(frozen=True)
 class Design:
-    """One point of the design space (sizes in mm, hardness in Shore A)."""
+    """One point of the design space (sizes in mm, hardness in Shore A).
+
+    Attributes
+    ----------
+    index : int
+        Position in the sweep's design list.
+    name : str
+        Label (e.g. ``"d2=1.6"`` for a grid point, ``"family x1.2"``).
+    family : str
+        Grid or family it came from ('' for an unlabelled explicit design).
+    hole_mm, tube_od_mm, tube_id_mm, wire_mm : float
+        Hole diameter D, tube outer diameter d1 and inner diameter, wire diameter d2 (mm).
+    length_mm : float
+        Tube length (mm).
+    shore : float
+        Tube hardness (Shore A).
+    key : str
+        Cache key, :func:`design_key` ('' until :func:`parse_sweep` sets it).
+    skip_reason : str
+        Why the design cannot exist ('' for a possible design).
+
+    Examples
+    --------
+    >>> d = Design(0, "base", "", 10.0, 8.3, 4.97, 1.6, 116.0, 62.5)
+    >>> d.skipped, d.structure().hole_mm
+    (False, 10.0)
+    """
 
     index: int
     name: str
@@ -137,12 +212,30 @@ class SweepSpec:
 
     Attributes
     ----------
+    name : str
+        Sweep name.
+    pressures_mpa : tuple of float
+        Increasing squeeze pressures (MPa) solved for every design.
+    designs : tuple of Design
+        Every design, impossible ones included (with ``skip_reason``).
     gamma, f0_n, arm_radius_m : float
-        Friction model F = gamma N + F0 (N) and lever arm (m) for the torque T = F R (Nm).
+        Friction model F = gamma N + F0 (gamma unitless, F0 in N) and lever arm (m) for the
+        torque T = F R (Nm).
     base, base_shore : Structure, float
         Reference design for deviations and proportional families (mm, Shore A).
     threshold_pct : float
         Deviation (%) up to which the friction model was validated (paper: 20 %).
+    material : MaterialSpec
+        How each design's hardness becomes a material.
+    solver : SolverSpec
+        Mesh and solver settings of every squeeze.
+
+    Examples
+    --------
+    >>> spec = parse_sweep({"name": "wires", "pressures_mpa": [0.3, 0.6],
+    ...                     "grid": {"wire_mm": [1.4, 1.6, 2.0]}})
+    >>> spec.name, spec.pressures_mpa, len(spec.runnable), len(spec.skipped)
+    ('wires', (0.3, 0.6), 2, 1)
     """
 
     name: str
@@ -182,6 +275,29 @@ def design_key(design: Design, spec_inputs: Mapping[str, Any]) -> str:
     """SHA-256 (hex) of a design's solve inputs plus ``spec_inputs`` (pressures, solver...).
 
     Name, family and index are labels and do not enter the key.
+
+    Parameters
+    ----------
+    design : Design
+        Its sizes (mm), length (mm) and hardness (Shore A) enter the key.
+    spec_inputs : mapping
+        The sweep-wide solve inputs (JSON-serialisable): :func:`parse_sweep` passes the
+        pressures (MPa), material and solver settings, exofric version and schema.
+
+    Returns
+    -------
+    str
+        64 hexadecimal characters.
+
+    Examples
+    --------
+    >>> from dataclasses import replace
+    >>> d = Design(0, "base", "", 10.0, 8.3, 4.97, 1.6, 116.0, 62.5)
+    >>> k = design_key(d, {"pressures_mpa": [0.3, 0.6]})
+    >>> len(k), k == design_key(replace(d, name="other"), {"pressures_mpa": [0.3, 0.6]})
+    (64, True)
+    >>> k == design_key(d, {"pressures_mpa": [0.6]})
+    False
     """
     payload = {k: getattr(design, k) for k in (*_DIMS, "length_mm", "shore")}
     payload.update(spec_inputs)

@@ -94,6 +94,18 @@ def match_squeeze(
 def relative_errors(predicted_n: ArrayLike, measured_n: ArrayLike) -> NDArray[np.float64]:
     """Signed relative errors (predicted - measured) / measured, in % (NaN where measured is 0).
 
+    Parameters
+    ----------
+    predicted_n : array_like
+        Predicted values, usually friction forces in N.
+    measured_n : array_like
+        Measured values in the same unit (N), same shape (or broadcastable).
+
+    Returns
+    -------
+    ndarray
+        100 (predicted - measured) / measured in %, NaN where ``measured_n`` is 0.
+
     Examples
     --------
     >>> relative_errors([110.0, 45.0], [100.0, 50.0]).round(6).tolist()
@@ -135,6 +147,15 @@ class GammaFit:
         Signed largest relative error and relative RMS residual, in %.
     n_dropped : int
         Friction points outside the squeeze curve's pressure range (not used).
+
+    Examples
+    --------
+    >>> fit = fit_gamma([0.2, 0.4, 0.6], [70.0, 140.0, 190.0], [0.2, 0.4, 0.6],
+    ...                 [100.0, 200.0, 268.55])
+    >>> round(fit.gamma, 4), fit.n_points, fit.kind
+    (0.7044, 3, 'proportional')
+    >>> round(fit.relative_error_pct, 2)
+    0.57
     """
 
     model: FrictionModel

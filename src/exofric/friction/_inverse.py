@@ -62,8 +62,27 @@ class CurveInverse:
     def from_curve(cls, pressure_mpa: ArrayLike, squeeze_force_n: ArrayLike) -> CurveInverse:
         """Check that N(P) is strictly increasing (after contact) and build the inverse.
 
-        ``pressure_mpa`` (MPa) and ``squeeze_force_n`` (N) are validated as a
-        :class:`SqueezeCurve` (finite, >= 0, equal lengths, pressures strictly increasing).
+        Parameters
+        ----------
+        pressure_mpa : array_like
+            Pressures P in MPa: finite, >= 0, strictly increasing.
+        squeeze_force_n : array_like
+            Squeezing forces N in N, one per pressure: 0 before contact, then strictly
+            increasing (validated as a :class:`SqueezeCurve`).
+
+        Returns
+        -------
+        CurveInverse
+
+        Raises
+        ------
+        InputError
+            Invalid curve, or N not strictly increasing after contact (no unique inverse).
+
+        Examples
+        --------
+        >>> CurveInverse.from_curve([0.2, 0.4], [10.0, 30.0]).to_dict()
+        {'squeeze_force_n': [10.0, 30.0], 'pressure_mpa': [0.2, 0.4]}
         """
         curve = SqueezeCurve(pressure_mpa, squeeze_force_n)
         return cls.from_squeeze_curve(curve)
@@ -99,7 +118,28 @@ class CurveInverse:
         return cls(tuple(n.tolist()), tuple(p.tolist()))
 
     def pressure(self, squeeze_force_n: float) -> float:
-        """Pressure (MPa) at which the curve reaches squeezing force N (N)."""
+        """Pressure (MPa) at which the curve reaches squeezing force N (N).
+
+        Parameters
+        ----------
+        squeeze_force_n : float
+            Squeezing force N in N, inside the nodes' range [first, last] N.
+
+        Returns
+        -------
+        float
+            Pressure in MPa (PCHIP of P against N).
+
+        Raises
+        ------
+        InputError
+            The force is outside the curve's range.
+
+        Examples
+        --------
+        >>> round(CurveInverse.from_curve([0.2, 0.4], [10.0, 30.0]).pressure(20.0), 12)
+        0.3
+        """
         from scipy.interpolate import PchipInterpolator
 
         v = check_finite("target squeezing force (N)", squeeze_force_n)
@@ -113,7 +153,32 @@ class CurveInverse:
         return float(pch(v))
 
     def pressure_for_friction(self, target_n: float, model: FrictionModel) -> float:
-        """Pressure (MPa) for friction ``target_n`` (N): P(N = (F - F0) / gamma)."""
+        """Pressure (MPa) for friction ``target_n`` (N): P(N = (F - F0) / gamma).
+
+        Parameters
+        ----------
+        target_n : float
+            Required friction force F in N.
+        model : FrictionModel
+            gamma (unitless) and offset F0 (N) that turn F into a squeezing force N.
+
+        Returns
+        -------
+        float
+            Pressure in MPa.
+
+        Raises
+        ------
+        InputError
+            The target friction is outside the range the curve reaches (message in N).
+
+        Examples
+        --------
+        >>> from exofric.friction import FrictionModel
+        >>> inv = CurveInverse.from_curve([0.2, 0.4], [10.0, 30.0])
+        >>> round(inv.pressure_for_friction(10.0, FrictionModel(0.5)), 12)   # N = 20 N
+        0.3
+        """
         f = check_finite("target friction (N)", target_n)
         n = model.squeeze(f)
         lo, hi = self.squeeze_force_n[0], self.squeeze_force_n[-1]

@@ -47,7 +47,18 @@ class FrictionModel:
     @overload
     def friction(self, squeeze_force_n: NDArray[np.float64]) -> NDArray[np.float64]: ...
     def friction(self, squeeze_force_n: Any) -> Any:
-        """Friction force in N for squeezing force(s) N in N: gamma N + F0."""
+        """Friction force in N for squeezing force(s) N in N: gamma N + F0.
+
+        Parameters
+        ----------
+        squeeze_force_n : float or ndarray
+            Squeezing force(s) N in N (float in, float out; array in, array out).
+
+        Examples
+        --------
+        >>> FrictionModel(0.5, f0_n=2.0).friction(100.0)
+        52.0
+        """
         if np.ndim(squeeze_force_n) == 0:
             return float(self.gamma * float(squeeze_force_n) + self.f0_n)
         return self.gamma * np.asarray(squeeze_force_n, dtype=float) + self.f0_n
@@ -57,7 +68,18 @@ class FrictionModel:
     @overload
     def squeeze(self, friction_n: NDArray[np.float64]) -> NDArray[np.float64]: ...
     def squeeze(self, friction_n: Any) -> Any:
-        """Squeezing force in N that gives friction(s) F in N: (F - F0) / gamma."""
+        """Squeezing force in N that gives friction(s) F in N: (F - F0) / gamma.
+
+        Parameters
+        ----------
+        friction_n : float or ndarray
+            Friction force(s) F in N (float in, float out; array in, array out).
+
+        Examples
+        --------
+        >>> FrictionModel(0.5, f0_n=2.0).squeeze(52.0)
+        100.0
+        """
         if np.ndim(friction_n) == 0:
             return float((float(friction_n) - self.f0_n) / self.gamma)
         return (np.asarray(friction_n, dtype=float) - self.f0_n) / self.gamma
@@ -190,7 +212,23 @@ class CubicFit:
         return np.polyval(self.coefficients, np.asarray(pressure_mpa, dtype=float))
 
     def derivative(self, pressure_mpa: ArrayLike) -> NDArray[np.float64]:
-        """dy/dP (unit of y per MPa) at P in MPa."""
+        """dy/dP (unit of y per MPa, N/MPa for Eq 8) at P in MPa.
+
+        Parameters
+        ----------
+        pressure_mpa : array_like
+            Pressure(s) P in MPa (any, also outside the fitted range).
+
+        Returns
+        -------
+        ndarray
+            3 c3 P^2 + 2 c2 P + c1, same shape as ``pressure_mpa``.
+
+        Examples
+        --------
+        >>> CubicFit((1.0, 0.0, 0.0, 0.0), 0.0, 1.0).derivative([0.5, 1.0]).tolist()
+        [0.75, 3.0]
+        """
         c3, c2, c1, _ = self.coefficients
         p = np.asarray(pressure_mpa, dtype=float)
         return np.asarray(3.0 * c3 * p**2 + 2.0 * c2 * p + c1, dtype=float)
@@ -219,11 +257,27 @@ class CubicFit:
     def inverse(self, value: float) -> float:
         """Pressure in MPa inside [p_min, p_max] where y(P) == ``value`` (Brent's method).
 
+        Parameters
+        ----------
+        value : float
+            Target y in the unit of the fitted values (N for Eq 8), between y(p_min) and
+            y(p_max).
+
+        Returns
+        -------
+        float
+            Pressure in MPa.
+
         Raises
         ------
         InputError
             If the cubic is not monotonic on the fitted range, or ``value`` lies outside
             [min y, max y] over that range (the message gives the attainable range).
+
+        Examples
+        --------
+        >>> round(CubicFit((0.0, 0.0, 100.0, 0.0), 0.2, 0.6).inverse(40.0), 12)
+        0.4
         """
         from scipy.optimize import brentq
 
@@ -249,7 +303,23 @@ class CubicFit:
         return float(root)
 
     def scaled(self, factor: float) -> CubicFit:
-        """This cubic multiplied by ``factor`` (e.g. gamma: Eq 8 -> Eq 9)."""
+        """This cubic multiplied by ``factor`` (e.g. gamma: Eq 8 -> Eq 9).
+
+        Parameters
+        ----------
+        factor : float
+            Finite multiplier (unitless for gamma; the result's y unit is y's times factor's).
+
+        Returns
+        -------
+        CubicFit
+            Same pressure range (MPa) and ``r2``.
+
+        Examples
+        --------
+        >>> CubicFit((1.0, 2.0, 3.0, 4.0), 0.2, 0.6).scaled(0.5).coefficients
+        (0.5, 1.0, 1.5, 2.0)
+        """
         f = check_finite("factor", factor)
         c3, c2, c1, c0 = self.coefficients
         return CubicFit((f * c3, f * c2, f * c1, f * c0), self.p_min_mpa, self.p_max_mpa, self.r2)

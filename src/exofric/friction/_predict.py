@@ -63,12 +63,58 @@ VALIDATED_DEVIATION_PCT = 20.0
 
 
 class ApplicabilityWarning(UserWarning):
-    """A friction prediction is made outside the geometric deviation the paper validated."""
+    """A friction prediction is made outside the geometric deviation the paper validated.
+
+    Emitted by :func:`predict` for each structure whose ``deviation_pct`` exceeds the
+    threshold (20 % by default); the prediction is still made.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from types import SimpleNamespace
+    >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     _ = predict(paper_structures()[5:6], 0.7, None, [0.6], squeeze_fn=fake)  # test 6
+    >>> [w.category.__name__ for w in caught]
+    ['ApplicabilityWarning']
+    """
 
 
 @dataclass(frozen=True)
 class Deviation:
-    """Geometric deviation of a structure from the base group (see module docstring)."""
+    """Geometric deviation of a structure from the base group (see module docstring).
+
+    Built by :func:`deviation`; s_D, s_d1, s_d2 are the structure / base ratios of the hole,
+    tube OD and wire diameters.
+
+    Attributes
+    ----------
+    scale_hole, scale_tube, scale_wire : float
+        Scale factors s_D, s_d1, s_d2 (unitless).
+    deviation_pct : float
+        exofric's metric 100 (max s / min s - 1) in % (0 for a proportional scaling).
+    paper_deviation_pct : float
+        100 max |s - 1| in % (the paper's printed column for tests 4-7).
+    tube_ref_deviation_pct : float
+        100 max |s - s_d1| in % (the printed column for tests 2-5 and 7).
+    size_change_pct : float
+        Geometric-mean size change 100 (exp(mean ln s) - 1) in %.
+    clearance_mm, base_clearance_mm : float
+        Clearance c = D - d1 - d2 of the structure and of the base, in mm.
+    clearance_change_pct : float
+        100 (c / d1 - c_b / d1_b): change of the clearance relative to the tube OD, in
+        percentage points.
+    threshold_pct : float
+        Deviation in % up to which the structure counts as in the validated region.
+
+    Examples
+    --------
+    >>> from exofric.geometry import Structure
+    >>> d = deviation(Structure(11.0, 9.2, 5.5, 1.6))      # Table 3, test 5
+    >>> round(d.scale_hole, 3), round(d.deviation_pct, 1), d.in_validated_region
+    (1.1, 10.8, True)
+    """
 
     scale_hole: float
     scale_tube: float
@@ -110,6 +156,19 @@ def deviation(
 ) -> Deviation:
     """Deviation metrics of ``structure`` from ``base`` (diameters in mm, results in %).
 
+    Parameters
+    ----------
+    structure : Structure
+        The structure to assess (hole, tube OD and wire diameters in mm).
+    base : Structure
+        The base group it is compared with (default :data:`~exofric.geometry.BASE`).
+    threshold_pct : float
+        Deviation in % (> 0) up to which the model counts as validated (default 20 %).
+
+    Returns
+    -------
+    Deviation
+
     Examples
     --------
     >>> from exofric.geometry import Structure
@@ -141,6 +200,16 @@ def paper_structures(base: Structure = BASE) -> tuple[Structure, ...]:
 
     Tube IDs are not printed: ID_i = base.tube_id_mm x d1_i / base.tube_od_mm; L = base length.
 
+    Parameters
+    ----------
+    base : Structure
+        Supplies the tube ID to scale (mm) and the length L (mm); default
+        :data:`~exofric.geometry.BASE`.
+
+    Returns
+    -------
+    tuple of Structure
+
     Examples
     --------
     >>> s = paper_structures()
@@ -169,6 +238,33 @@ def structures_from_dict(
     and optional ``name``, ``tube_id_mm`` (default: base ID scaled with d1), ``length_mm``
     (default: the base length); an optional ``base`` table (same keys, ``tube_id_mm``
     required) replaces :data:`~exofric.geometry.BASE`. Returns (structures, base).
+
+    Parameters
+    ----------
+    data : mapping
+        The parsed file (e.g. from :mod:`tomllib`); sizes in mm.
+    base : Structure
+        The base used when ``data`` has no ``base`` table (default
+        :data:`~exofric.geometry.BASE`).
+
+    Returns
+    -------
+    (tuple of Structure, Structure)
+        The structures, in file order, and the base.
+
+    Raises
+    ------
+    InputError
+        Missing or unknown keys, non-numeric sizes, an empty list or duplicate names.
+
+    Examples
+    --------
+    >>> structs, base = structures_from_dict(
+    ...     {"structure": [{"name": "small", "hole_mm": 7.5, "tube_od_mm": 6.2,
+    ...                     "wire_mm": 1.1}]})
+    >>> s = structs[0]
+    >>> s.name, round(s.tube_id_mm, 4), s.length_mm, base.name
+    ('small', 3.7125, 116.0, 'base (test 1)')
     """
     if "base" in data:
         b = data["base"]
@@ -211,14 +307,51 @@ def _structure(row: Any, scale_from: Structure | None, where: str, base: Structu
 
 @dataclass(frozen=True)
 class MeasuredCurve:
-    """A measured friction curve: pressures (MPa) and friction forces (N)."""
+    """A measured friction curve: pressures (MPa) and friction forces (N).
+
+    Build it with :meth:`of`, which validates and sorts the points.
+
+    Attributes
+    ----------
+    pressure_mpa : tuple of float
+        Pressures in MPa, >= 0, strictly increasing.
+    friction_n : tuple of float
+        Measured friction forces in N, one per pressure.
+
+    Examples
+    --------
+    >>> MeasuredCurve((0.3, 0.6), (70.0, 180.0)).friction_n
+    (70.0, 180.0)
+    """
 
     pressure_mpa: tuple[float, ...]
     friction_n: tuple[float, ...]
 
     @classmethod
     def of(cls, pressure_mpa: ArrayLike, friction_n: ArrayLike) -> MeasuredCurve:
-        """Validated curve (finite, equal lengths, distinct pressures), sorted by pressure."""
+        """Validated curve (finite, equal lengths, distinct pressures), sorted by pressure.
+
+        Parameters
+        ----------
+        pressure_mpa : array_like
+            Pressures in MPa, >= 0, distinct (any order).
+        friction_n : array_like
+            Friction forces in N, one per pressure.
+
+        Returns
+        -------
+        MeasuredCurve
+
+        Raises
+        ------
+        InputError
+            NaN/inf, negative pressures, unequal lengths or a repeated pressure.
+
+        Examples
+        --------
+        >>> MeasuredCurve.of([0.6, 0.3], [180.0, 70.0]).pressure_mpa
+        (0.3, 0.6)
+        """
         p, f = check_series("pressure_mpa", pressure_mpa, "friction_n", friction_n,
                             x_unit="MPa", y_unit="N", increasing=False, min_points=1,
                             x_min=0.0, where="measured curve")
@@ -230,7 +363,43 @@ class MeasuredCurve:
 
 @dataclass(frozen=True)
 class Prediction:
-    """Predicted friction for one structure (MPa, N, %, Nm)."""
+    """Predicted friction for one structure (MPa, N, %, Nm).
+
+    One entry of :attr:`PredictionSet.predictions`, built by :func:`predict`.
+
+    Attributes
+    ----------
+    structure : Structure
+        The structure (sizes in mm).
+    model : FrictionModel
+        gamma (unitless) and F0 (N) used.
+    pressure_mpa : tuple of float
+        Pressures of the predicted curve in MPa (the requested ones plus any measured ones).
+    squeeze_force_n : tuple of float
+        Simulated squeezing force N(P) in N (total over the tube length).
+    predicted_friction_n : tuple of float
+        F = gamma N + F0 in N.
+    contact_onset_pressure_mpa : float or None
+        Pressure in MPa at which the tube first touches the wire, if the squeeze reported it.
+    deviation : Deviation
+        Geometric deviation from the base (metrics in % and mm).
+    torque : TorqueCheck
+        Torque T = F R in Nm at the highest pressure, against the required range.
+    measured : MeasuredCurve or None
+        The measured curve (MPa, N), if one was given.
+    relative_error_pct : tuple of float
+        Signed relative error in % at each measured pressure (empty without a measurement).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
+    >>> meas = {"test 1": MeasuredCurve.of([0.3, 0.6], [55.0, 125.0])}
+    >>> pr = predict(paper_structures()[:1], 0.5, None, [0.3, 0.6], squeeze_fn=fake,
+    ...              measured=meas).predictions[0]
+    >>> pr.predicted_friction_n, round(pr.max_relative_error_pct, 2), pr.torque.torque_nm
+    ((60.0, 120.0), 9.09, 12.0)
+    """
 
     structure: Structure
     model: FrictionModel
@@ -318,7 +487,28 @@ class Prediction:
 
 @dataclass(frozen=True)
 class PredictionSet:
-    """Predictions for several structures, plus the ANOVA vs the base group when measured."""
+    """Predictions for several structures, plus the ANOVA vs the base group when measured.
+
+    Returned by :func:`predict`.
+
+    Attributes
+    ----------
+    predictions : tuple of Prediction
+        One per structure, in the order given.
+    base : Structure
+        The base group of the deviation metrics (mm).
+    anova : tuple of AnovaResult
+        Each measured test structure's errors against the base group's (Table 4); empty
+        unless the base group and at least one other structure were measured.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
+    >>> r = predict(paper_structures()[:2], 0.5, None, [0.3, 0.6], squeeze_fn=fake)
+    >>> [p.structure.name for p in r.predictions], r.anova
+    (['test 1', 'test 2'], ())
+    """
 
     predictions: tuple[Prediction, ...]
     base: Structure
@@ -447,6 +637,18 @@ def predict(
     -----
     ApplicabilityWarning
         For each structure with ``deviation_pct`` above ``threshold_pct``.
+
+    Examples
+    --------
+    A stand-in squeeze N(P) = 400 P keeps the example fast; the default runs the FE.
+
+    >>> from types import SimpleNamespace
+    >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
+    >>> r = predict(paper_structures()[:2], 0.7, None, [0.2, 0.4, 0.6], squeeze_fn=fake)
+    >>> [round(f, 6) for f in r.predictions[1].predicted_friction_n]
+    [56.0, 112.0, 168.0]
+    >>> round(r.predictions[1].deviation.deviation_pct, 1)
+    9.1
     """
     model = gamma if isinstance(gamma, FrictionModel) else FrictionModel(float(gamma))
     grid = check_pressures("pressures_mpa", np.asarray(pressures_mpa, dtype=float).ravel())

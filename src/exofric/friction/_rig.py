@@ -51,6 +51,47 @@ __all__ = ["RigConfig", "RigRun", "simulate_rig"]
 class RigConfig:
     """Settings of the virtual rig (s, mm/s, Hz, mm, %, N, N/s, MPa).
 
+    Parameters
+    ----------
+    pull_speed_mm_per_s : float
+        Wire pull speed in mm/s (> 0). Default 2 mm/s.
+    sample_rate_hz : float
+        Logger sample rate in Hz (1-1e5). Default 100 Hz.
+    settle_s : float
+        Settling time per pressure step before the pull, in s (> 0); its second half is the
+        tare window. Default 2 s.
+    pull_s : float
+        Pull duration per step in s (> 0); the wire must slide for at least 2 samples after
+        the ramp. Default 5 s.
+    ramp_mm : float
+        Wire/fixture compliance in mm (0-1000): pull distance over which the force rises to
+        the sliding friction. Default 1 mm.
+    discard_pct : float
+        Share of the sliding time discarded at its start before averaging, in % (0-90).
+        Default 10 %.
+    pressure_tau_s : float
+        Regulator lag time constant in s (0-1000; 0 for an instant step). Default 0.3 s.
+    noise_pct : float
+        Load-cell noise standard deviation in % of the true force (0-100). Default 2 %.
+    noise_n : float
+        Additional absolute load-cell noise standard deviation in N (>= 0). Default 0 N.
+    offset_n : float
+        Constant load-cell offset in N (removed by taring). Default 0 N.
+    drift_n_per_s : float
+        Load-cell drift in N/s (partly removed by taring). Default 0 N/s.
+    drag_n : float
+        Pressure-independent drag in N (>= 0; the F0 of the affine model, not removed by
+        taring). Default 0 N.
+    pressure_noise_mpa : float
+        Pressure sensor noise standard deviation in MPa (0-1). Default 0 MPa.
+    tare : bool
+        Subtract the tare reading (slack wire) from each step's friction. Default True.
+
+    Raises
+    ------
+    InputError
+        A setting outside its range; the message names it.
+
     Examples
     --------
     >>> RigConfig(noise_pct=2.0).sample_rate_hz
@@ -112,10 +153,21 @@ class RigRun:
     true_friction_n : tuple of float
         gamma_true N(P) + drag at the set points (N), for checking.
     gamma_true : float
+        The planted equivalent coefficient (unitless).
     seed : int
+        Seed of the random generator used.
     config : RigConfig
+        The rig settings used.
     time_s, raw_pressure_mpa, raw_force_n, displacement_mm : ndarray
         The logger record (s, MPa, N, mm); not compared or serialised.
+
+    Examples
+    --------
+    >>> run = simulate_rig([0.2, 0.4, 0.6], [80.0, 160.0, 240.0], 0.5, seed=3, repeats=2)
+    >>> run.test, [round(f, 9) for f in run.true_friction_n[:3]]     # gamma_true N(P), N
+    (('1', '1', '1', '2', '2', '2'), [40.0, 80.0, 120.0])
+    >>> run.to_csv_text().splitlines()[3]
+    'test,pressure_mpa,friction_n'
     """
 
     test: tuple[str, ...]
@@ -197,6 +249,21 @@ def simulate_rig(
     Returns
     -------
     RigRun
+
+    Raises
+    ------
+    InputError
+        Invalid curve, gamma_true <= 0, repeats outside 1-100, or set points outside the
+        curve's pressure range.
+
+    Examples
+    --------
+    >>> run = simulate_rig([0.2, 0.4, 0.6], [80.0, 160.0, 240.0], 0.7, seed=1,
+    ...                    config=RigConfig(noise_pct=0.0, pressure_tau_s=0.0))  # ideal
+    >>> [round(f, 6) for f in run.friction_n]
+    [56.0, 112.0, 168.0]
+    >>> run.time_s.size            # 3 steps x (2 s settling + 5 s pull) at 100 Hz
+    2100
     """
     cfg = config or RigConfig()
     g = check_positive("gamma_true", gamma_true)

@@ -17,7 +17,27 @@ __all__ = ["TorqueCheck", "torque"]
 
 @dataclass(frozen=True)
 class TorqueCheck:
-    """Joint torque T = F R and whether it lies within a requirement [min, max] Nm."""
+    """Joint torque T = F R and whether it lies within a requirement [min, max] Nm.
+
+    Built by :func:`torque`.
+
+    Attributes
+    ----------
+    friction_n : float
+        Friction force F in N.
+    arm_radius_m : float
+        Lever arm R in m.
+    torque_nm : float
+        T = F R in Nm.
+    required_min_nm, required_max_nm : float
+        The required torque range in Nm (knee: 0-40 Nm).
+
+    Examples
+    --------
+    >>> t = TorqueCheck(180.49, 0.10, 18.049, 0.0, 40.0)     # base group at 0.6 MPa
+    >>> t.meets_max, round(t.coverage_pct, 2)
+    (False, 45.12)
+    """
 
     friction_n: float
     arm_radius_m: float

@@ -27,6 +27,27 @@ def plot_calibration(result: CalibrationResult, ax: Any | None = None) -> Any:
     known hardness also every finite trial of the history (thin, grey, the first six
     labelled with their Shore A). Simulated curves start from the undeformed OD at 0 MPa.
     Returns the Axes.
+
+    Parameters
+    ----------
+    result : CalibrationResult
+        From :func:`exofric.calibration.calibrate` (pressures in MPa, diameters in mm).
+    ax : matplotlib Axes, optional
+        Where to draw (default a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.calibration import InflationData, calibrate
+    >>> r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=5.0, model="paper-table1",
+    ...               method="bounded")
+    >>> ax = plot_calibration(r, Figure().subplots())
+    >>> ax.get_xlabel(), ax.get_ylabel()
+    ('inflation pressure P (MPa)', 'tube outer diameter (mm)')
     """
     ax, created = new_axes(ax, (6.0, 4.2))
     d = result.data
@@ -75,6 +96,27 @@ def plot_table1(
     62.5 Hs column and the test points. ``table1`` holds ``pressure_mpa``,
     ``simulated_outer_diameter_mm`` (four columns) and ``test_outer_diameter_mm`` (MPa, mm).
     Returns the Figure.
+
+    Parameters
+    ----------
+    stage : CalibrationStage
+        The calibration stage of :func:`exofric.reproduction.reproduce` (diameters in mm).
+    table1 : mapping
+        The paper's Table 1 (:func:`exofric.paper.table1`; pressures in MPa, diameters in mm).
+    fig : matplotlib Figure, optional
+        Empty figure to draw on (default a new one).
+
+    Returns
+    -------
+    matplotlib Figure
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric import paper
+    >>> fig = plot_table1(fast_result.calibration, paper.table1(), Figure())
+    >>> len(fig.axes), fig.axes[1].get_title()
+    (2, 'Shore from the test column (Fig 5b)')
     """
     fig, created = new_figure(fig, (10, 4.2))
     a1, a2 = fig.subplots(1, 2)

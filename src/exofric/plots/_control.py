@@ -22,6 +22,27 @@ def plot_simulation(sim: SimulationResult, ax: Any | None = None) -> Any:
     """Friction (N) and its set-point against time (s) for one closed-loop simulation.
 
     Two lines: the true friction (solid) and the set-point (black, dashed). Returns the Axes.
+
+    Parameters
+    ----------
+    sim : SimulationResult
+        From :func:`exofric.control.simulate` (time in s, friction in N).
+    ax : matplotlib Axes, optional
+        Where to draw (default a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.control import Controller, PIDGains, PlantParams, simulate
+    >>> sim = simulate(Controller(PIDGains(0.002, 0.003)), PlantParams(),
+    ...                lambda p: 200.0 * p, 40.0, duration_s=2.0)
+    >>> ax = plot_simulation(sim, Figure().subplots())
+    >>> len(ax.lines), ax.get_xlabel()
+    (2, 'time (s)')
     """
     ax, created = new_axes(ax, (6.4, 4.0))
     ax.plot(sim.time_s, sim.friction_n, color="tab:blue", label="friction")
@@ -66,6 +87,16 @@ def plot_control_cases(
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.reproduction import ControlSetup, run_case
+    >>> setup = ControlSetup.default()
+    >>> cases = [run_case(setup, "pi", feedforward=ff) for ff in (False, True)]
+    >>> fig = plot_control_cases(cases, Figure())
+    >>> len(fig.axes), len(fig.axes[0].lines)     # friction and pressure rows; 2 runs + target
+    (2, 3)
     """
     kinds = list(dict.fromkeys(c.controller for c in cases)) or ["pid"]
     n = len(kinds)

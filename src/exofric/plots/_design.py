@@ -26,7 +26,28 @@ _LABELS = {"tube_od_mm": "tube OD d1 (mm)", "wire_mm": "wire d2 (mm)",
 
 
 def map_axes(table: pd.DataFrame) -> tuple[str, str]:
-    """The two design columns to plot: varying ones first, d1 and d2 preferred."""
+    """The two design columns to plot: varying ones first, d1 and d2 preferred.
+
+    Parameters
+    ----------
+    table : DataFrame
+        Designs with the columns ``tube_od_mm``, ``wire_mm``, ``hole_mm``, ``tube_id_mm``
+        (mm), ``shore`` (Shore A) and ``length_mm`` (mm), e.g. ``DesignSearch.table``.
+
+    Returns
+    -------
+    (str, str)
+        The x and y column names: the first two that vary, in the order tube OD, wire, hole,
+        tube ID, hardness, length (then constant ones in that order).
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"tube_od_mm": [8.3, 8.3], "wire_mm": [1.6, 1.6],
+    ...                   "hole_mm": [10.0, 11.0], "tube_id_mm": [4.97, 4.97],
+    ...                   "shore": [62.5, 55.0], "length_mm": [116.0, 116.0]})
+    >>> map_axes(t)
+    ('hole_mm', 'shore')
+    """
     varying = [c for c in _AXIS_ORDER if table[c].nunique() > 1]
     rest = [c for c in _AXIS_ORDER if c not in varying]
     x, y = (varying + rest)[:2]

@@ -29,6 +29,21 @@ def section_polygons(
 ) -> np.ndarray:
     """Element outlines (e, k, 2) in mm; ``mirror`` adds copies reflected in 'x' and/or 'y'.
 
+    Parameters
+    ----------
+    nodes : ndarray, shape (n, 2)
+        Node coordinates in mm (deformed: nodes + displacements).
+    elements : ndarray, shape (e, 9) or (e, 4)
+        Node indices of each quad9 (or quad4) element, in the FE's tensor-product order.
+    mirror : sequence of {'x', 'y'}
+        Add copies reflected across the y axis ('x': x -> -x) and/or the x axis ('y'),
+        e.g. ``("x", "y")`` for the full section of a quarter model.
+
+    Returns
+    -------
+    ndarray, shape (e * copies, k, 2)
+        Closed boundary polygons (k = 8 for quad9, 4 for quad4) in mm.
+
     Examples
     --------
     >>> nodes = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
@@ -59,6 +74,40 @@ def draw_section(
     """Draw a (deformed) section (mm) on ``ax``; colour by element ``values`` if given.
 
     Returns the ``PolyCollection`` (for a colour bar).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+        Where to draw (its aspect is set equal and its limits fitted).
+    nodes : ndarray, shape (n, 2)
+        Node coordinates in mm.
+    elements : ndarray, shape (e, 9) or (e, 4)
+        Node indices per element (see :func:`section_polygons`).
+    values : ndarray, shape (e,), or None
+        One colour value per element (e.g. von Mises stress in MPa); None draws outlines.
+    mirror : sequence of {'x', 'y'}
+        Reflected copies to add (see :func:`section_polygons`).
+    cmap : str
+        Colour map name for ``values``.
+    vmax : float or None
+        Top of the colour scale (bottom 0), in the unit of ``values``; default their maximum.
+    edgecolor : str
+        Outline colour when ``values`` is None.
+    label : str
+        Label of the collection (used by a colour bar or legend).
+
+    Returns
+    -------
+    matplotlib.collections.PolyCollection
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> ax = Figure().subplots()
+    >>> nodes = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
+    >>> pc = draw_section(ax, nodes, np.array([[0, 1, 2, 3]]), np.array([0.4]), mirror=("x",))
+    >>> len(pc.get_paths()), pc.get_label()
+    (2, 'von Mises stress (MPa)')
     """
     from matplotlib.collections import PolyCollection
 
@@ -83,6 +132,29 @@ def plot_inflation_curve(result: InflationResult, ax: Any | None = None) -> Any:
     """Outer diameter (mm) against pressure (MPa): FE beside the incompressible closed form.
 
     Two lines: FE (markers) and the closed form (dashed). Returns the Axes.
+
+    Parameters
+    ----------
+    result : InflationResult
+        From :func:`exofric.simulate.inflate` (pressures in MPa, diameters in mm).
+    ax : matplotlib Axes, optional
+        Where to draw (default a new figure).
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.fe import MeshSpec
+    >>> from exofric.material import MooneyRivlin
+    >>> from exofric.simulate import inflate
+    >>> r = inflate(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.1, 0.2],
+    ...             mesh=MeshSpec(1, 12, grading=6.0))
+    >>> ax = plot_inflation_curve(r, Figure().subplots())
+    >>> len(ax.lines), ax.get_ylabel()
+    (2, 'outer diameter (mm)')
     """
     ax, created = new_axes(ax, (5.6, 4.4))
     ax.plot(result.pressure_mpa, result.outer_diameter_mm, "o-", label="FE (exofric)")
@@ -101,6 +173,30 @@ def plot_inflation(result: InflationResult, fig: Any | None = None) -> Any:
 
     Draws two Axes on ``fig`` (an empty Figure; default a new one) and returns the Figure.
     Without stored fields (``keep_fields=False``) the section panel shows the undeformed mesh.
+
+    Parameters
+    ----------
+    result : InflationResult
+        From :func:`exofric.simulate.inflate` (mm, MPa); the section is drawn at its last
+        pressure.
+    fig : matplotlib Figure, optional
+        Empty figure to draw on (default a new one).
+
+    Returns
+    -------
+    matplotlib Figure
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.fe import MeshSpec
+    >>> from exofric.material import MooneyRivlin
+    >>> from exofric.simulate import inflate
+    >>> r = inflate(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.1, 0.2],
+    ...             mesh=MeshSpec(1, 12, grading=6.0))
+    >>> fig = plot_inflation(r, Figure())
+    >>> len(fig.axes), fig.axes[0].get_title()          # section, OD(P), colour bar
+    (3, 'Section at 0.2 MPa (grey: undeformed)')
     """
     fig, created = new_figure(fig, (11, 4.8))
     a1, a2 = fig.subplots(1, 2)
@@ -131,6 +227,36 @@ def plot_squeeze_force(
     One line, a dotted vertical line at the contact onset (if reached), and an optional
     ``reference`` point ``(pressure MPa, force N, label)`` drawn as a red star.
     Returns the Axes.
+
+    Parameters
+    ----------
+    result : SqueezeResult
+        From :func:`exofric.simulate.squeeze` (pressures in MPa, forces in N).
+    ax : matplotlib Axes, optional
+        Where to draw (default a new figure).
+    reference : (float, float, str) or None
+        A point to compare with: pressure in MPa, force in N, legend label.
+    title : str
+        Axes title (none when empty).
+    label : str
+        Legend label of the FE curve.
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.fe import MeshSpec
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> from exofric.simulate import squeeze
+    >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6],
+    ...             mesh=MeshSpec(1, 12, grading=6.0), keep_fields=False)
+    >>> ax = plot_squeeze_force(r, Figure().subplots(), reference=(0.6, 240.0, "paper"))
+    >>> len(ax.lines), ax.get_ylabel()        # FE, reference star, contact onset
+    (3, 'squeezing force N (N, L = 116 mm)')
     """
     ax, created = new_axes(ax, (6.4, 4.2))
     ax.plot(result.pressure_mpa, result.squeeze_force_n, "o-", label=label)
@@ -151,7 +277,34 @@ def plot_squeeze_force(
 def plot_squeeze_curves(
     results: Sequence[SqueezeResult], ax: Any | None = None, *, title: str = ""
 ) -> Any:
-    """N(P) (N against MPa) of several structures, one line each, labelled by name."""
+    """N(P) (N against MPa) of several structures, one line each, labelled by name.
+
+    Parameters
+    ----------
+    results : sequence of SqueezeResult
+        From :func:`exofric.simulate.squeeze` (pressures in MPa, forces in N).
+    ax : matplotlib Axes, optional
+        Where to draw (default a new figure).
+    title : str
+        Axes title (none when empty).
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.fe import MeshSpec
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> from exofric.simulate import squeeze
+    >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6],
+    ...             mesh=MeshSpec(1, 12, grading=6.0), keep_fields=False)
+    >>> ax = plot_squeeze_curves([r], Figure().subplots(), title="base group")
+    >>> [t.get_text() for t in ax.get_legend().get_texts()]
+    ['base (test 1)']
+    """
     ax, created = new_axes(ax, (6.4, 4.2))
     for res in results:
         ax.plot(res.pressure_mpa, res.squeeze_force_n, "o-", ms=3, label=res.structure.name)
@@ -177,6 +330,32 @@ def plot_squeeze(
     N(P) panel of :func:`plot_squeeze_force`, on ``fig`` (an empty Figure; default a new one).
     Without stored fields (``keep_fields=False``) only the N(P) panel is drawn.
     Returns the Figure.
+
+    Parameters
+    ----------
+    result : SqueezeResult
+        From :func:`exofric.simulate.squeeze` (mm, MPa, N), with fields for the sections.
+    fig : matplotlib Figure, optional
+        Empty figure to draw on (default a new one).
+    show_pressures : sequence of float
+        Pressures in MPa whose sections to draw (the nearest computed ones, each once).
+
+    Returns
+    -------
+    matplotlib Figure
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.fe import MeshSpec
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> from exofric.simulate import squeeze
+    >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6],
+    ...             mesh=MeshSpec(1, 12, grading=6.0))
+    >>> fig = plot_squeeze(r, Figure(), show_pressures=(0.6,))
+    >>> len(fig.axes), fig.axes[0].get_title()[:10]     # section, N(P), colour bar
+    (3, 'P = 0.6 MP')
     """
     from matplotlib.patches import Circle
 

@@ -35,6 +35,16 @@ def plot_gamma_fit(fit: GammaFit, title: str = "", *, fig: Any | None = None) ->
     Returns
     -------
     matplotlib Figure
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.friction import fit_gamma
+    >>> fit = fit_gamma([0.2, 0.4, 0.6], [70.0, 140.0, 190.0], [0.2, 0.4, 0.6],
+    ...                 [100.0, 200.0, 268.55])
+    >>> fig = plot_gamma_fit(fit, "three points", fig=Figure())
+    >>> [ax.get_ylabel() for ax in fig.axes][:2]
+    ['friction F (N)', 'residual F^ - F (N)']
     """
     fig, created = new_figure(fig, (13, 4))
     a1, a2, a3 = fig.subplots(1, 3)
@@ -73,6 +83,30 @@ def plot_predictions(
 
     One row of two Axes per prediction on ``fig`` (an empty Figure; default a new one).
     Returns the Figure.
+
+    Parameters
+    ----------
+    preds : sequence of Prediction
+        E.g. ``predict(...).predictions`` (:func:`exofric.friction.predict`; MPa, N, %).
+    title : str
+        Figure title (none when empty).
+    fig : matplotlib Figure, optional
+        Empty figure to draw on (default a new one).
+
+    Returns
+    -------
+    matplotlib Figure
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.friction import paper_structures, predict
+    >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
+    >>> r = predict(paper_structures()[:2], 0.7, None, [0.3, 0.6], squeeze_fn=fake)
+    >>> fig = plot_predictions(r.predictions, "stand-in squeeze", fig=Figure())
+    >>> len(fig.axes), fig.axes[2].get_title()
+    (4, 'test 2: deviation 9.1%')
     """
     k = max(len(preds), 1)
     fig, created = new_figure(fig, (10, 3.2 * k))
@@ -128,10 +162,24 @@ def plot_cubic_fit(
     target_n : float
         Target friction (N), for the labels.
     ax : matplotlib Axes, optional
+        Where to draw (default a new figure).
 
     Returns
     -------
     matplotlib Axes
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric import paper
+    >>> from exofric.friction import CubicFit
+    >>> p = np.linspace(0.2, 0.6, 5)
+    >>> eq8 = CubicFit(paper.eq8(), 0.2, 0.6)
+    >>> ours = CubicFit.fit(p, eq8(p))
+    >>> inv = {"eq9_mpa": 0.2926, "paper_printed_mpa": 0.26, "our_exact_curve_mpa": 0.2926}
+    >>> ax = plot_cubic_fit(p, eq8(p), ours, eq8, inv, 54.40, Figure().subplots())
+    >>> len(ax.lines)          # FE points, two cubics, three pressures
+    6
     """
     ax, created = new_axes(ax, (6.4, 4.2))
     pp = np.linspace(ours.p_min_mpa, ours.p_max_mpa, 101)
@@ -166,6 +214,35 @@ def plot_torque(
 
     ``reference`` = (bar positions, torques in Nm, label) adds red stars (e.g. the paper's
     measured values); ``limit_nm`` a dashed horizontal line. Returns the Axes.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Bar labels (structure names).
+    torque_nm : sequence of float
+        Torque per structure in Nm.
+    ax : matplotlib Axes, optional
+        Where to draw (default a new figure).
+    reference : (sequence of float, sequence of float, str) or None
+        Bar positions (0-based), torques in Nm and a legend label for comparison stars.
+    limit_nm : float or None
+        Required torque in Nm, drawn as a dashed line.
+    limit_label : str
+        Legend label of that line.
+    pressure_mpa : float
+        Pressure in MPa at which the torques hold (for the axis label).
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> ax = plot_torque(["test 1", "test 3"], [18.05, 30.0], Figure().subplots(),
+    ...                  reference=([1], [30.0], "paper"), limit_nm=40.0)
+    >>> len(ax.patches), ax.get_ylabel()
+    (2, 'torque T = F R at 0.6 MPa (Nm)')
     """
     ax, created = new_axes(ax, (6.4, 4.0))
     x = np.arange(len(names))

@@ -11,10 +11,11 @@ Units: mm, N, MPa, s, Nm.
 
 Examples
 --------
->>> # fast_result = reproduce(ReproduceConfig.for_mode(fast=True)), computed once by the tests
->>> files = write_report(fast_result, tmp_dir)
->>> files.report_html.name
-'report.html'
+``write_report(reproduce(), "exofric-report")`` writes everything (see :func:`write_report`);
+the paper notes it embeds:
+
+>>> [name for name, _ in read_notes(find_notes_dir())]
+['paper-notes.md']
 """
 
 from __future__ import annotations
@@ -50,7 +51,28 @@ _KNEE = "knee 0-40 Nm"
 
 @dataclass(frozen=True)
 class FigureFile:
-    """One written figure: key, file, title, caption, the stage it belongs to."""
+    """One written figure: key, file, title, caption, the stage it belongs to.
+
+    Attributes
+    ----------
+    key : str
+        Figure key, also the file stem (``"fig7"``).
+    path : Path
+        The PNG file written.
+    title : str
+        Figure title in the report.
+    caption : str
+        Caption under the figure (says what is SYNTHETIC).
+    stage : str
+        Key of the stage whose section shows it (see :data:`exofric.reproduction.STAGES`).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> f = FigureFile("fig7", Path("out/fig7.png"), "Fig 7", "N(P) of the base", "squeeze")
+    >>> f.to_dict()["file"], f.stage
+    ('fig7.png', 'squeeze')
+    """
 
     key: str
     path: Path
@@ -66,7 +88,31 @@ class FigureFile:
 
 @dataclass(frozen=True)
 class ReportFiles:
-    """Paths written by :func:`write_report` and the time spent (s)."""
+    """Paths written by :func:`write_report` and the time spent (s).
+
+    Attributes
+    ----------
+    out_dir : Path
+        The output directory.
+    report_html : Path
+        The self-contained ``report.html``.
+    results_json : Path
+        ``results.json`` (every number of the report, units in the keys).
+    figures : tuple of FigureFile
+        The PNG figures, in report order.
+    notes : tuple of str
+        Names of the ``paper-notes*.md`` files included.
+    report_time_s : float
+        Wall time of :func:`write_report` (s).
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> out = Path("exofric-report")
+    >>> files = ReportFiles(out, out / "report.html", out / "results.json", (), (), 2.5)
+    >>> files.to_dict()["report_html"], files.to_dict()["report_time_s"]
+    ('exofric-report/report.html', 2.5)
+    """
 
     out_dir: Path
     report_html: Path
@@ -86,6 +132,19 @@ class ReportFiles:
 def find_notes_dir(start: Path | None = None) -> Path | None:
     """The ``docs`` directory holding ``paper-notes*.md`` (cwd, then the source tree), or None.
 
+    The notes shipped as package data come first, then ``start/docs``, then the source
+    tree's ``docs``.
+
+    Parameters
+    ----------
+    start : Path, optional
+        Directory whose ``docs`` subdirectory is searched (default the working directory).
+
+    Returns
+    -------
+    Path or None
+        The first candidate holding a ``paper-notes*.md``, None if none does.
+
     Examples
     --------
     >>> d = find_notes_dir()
@@ -103,6 +162,15 @@ def find_notes_dir(start: Path | None = None) -> Path | None:
 
 def read_notes(notes_dir: Path | None) -> list[tuple[str, str]]:
     """``(file name, markdown text)`` of every ``paper-notes*.md`` (``paper-notes.md`` first).
+
+    Parameters
+    ----------
+    notes_dir : Path or None
+        Directory holding the notes (e.g. from :func:`find_notes_dir`); None gives ``[]``.
+
+    Returns
+    -------
+    list of (str, str)
 
     Examples
     --------
@@ -163,6 +231,18 @@ def _fig_torque(r: ReproduceResult) -> Any:
 
 def make_figures(r: ReproduceResult, out_dir: Path) -> tuple[FigureFile, ...]:
     """Draw and save every report figure as PNG in ``out_dir`` (11 figures, 130 dpi).
+
+    Parameters
+    ----------
+    r : ReproduceResult
+        Output of :func:`exofric.reproduction.reproduce`.
+    out_dir : Path
+        Existing directory the PNG files are written to (``<key>.png``).
+
+    Returns
+    -------
+    tuple of FigureFile
+        In report order, each with the stage it belongs to.
 
     Examples
     --------
@@ -233,6 +313,12 @@ def write_report(
     Returns
     -------
     ReportFiles
+
+    Examples
+    --------
+    >>> files = write_report(fast_result, tmp_dir)   # reproduce(ReproduceConfig.for_mode(True))
+    >>> files.report_html.name, files.results_json.name, len(files.figures)
+    ('report.html', 'results.json', 11)
     """
     from exofric.report._html import render_html
 

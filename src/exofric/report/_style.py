@@ -95,6 +95,18 @@ def _e(x: Any) -> str:
 def fmt(v: Any, digits: int = 5) -> str:
     """Format a number for the report (``digits`` significant; None -> '-').
 
+    Parameters
+    ----------
+    v : object
+        The value: a float (``digits`` significant figures; NaN -> '-', round-off zero ->
+        '0'), an int, a bool ('yes'/'no'), None ('-') or anything else (``str``).
+    digits : int
+        Significant figures of a float.
+
+    Returns
+    -------
+    str
+
     Examples
     --------
     >>> fmt(4.0033333), fmt(None), fmt(True), fmt(268.55), fmt(0.005995004)

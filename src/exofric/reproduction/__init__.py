@@ -45,7 +45,12 @@ from exofric.reproduction._pipeline import (
     reproduce,
     software_versions,
 )
-from exofric.reproduction._predict import PredictionStage, TorqueStage, stage_prediction, stage_torque
+from exofric.reproduction._predict import (
+    PredictionStage,
+    TorqueStage,
+    stage_prediction,
+    stage_torque,
+)
 from exofric.reproduction._squeeze import (
     ID_STEP_MM,
     GammaStage,
@@ -53,7 +58,12 @@ from exofric.reproduction._squeeze import (
     stage_gamma,
     stage_squeeze,
 )
-from exofric.reproduction._stages import CalibrationStage, Table2Stage, stage_calibration, stage_table2
+from exofric.reproduction._stages import (
+    CalibrationStage,
+    Table2Stage,
+    stage_calibration,
+    stage_table2,
+)
 
 __all__ = [
     "CalibrationStage", "CaseResult", "compare", "CompareResult", "Comparison", "ControlSetup",

@@ -32,6 +32,16 @@ __all__ = ["Comparison", "printed_decimals", "paper_checks"]
 def printed_decimals(value: float) -> int:
     """Decimals with which a paper value was printed (from its shortest repr), e.g. 4.0033 -> 4.
 
+    Parameters
+    ----------
+    value : float
+        A number as the paper prints it (any unit); its shortest ``repr`` is read.
+
+    Returns
+    -------
+    int
+        Digits after the decimal point (0 for an integer value).
+
     Examples
     --------
     >>> printed_decimals(0.00575), printed_decimals(62.5), printed_decimals(268.55)

@@ -35,7 +35,33 @@ __all__ = ["CubicStage", "ControlStage", "stage_cubic", "stage_control"]
 
 @dataclass(frozen=True)
 class CubicStage:
-    """Cubic N(P) for test 5 (Eq 8) beside the paper's, and the pressure for 54.40 N (MPa)."""
+    """Cubic N(P) for test 5 (Eq 8) beside the paper's, and the pressure for 54.40 N (MPa).
+
+    Attributes
+    ----------
+    pressure_mpa : tuple of float
+        Our test-5 pressures within Eq 8's fit range, 0.2-0.6 MPa.
+    squeeze_force_n : tuple of float
+        Our FE squeezing force N (N) at those pressures.
+    ours : CubicFit
+        Least-squares cubic of those points (coefficients in N/MPa^k).
+    paper_eq8 : CubicFit
+        The paper's Eq 8 (N vs MPa).
+    gamma : float
+        Our fitted gamma (unitless) used for our inverses.
+    inverse : dict of str to float
+        Pressure (MPa) for the target friction by each route: ``paper_printed_mpa`` (0.26),
+        ``eq9_mpa``, ``eq8_without_gamma_mpa``, ``our_cubic_mpa``, ``our_exact_curve_mpa``.
+    comparisons : tuple of Comparison
+        Eq 8 coefficients (N/MPa^k), R^2, N at 0.4 and 0.6 MPa (N) and the pressures for
+        the target (MPa) beside the paper's.
+
+    Examples
+    --------
+    >>> s = fast_result.cubic         # reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> s.inverse["paper_printed_mpa"], round(s.inverse["eq9_mpa"], 4), len(s.pressure_mpa)
+    (0.26, 0.2926, 9)
+    """
 
     pressure_mpa: tuple[float, ...]
     squeeze_force_n: tuple[float, ...]
@@ -61,6 +87,20 @@ class CubicStage:
 
 def stage_cubic(test5: SqueezeResult, gamma: float, target_n: float) -> CubicStage:
     """Stage 6: least-squares cubic of our test-5 N(P) on 0.2-0.6 MPa and the inverses (MPa).
+
+    Parameters
+    ----------
+    test5 : SqueezeResult
+        Test-5 squeeze curve (anything with ``pressure_mpa`` in MPa and ``squeeze_force_n``
+        in N); the points within Eq 8's 0.2-0.6 MPa are fitted.
+    gamma : float
+        Our fitted gamma (unitless) for our inverses (Eq 9 uses the paper's 0.7168).
+    target_n : float
+        Target friction (N), the paper's 54.40 N.
+
+    Returns
+    -------
+    CubicStage
 
     Examples
     --------
@@ -113,7 +153,25 @@ def stage_cubic(test5: SqueezeResult, gamma: float, target_n: float) -> CubicSta
 
 @dataclass(frozen=True)
 class ControlStage:
-    """The six Fig 12 cases on the paper's Eq 9 map, and on our test-5 FE curve with our gamma."""
+    """The six Fig 12 cases on the paper's Eq 9 map, and on our test-5 FE curve with our gamma.
+
+    Attributes
+    ----------
+    paper_map : CompareResult
+        PD/PI/PID without and with the model on Eq 9 (gamma 0.7168), target in N,
+        settling times in s.
+    our_map : CompareResult
+        The same on our test-5 FE curve N(P) (PCHIP) times our gamma.
+    comparisons : tuple of Comparison
+        Settling times (s), the PD final friction (N) and the settling-time reductions (%)
+        on Eq 9, beside the paper's.
+
+    Examples
+    --------
+    >>> s = fast_result.control       # reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> len(s.paper_map.cases), s.paper_map.target_n, round(s.our_map.reduction_pct("pi"), 1)
+    (6, 54.4, 38.2)
+    """
 
     paper_map: CompareResult = field(repr=False)
     our_map: CompareResult = field(repr=False)
@@ -130,6 +188,19 @@ def stage_control(test5: SqueezeResult, gamma: float, target_n: float) -> Contro
 
     On the paper's Eq 9 and on our test-5 FE curve N(P) (PCHIP, not our cubic: a cubic
     fitted on 0.2-0.6 MPa is not physical below 0.2 MPa) times our gamma.
+
+    Parameters
+    ----------
+    test5 : SqueezeResult
+        Test-5 squeeze curve (``pressure_mpa`` in MPa, ``squeeze_force_n`` in N, arrays).
+    gamma : float
+        Our fitted gamma (unitless) for the FE-curve map.
+    target_n : float
+        Step target friction (N), the paper's 54.40 N.
+
+    Returns
+    -------
+    ControlStage
 
     Examples
     --------

@@ -58,12 +58,50 @@ PAPER_SETTLING_S: dict[tuple[str, bool], float | None] = {
 
 
 class FrictionMapLike(Protocol):
-    """A friction map F(P) (MPa -> N) with an inverse P(F) and a scaled copy."""
+    """A friction map F(P) (MPa -> N) with an inverse P(F) and a scaled copy.
+
+    Calling it evaluates F (N) at pressures in MPa. :class:`~exofric.control.CubicFrictionMap`
+    (Eq 9) and :class:`~exofric.control.CurveFrictionMap` (an FE curve times gamma) satisfy it.
+
+    Examples
+    --------
+    >>> m = ControlSetup.default().model_map        # Eq 9: 0.7168 x Eq 8
+    >>> round(float(m(0.4)), 2), round(m.inverse(54.40), 4), round(float(m.scaled(2.0)(0.4)), 2)
+    (108.98, 0.2926, 217.97)
+    """
 
     def __call__(self, pressure_mpa: Any) -> Any: ...
-    def inverse(self, friction_n: float) -> float: ...
-    def scaled(self, factor: float) -> Any: ...
-    def to_dict(self) -> dict[str, Any]: ...
+
+    def inverse(self, friction_n: float) -> float:
+        """The pressure (MPa) at which the map gives ``friction_n``.
+
+        Parameters
+        ----------
+        friction_n : float
+            Friction (N) within the map's range.
+
+        Returns
+        -------
+        float
+            Pressure (MPa); implementations raise :class:`~exofric.errors.InputError` when
+            ``friction_n`` is out of reach.
+        """
+
+    def scaled(self, factor: float) -> Any:
+        """A copy whose friction is ``factor`` times this map's (model mismatch).
+
+        Parameters
+        ----------
+        factor : float
+            Multiplier of the friction (unitless, > 0), e.g. 1 + mismatch.
+
+        Returns
+        -------
+        FrictionMapLike
+        """
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description of the map (coefficients in N, MPa)."""
 
 
 @dataclass(frozen=True)
@@ -89,6 +127,14 @@ class ControlSetup:
         Settling band (fraction of the step, default 0.02).
     antiwindup : str
         Anti-windup scheme of the controllers.
+
+    Examples
+    --------
+    >>> s = ControlSetup.default(duration_s=2.0)    # test 5, Eq 9, default plant
+    >>> s.target_n, s.dt, round(s.feedforward_pressure(), 4)    # N, s, MPa
+    (54.4, 0.01, 0.2926)
+    >>> s.tuning("pi").gains.kd
+    0.0
     """
 
     plant: PlantParams
@@ -110,7 +156,23 @@ class ControlSetup:
 
     @classmethod
     def default(cls, **changes: Any) -> ControlSetup:
-        """The test-5 structure with Eq 9 (gamma 0.7168) and the default plant."""
+        """The test-5 structure with Eq 9 (gamma 0.7168) and the default plant.
+
+        Parameters
+        ----------
+        **changes
+            Fields to replace (e.g. ``target_n=40.0`` in N, ``duration_s=5.0`` in s,
+            ``plant=PlantParams(mismatch=0.1)``, ``model_map=...``).
+
+        Returns
+        -------
+        ControlSetup
+
+        Examples
+        --------
+        >>> ControlSetup.default(target_n=40.0).target_n
+        40.0
+        """
         from exofric.friction import CubicFit
 
         g = CubicFrictionMap(CubicFit(paper.eq8(), *paper.load()["eq8"]["fit_range_mpa"]),
@@ -128,7 +190,19 @@ class ControlSetup:
         return float(self.model_map.inverse(self.target_n))
 
     def tuning(self, controller: str) -> TuningResult:
-        """Rule gains for the loop linearised at the target (model map, plant lag/delay)."""
+        """Rule gains for the loop linearised at the target (model map, plant lag/delay).
+
+        Parameters
+        ----------
+        controller : {'pd', 'pi', 'pid'}
+            Controller structure.
+
+        Returns
+        -------
+        TuningResult
+            IMC/SIMC gains (kp MPa/N, ki MPa/(N s), kd MPa s/N) for the local slope
+            dF/dP (N/MPa) at the feedforward pressure.
+        """
         p_ff = self.feedforward_pressure()
         slope = local_slope(self.model_map, p_ff) * self.plant.gain
         return rule_gains(controller, slope, self.plant.time_constant_s, self.plant.delay_s,
@@ -146,7 +220,37 @@ class ControlSetup:
 
 @dataclass(frozen=True)
 class CaseResult:
-    """One closed-loop step response and its metrics (N, MPa, s)."""
+    """One closed-loop step response and its metrics (N, MPa, s).
+
+    Attributes
+    ----------
+    controller : str
+        ``'pd'``, ``'pi'`` or ``'pid'``.
+    feedforward : bool
+        Whether the model feedforward was used.
+    ff_mode : str
+        The setup's feedforward mode (``'2dof'`` or ``'static'``).
+    tuning : TuningResult
+        The gains used (kp MPa/N, ki MPa/(N s), kd MPa s/N) and how they were obtained.
+    metrics : StepMetrics
+        Settling and rise times (s), overshoot (%), steady-state error (N).
+    final_pressure_mpa : float
+        Mean pressure over the last 5% of the horizon (MPa).
+    feedforward_pressure_mpa : float or None
+        P_ff = g^-1(target) (MPa), None without feedforward.
+    mismatch : float
+        Plant-model friction mismatch (fraction, unitless): true map = model x (1 + mismatch).
+    paper_settling_time_s : float or None
+        The paper's settling time for this case (s, Fig 12), None where it prints none.
+    simulation : SimulationResult
+        The trajectories (s, N, MPa).
+
+    Examples
+    --------
+    >>> r = run_case(ControlSetup.default(duration_s=2.0), "pi", feedforward=True)
+    >>> r.controller, r.feedforward, r.ff_mode, round(r.feedforward_pressure_mpa, 4)
+    ('pi', True, '2dof', 0.2926)
+    """
 
     controller: str
     feedforward: bool
@@ -252,6 +356,12 @@ def run_case(
     Returns
     -------
     CaseResult
+
+    Examples
+    --------
+    >>> r = run_case(ControlSetup.default(duration_s=2.0), "pid", feedforward=False)
+    >>> r.paper_settling_time_s, r.metrics.settling_time_s   # s; 2 s is too short to settle
+    (6.17, None)
     """
     kind = controller.lower()
     if kind not in CONTROLLERS:
@@ -274,7 +384,27 @@ def run_case(
 
 @dataclass(frozen=True)
 class CompareResult:
-    """The six Fig 12 cases and the settling-time reductions (ours and the paper's, %)."""
+    """The six Fig 12 cases and the settling-time reductions (ours and the paper's, %).
+
+    Attributes
+    ----------
+    cases : tuple of CaseResult
+        PD, PI, PID, each without then with the model feedforward.
+    target_n : float
+        Step target friction (N).
+    mismatch : float
+        Plant-model friction mismatch (fraction, unitless).
+    ff_mode : str
+        Feedforward mode (``'2dof'`` or ``'static'``).
+
+    Examples
+    --------
+    >>> c = compare(ControlSetup.default())
+    >>> [(k.controller, k.feedforward) for k in c.cases][:2], c.target_n
+    ([('pd', False), ('pd', True)], 54.4)
+    >>> round(c.reduction_pct("pi"), 1)                     # %; the paper prints 26
+    32.7
+    """
 
     cases: tuple[CaseResult, ...]
     target_n: float
@@ -282,7 +412,19 @@ class CompareResult:
     ff_mode: str
 
     def reduction_pct(self, controller: str) -> float | None:
-        """Settling-time reduction with the model, in % of the time without (None if n/a)."""
+        """Settling-time reduction with the model, in % of the time without (None if n/a).
+
+        Parameters
+        ----------
+        controller : {'pd', 'pi', 'pid'}
+            Controller whose two cases are compared.
+
+        Returns
+        -------
+        float or None
+            100 (t_without - t_with) / t_without (%), None when either case does not
+            settle or the controller was not run.
+        """
         by = {(c.controller, c.feedforward): c.metrics.settling_time_s for c in self.cases}
         t0, t1 = by.get((controller, False)), by.get((controller, True))
         if t0 is None or t1 is None or t0 <= 0:
@@ -360,6 +502,22 @@ class CompareResult:
 
 
 def compare(setup: ControlSetup) -> CompareResult:
-    """Run PD, PI and PID, each without and with the model (Fig 12c-e)."""
+    """Run PD, PI and PID, each without and with the model (Fig 12c-e).
+
+    Parameters
+    ----------
+    setup : ControlSetup
+        Plant, friction model, target (N), sample time and horizon (s).
+
+    Returns
+    -------
+    CompareResult
+
+    Examples
+    --------
+    >>> c = compare(ControlSetup.default(duration_s=2.0))
+    >>> len(c.cases), sorted({k.controller for k in c.cases})
+    (6, ['pd', 'pi', 'pid'])
+    """
     cases = tuple(run_case(setup, k, feedforward=ff) for k in CONTROLLERS for ff in (False, True))
     return CompareResult(cases, setup.target_n, setup.plant.mismatch, setup.ff_mode)

@@ -113,6 +113,14 @@ class ReproduceConfig:
         The Section 5 target (N).
     arm_radius_m : float
         Lever arm for the torque (m).
+
+    Examples
+    --------
+    >>> cfg = ReproduceConfig()                     # converged meshes, the paper's numbers
+    >>> cfg.fast, cfg.gamma_true, cfg.target_friction_n, cfg.arm_radius_m
+    (False, 0.7168, 54.4, 0.1)
+    >>> cfg.pressures_mpa[0], cfg.rig_pressures_mpa[0]   # MPa
+    (0.05, 0.2)
     """
 
     fast: bool = False
@@ -129,7 +137,23 @@ class ReproduceConfig:
 
     @classmethod
     def for_mode(cls, fast: bool = False) -> ReproduceConfig:
-        """Default (converged meshes) or ``fast`` (coarse meshes) configuration."""
+        """Default (converged meshes) or ``fast`` (coarse meshes) configuration.
+
+        Parameters
+        ----------
+        fast : bool
+            Use :data:`FAST_SQUEEZE_MESH` and :data:`FAST_INFLATION_MESH` (``--fast``, CI)
+            instead of the converged meshes of :mod:`exofric.defaults`.
+
+        Returns
+        -------
+        ReproduceConfig
+
+        Examples
+        --------
+        >>> ReproduceConfig.for_mode(fast=True).inflation_mesh.n_circ
+        4
+        """
         if fast:
             return cls(True, FAST_SQUEEZE_MESH, FAST_INFLATION_MESH, FAST_SQUEEZE_MESH)
         return cls()
@@ -156,7 +180,22 @@ class ReproduceConfig:
 
 @dataclass(frozen=True)
 class StageTime:
-    """Wall time (s) of one stage."""
+    """Wall time (s) of one stage.
+
+    Attributes
+    ----------
+    key : str
+        Stage key (see :data:`STAGES`), e.g. ``"table2"``.
+    title : str
+        Stage title.
+    wall_time_s : float
+        Wall-clock time of the stage (s).
+
+    Examples
+    --------
+    >>> StageTime("table2", "Table 2", 0.01).to_dict()
+    {'key': 'table2', 'title': 'Table 2', 'wall_time_s': 0.01}
+    """
 
     key: str
     title: str
@@ -169,7 +208,46 @@ class StageTime:
 
 @dataclass(frozen=True)
 class ReproduceResult:
-    """Everything :func:`reproduce` computed, stage by stage, with timings and versions."""
+    """Everything :func:`reproduce` computed, stage by stage, with timings and versions.
+
+    Attributes
+    ----------
+    config : ReproduceConfig
+        The settings of the run (meshes, pressures in MPa, target in N, arm in m).
+    table2 : Table2Stage
+        Stage 1, Table 2 from Eqs 3-6 (MPa, 1/MPa).
+    calibration : CalibrationStage
+        Stage 2, tube ID (mm) and Shore (Shore A) from Table 1.
+    squeeze : SqueezeStage
+        Stage 3, base-group N(P) (N vs MPa) and its sensitivity.
+    gamma : GammaStage
+        Stage 4, gamma (Eq 7; unitless) from SYNTHETIC rig friction.
+    prediction : PredictionStage
+        Stage 5, predictions (N) for the Table 3 structures and the ANOVA.
+    cubic : CubicStage
+        Stage 6, cubic fit of test 5 and the pressures (MPa) for the target.
+    control : ControlStage
+        Stage 7, the Fig 12 control cases (s, N).
+    torque : TorqueStage
+        Stage 8, torque (Nm) at 0.6 MPa per structure.
+    stage_times : tuple of StageTime
+        Wall time of each stage (s), in stage order.
+    versions : dict of str to str
+        :func:`software_versions` of the run.
+    wall_time_s : float
+        Wall time of the whole run (s).
+    paper_checks : tuple of Comparison
+        :func:`paper_checks`: the paper's numbers against its own equations (units per row).
+
+    Examples
+    --------
+    >>> r = fast_result             # = reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> r.config.fast, list(r.stages())[:3], len(r.paper_checks)
+    (True, ['table2', 'calibration', 'squeeze'], 7)
+    >>> stage, row = r.comparisons()[0]
+    >>> stage, row.unit
+    ('table2', '')
+    """
 
     config: ReproduceConfig
     table2: Table2Stage

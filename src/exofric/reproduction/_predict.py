@@ -55,6 +55,32 @@ class PredictionStage:
     errors and p-values show what the Coulomb model gives when it holds, plus noise: the
     paper's published maximum errors (-12 % ... +189 %) and p-values are not reproducible
     without its raw curves.
+
+    Attributes
+    ----------
+    structures : tuple of Structure
+        Tests 1-7 of Table 3 (sizes in mm), test 1 the base group.
+    squeezes : tuple of SqueezeResult
+        FE squeeze N(P) of each structure (N vs MPa), in ``structures`` order.
+    runs : tuple of RigRun
+        SYNTHETIC virtual-rig test of each structure (MPa, N); test 1's is the gamma stage's.
+    predictions : PredictionSet
+        F = gamma N(P) (N) per structure against its rig curve, with deviations and ANOVA.
+    rows : tuple of dict
+        One per test: group, structure (mm), deviations (%), clearance (mm), validated
+        region, contact onset (MPa), maximum relative errors (%) and p-values, ours and the
+        paper's, and the number of rig points.
+    warnings : tuple of str
+        Warnings raised while predicting (structures outside the validated region).
+    comparisons : tuple of Comparison
+        Maximum relative errors (%), ANOVA p-values (unitless) and Table 3 deviations (%)
+        beside the paper's.
+
+    Examples
+    --------
+    >>> s = fast_result.prediction    # reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> [st.name for st in s.structures][:3], len(s.runs), len(s.warnings)
+    (['test 1', 'test 2', 'test 3'], 7, 2)
     """
 
     structures: tuple[Structure, ...]
@@ -91,6 +117,24 @@ def stage_prediction(
 
     Runs the FE squeeze for tests 2-7 (test 1 is ``base_result``) and one virtual-rig test
     per structure (seed ``cfg.seed + k``). Units: mm, MPa, N, %.
+
+    Parameters
+    ----------
+    base_result : SqueezeResult
+        Base-group (test 1) squeeze N(P) of stage 3 (N vs MPa); its structure is the base
+        that Table 3 scales.
+    gamma : GammaStage
+        Stage 4: its rig run is test 1's measured curve and its fitted model (gamma
+        unitless) makes the predictions.
+    material : MooneyRivlin
+        Calibrated tube material (MPa, 1/MPa).
+    cfg : ReproduceConfig
+        Pressures (MPa), squeeze mesh, rig set points (MPa), ``gamma_true``, rig settings,
+        seed and lever arm (m).
+
+    Returns
+    -------
+    PredictionStage
 
     Examples
     --------
@@ -173,7 +217,23 @@ def stage_prediction(
 
 @dataclass(frozen=True)
 class TorqueStage:
-    """Predicted torque T = F R at 0.6 MPa per structure against the knee's 0-40 Nm."""
+    """Predicted torque T = F R at 0.6 MPa per structure against the knee's 0-40 Nm.
+
+    Attributes
+    ----------
+    rows : tuple of dict
+        One per structure: ``name``, ``pressure_mpa``, then the
+        :class:`~exofric.friction.TorqueCheck` fields (``friction_n``, ``arm_radius_m``,
+        ``torque_nm``, the knee's range in Nm, ``meets_max``, ``coverage_pct``).
+    comparisons : tuple of Comparison
+        Base and test 3 torques (Nm) and test 3 friction (N) beside the paper's.
+
+    Examples
+    --------
+    >>> s = fast_result.torque        # reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> s.rows[0]["name"], round(s.rows[0]["torque_nm"], 1), s.rows[0]["meets_max"]
+    ('test 1', 17.2, False)
+    """
 
     rows: tuple[dict[str, Any], ...]
     comparisons: tuple[Comparison, ...]
@@ -186,6 +246,18 @@ class TorqueStage:
 
 def stage_torque(pred: PredictionStage, arm_radius_m: float) -> TorqueStage:
     """Stage 8: T = gamma N(0.6 MPa) R (Nm) per structure; paper's 18.05 and 30 Nm beside.
+
+    Parameters
+    ----------
+    pred : PredictionStage
+        Stage 5: the predicted friction F(P) (N) of each structure; its last pressure
+        (0.6 MPa) is used.
+    arm_radius_m : float
+        Lever arm R (m), the paper's 0.10 m.
+
+    Returns
+    -------
+    TorqueStage
 
     Examples
     --------

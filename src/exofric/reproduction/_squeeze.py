@@ -49,6 +49,19 @@ class SqueezeStage:
         :data:`ID_STEP_MM`, the paper's printed (slipped) constants with their fitted ID,
         the paper's Shore 62.5, and a 10x softer contact penalty; each with its change from the
         baseline in %.
+    dn_did_n_per_mm : float
+        Sensitivity dN/dID of N(0.6 MPa) to the tube inner diameter (N/mm), central
+        difference over +/- :data:`ID_STEP_MM`.
+    id_to_match_paper_mm : float
+        Tube ID (mm) at which N(0.6 MPa) would reach the paper's 268.55 N (linear in ID).
+    comparisons : tuple of Comparison
+        N at 0.6 MPa (N) beside the paper's Fig 7 value.
+
+    Examples
+    --------
+    >>> s = fast_result.squeeze       # reproduce(ReproduceConfig.for_mode(fast=True)): coarse
+    >>> round(s.n_at_max_n, 1), round(s.dn_did_n_per_mm, 1), round(s.id_to_match_paper_mm, 2)
+    (239.7, 93.8, 5.27)
     """
 
     result: SqueezeResult
@@ -160,6 +173,30 @@ class GammaStage:
     The rig plants ``gamma_true`` (the paper's 0.7168); recovering it checks the pipeline,
     not the paper. ``gamma_published_point`` = 180.49 N / our N(0.6 MPa) is the only gamma
     that rests on a measured number of the paper.
+
+    Attributes
+    ----------
+    rig : RigRun
+        The SYNTHETIC virtual-rig test on the base curve (pressures in MPa, friction in N).
+    fit : GammaFit
+        gamma fitted to the rig friction (Eq 7), with its errors (%).
+    gamma_true : float
+        gamma planted in the rig (unitless), the paper's 0.7168.
+    gamma_published_point : float
+        The paper's measured 180.49 N over our N(0.6 MPa) (unitless).
+    gamma_paper_pair : float
+        The paper's own pair, 180.49 N / 268.55 N (unitless).
+    comparisons : tuple of Comparison
+        gamma (unitless), its relative error (%) and the friction at 0.6 MPa (N) beside
+        the paper's.
+    synthetic : bool
+        Always True: the fitted gamma rests on virtual-rig data.
+
+    Examples
+    --------
+    >>> g = fast_result.gamma         # reproduce(ReproduceConfig.for_mode(fast=True))
+    >>> g.gamma_true, round(g.gamma_paper_pair, 4), round(g.fit.gamma, 4)
+    (0.7168, 0.6721, 0.7173)
     """
 
     rig: RigRun

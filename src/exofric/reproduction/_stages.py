@@ -27,7 +27,13 @@ from typing import Any
 import numpy as np
 
 from exofric import paper
-from exofric.calibration import CalibrationResult, InflationData, calibrate, make_model, material_for
+from exofric.calibration import (
+    CalibrationResult,
+    InflationData,
+    calibrate,
+    make_model,
+    material_for,
+)
 from exofric.fe import MeshSpec
 from exofric.material import MooneyRivlin
 from exofric.reproduction._compare import Comparison, printed_decimals
@@ -61,6 +67,27 @@ class Table2Stage:
 
     ``rows`` holds, per parameter: the printed value, ours by Eqs 3-6 exactly, ours with
     the paper's C10 slip (C10 = G/2/1.005), and whether each rounds to the printed digits.
+
+    Attributes
+    ----------
+    shore : float
+        The paper's hardness (Shore A), 62.5.
+    rows : tuple of dict
+        One per Table 2 parameter: ``key``, ``quantity``, ``unit`` (MPa, 1/MPa or ''),
+        ``paper_value``, ``eq_value`` (Eqs 3-6), ``slip_value`` (printed C10 slip),
+        ``printed_decimals``, ``eq_matches_printed``, ``slip_matches_printed``, ``note``.
+    material : MooneyRivlin
+        Eqs 3-6 at ``shore`` exactly (C10, C01 in MPa, d in 1/MPa).
+    slip_material : MooneyRivlin
+        The same with the paper's C10 slip (what Table 2 prints).
+    comparisons : tuple of Comparison
+        One row per parameter: printed value beside Eqs 3-6 (MPa, 1/MPa).
+
+    Examples
+    --------
+    >>> s = stage_table2()
+    >>> s.shore, round(s.material.c10, 4), round(s.slip_material.c10, 4)   # C10 in MPa
+    (62.5, 0.6354, 0.6639)
     """
 
     shore: float
@@ -142,9 +169,20 @@ class CalibrationStage:
     bisection, bounded : CalibrationResult
         Shore from the test diameters with the fitted ID: the paper's bisection and a
         bounded minimisation of the average error.
+    tube_od_mm : float
+        Tube outer diameter d1 (mm), Table 1's 8.3 mm.
     columns : tuple of dict
         Per Table 1 Shore column: pressures (MPa), the paper's and our diameters (mm),
         the differences (%), and both average errors vs the test column (%).
+    comparisons : tuple of Comparison
+        Table 1 diameters (mm) and average errors (%), the fitted tube ID (mm), the
+        identified Shore (Shore A) and its average error (%), each beside the paper's.
+
+    Examples
+    --------
+    >>> s = fast_result.calibration   # reproduce(ReproduceConfig.for_mode(fast=True)): coarse
+    >>> s.tube_od_mm, round(s.tube_id_mm, 3), round(s.shore, 2)    # mm, mm, Shore A
+    (8.3, 4.966, 62.57)
     """
 
     tube_od_mm: float
