@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from exofric._json import jsonable
 from exofric.errors import InputError
 from exofric.material import MooneyRivlin
 
@@ -25,25 +26,6 @@ if TYPE_CHECKING:
 __all__ = ["InflationData", "Trial", "CalibrationResult", "relative_errors_pct"]
 
 _REQUIRED = ("pressure_mpa", "outer_diameter_mm")
-
-
-def _json_ready(obj: Any) -> Any:
-    """NumPy scalars/arrays and tuples -> plain values, NaN/inf -> None (JSON has no NaN).
-
-    The calibration stage does no file I/O, so it keeps this small converter instead of
-    importing :func:`exofric.io.jsonable`.
-    """
-    if isinstance(obj, dict):
-        return {str(k): _json_ready(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [_json_ready(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return _json_ready(obj.tolist())
-    if isinstance(obj, np.generic):
-        return _json_ready(obj.item())
-    if isinstance(obj, float) and not np.isfinite(obj):
-        return None
-    return obj
 
 
 def relative_errors_pct(simulated_mm: np.ndarray, measured_mm: np.ndarray) -> np.ndarray:
@@ -234,7 +216,7 @@ class Trial:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (non-finite errors of a failed trial become ``None``)."""
-        return _json_ready({
+        return jsonable({
             "shore": self.shore,
             "tube_id_mm": self.tube_id_mm,
             "average_error_pct": self.average_error_pct,
@@ -361,7 +343,7 @@ class CalibrationResult:
             out["tube_id_stderr_mm"] = self.tube_id_stderr_mm
         if self.correlation is not None:
             out["correlation"] = self.correlation
-        return _json_ready(out)
+        return jsonable(out)
 
     def to_frame(self) -> pd.DataFrame:
         """The trial history as a DataFrame: one row per trial, in the order evaluated.

@@ -26,8 +26,7 @@ from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
+from exofric._json import jsonable
 from exofric.errors import InputError
 
 if TYPE_CHECKING:
@@ -169,41 +168,6 @@ def read_table(
     elif len(df) < min_rows:
         raise InputError(f"{name}: needs at least {min_rows} data rows, got {len(df)}")
     return df.reset_index(drop=True)
-
-
-def jsonable(obj: Any) -> Any:
-    """Convert NumPy scalars/arrays, tuples and non-finite floats to JSON-ready values.
-
-    NaN and infinities become ``None`` (JSON has no NaN); paths become strings.
-
-    Parameters
-    ----------
-    obj : Any
-        A value, possibly nested in dicts, lists and tuples.
-
-    Returns
-    -------
-    Any
-        The same structure built of dicts (string keys), lists, plain numbers and strings.
-
-    Examples
-    --------
-    >>> jsonable({"gamma": np.float64(0.7168), "p_mpa": np.array([0.2, np.nan])})
-    {'gamma': 0.7168, 'p_mpa': [0.2, None]}
-    """
-    if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return jsonable(obj.tolist())
-    if isinstance(obj, np.generic):
-        return jsonable(obj.item())
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    if isinstance(obj, Path):
-        return str(obj)
-    return obj
 
 
 @contextlib.contextmanager
