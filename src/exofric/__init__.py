@@ -19,7 +19,7 @@ Examples
 >>> import exofric as ef
 >>> r = ef.squeeze(ef.BASE, ef.MooneyRivlin.from_shore(62.5), [0.6])
 >>> round(float(r.squeeze_force_n[0]))
-240
+241
 """
 
 from __future__ import annotations

@@ -20,31 +20,84 @@ from types import MappingProxyType
 from typing import Any, Final
 
 __all__ = [
+    "ACCURACY",
+    "BLAS_THREADS",
     "CONTACT_PENALTY_N_PER_MM3",
+    "ESTIMATE_SAFETY_FACTOR",
+    "GRAVITY",
+    "INFLATION_ACCURACY",
     "INFLATION_MESH",
     "INFLATION_NEWTON",
     "MR_STRETCH_LIMIT",
     "NEWTON",
+    "REGULARISER_SPRING_REL",
     "SILICONE_DENSITY_T_PER_MM3",
+    "SQUEEZE_ACCURACY",
     "SQUEEZE_MESH",
     "SQUEEZE_NEWTON",
 ]
 
 #: Free-inflation mesh: quarter model, 2 x 6 quad9 (130 dofs); within 3e-5 of the 1D reference
-#: for 8.3/4.97 mm up to 0.6 MPa (tests/test_fe_inflate.py, convergence study).
+#: for 8.3/4.97 mm up to 0.6 MPa (tests/test_fe_inflate.py, convergence study). The quarter
+#: model's angles are uniform (the solution is axisymmetric): ``grading`` only applies to the
+#: squeeze's half model, and is the same 6:1 as there so that ``MeshSpec(4, 48)`` means one
+#: mesh whichever problem it is given to.
 INFLATION_MESH: Final[MappingProxyType[str, Any]] = MappingProxyType(
-    {"n_radial": 2, "n_circ": 6, "kind": "quad9", "grading": 1.0, "formulation": "mixed"})
+    {"n_radial": 2, "n_circ": 6, "kind": "quad9", "grading": 6.0, "formulation": "mixed"})
 
 #: Squeeze mesh: half model, 2 x 24 quad9 graded 6:1 toward the wire (490 dofs); within 0.05%
 #: of an 8 x 96 mesh at 0.6 MPa (tests/test_squeeze.py).
 SQUEEZE_MESH: Final[MappingProxyType[str, Any]] = MappingProxyType(
     {"n_radial": 2, "n_circ": 24, "kind": "quad9", "grading": 6.0, "formulation": "mixed"})
 
+#: Accuracy levels of the squeeze (``squeeze(..., accuracy=...)``, ``--accuracy``). Each names
+#: the half-tube mesh whose answer is returned and the factors (radial, circumferential) by which
+#: it is coarsened into the nested mesh whose difference from it gives the error estimate.
+#: Errors from the first pressure where N >= 1% of N(0.6 MPa), against 6 x 192 and FElupe
+#: references on the Table 3 structures (docs/formulation.md section 6): "draft" (2 x 24, the
+#: former default) up to ~2.2%, "standard" (3 x 32) up to ~0.6%, "fine" (4 x 64) up to ~0.3%.
+SQUEEZE_ACCURACY: Final[MappingProxyType[str, MappingProxyType[str, Any]]] = MappingProxyType({
+    "draft": MappingProxyType(
+        {"n_radial": 2, "n_circ": 24, "grading": 6.0, "coarsen": (1, 2)}),
+    "standard": MappingProxyType(
+        {"n_radial": 3, "n_circ": 32, "grading": 6.0, "coarsen": (1, 2)}),
+    "fine": MappingProxyType(
+        {"n_radial": 4, "n_circ": 64, "grading": 6.0, "coarsen": (1, 2)}),
+})
+
+#: Safety factor Fs of the two-mesh error estimate, Fs |f_fine - f_coarse| / (r^p - 1) with
+#: refinement ratio r = 2 and order p = 1 (nodal contact converges at order ~1, oscillating):
+#: Roache's grid convergence index for two-grid studies (Fs = 3; J. Fluids Eng. 116, 1994).
+ESTIMATE_SAFETY_FACTOR: Final = 3.0
+
+#: Accuracy levels of the free inflation (quarter model; same meaning as SQUEEZE_ACCURACY).
+#: "standard" is the 2 x 6 mesh above (3e-5 of the 1D reference).
+INFLATION_ACCURACY: Final[MappingProxyType[str, MappingProxyType[str, Any]]] = MappingProxyType({
+    "draft": MappingProxyType({"n_radial": 1, "n_circ": 4, "grading": 6.0, "coarsen": (1, 2)}),
+    "standard": MappingProxyType(
+        {"n_radial": 2, "n_circ": 6, "grading": 6.0, "coarsen": (2, 2)}),
+    "fine": MappingProxyType({"n_radial": 4, "n_circ": 12, "grading": 6.0, "coarsen": (2, 2)}),
+})
+
+#: Accuracy level used when neither ``accuracy`` nor an explicit mesh is given.
+ACCURACY: Final = "standard"
+
+#: Orientation of gravity in the squeeze: "none" (the tube's weight is left out; the load path
+#: is regularised by a body force that is taken to zero before any output is read),
+#: "toward-wall" (the tube rests on the hole wall) or "toward-wire" (hangs on the wire).
+GRAVITY: Final = "none"
+
+#: gravity "none": stiffness of the spring that holds the floating tube (on the outer node at
+#: the wall) before it bears on wall and wire, relative to the shear modulus (N/mm per mm
+#: depth per MPa). Its force is zero at every reported state (simulate.squeeze).
+REGULARISER_SPRING_REL: Final = 1.0
+
 #: Contact penalty (N/mm^3, MPa of contact pressure per mm of penetration): penetration
 #: ~3e-5 mm at 0.6 MPa for the base group; 10x stiffer changes N by 1e-5.
 CONTACT_PENALTY_N_PER_MM3: Final = 1e5
 
-#: Silicone density (t/mm^3 = 1.1 g/cm^3) for the squeeze's self-weight regulariser.
+#: Silicone density (t/mm^3 = 1.1 g/cm^3): the tube's weight in the squeeze (with gravity on),
+#: and the magnitude of the load path's regulariser (with gravity "none").
 SILICONE_DENSITY_T_PER_MM3: Final = 1.1e-9
 
 #: Newton settings shared by every load path (tolerances relative to the problem's scales;
@@ -65,3 +118,9 @@ SQUEEZE_NEWTON: Final[MappingProxyType[str, Any]] = MappingProxyType(
 #: Largest principal stretch for which the paper claims its two-parameter Mooney-Rivlin model
 #: holds ("100-150% material deformation", §3.3); beyond it results are extrapolations.
 MR_STRETCH_LIMIT: Final = 2.5
+
+#: BLAS/OpenMP threads a Newton solve may use (``NewtonSettings.threads``; 0 leaves the thread
+#: pools as they are). The banded factorisations of the tube meshes are too small to gain from
+#: threads, and under CPU contention (parallel sweeps, other jobs) extra threads made refined
+#: meshes 6-9x slower; one thread per solve is the fast and safe setting.
+BLAS_THREADS: Final = 1

@@ -47,10 +47,11 @@ def register(app: typer.Typer) -> None:
         c10: float = typer.Option(None, help="Override C10 (MPa)."),
         c01: float = typer.Option(None, help="Override C01 (MPa)."),
         d: float = typer.Option(None, help="Override d (1/MPa)."),
-        n_radial: int = typer.Option(defaults.INFLATION_MESH["n_radial"],
-                                     help="Elements through the wall."),
-        n_circ: int = typer.Option(defaults.INFLATION_MESH["n_circ"],
-                                   help="Elements around the quarter."),
+        accuracy: str = typer.Option(
+            None, help="Accuracy level: draft, standard or fine (two nested meshes, error "
+            f"estimate of the diameters; default {defaults.ACCURACY}). Not with --n-radial."),
+        n_radial: int = typer.Option(None, help="Explicit mesh: elements through the wall."),
+        n_circ: int = typer.Option(None, help="Explicit mesh: elements around the quarter."),
         plot: Path = typer.Option(None, help="Write a PNG of the deformed section and OD(P)."),
         vtu: Path = typer.Option(None, help="Write the deformed mesh at the last pressure (VTU)."),
         as_json: bool = JSON_OPTION,
@@ -61,7 +62,11 @@ def register(app: typer.Typer) -> None:
 
         mat = material_from_options(shore, c10, c01, d)
         p = parse_floats("--pressures", pressures)
-        res = inflate(tube_od, tube_id, mat, p, mesh=MeshSpec(n_radial, n_circ))
+        mesh = None
+        if n_radial is not None or n_circ is not None:
+            mesh = MeshSpec(defaults.INFLATION_MESH["n_radial"] if n_radial is None else n_radial,
+                            defaults.INFLATION_MESH["n_circ"] if n_circ is None else n_circ)
+        res = inflate(tube_od, tube_id, mat, p, accuracy=accuracy, mesh=mesh)
         out = res.to_dict()
         from exofric.plots import plot_inflation
 
@@ -74,19 +79,21 @@ def register(app: typer.Typer) -> None:
                 title=f"Free inflation, tube {tube_od:g}/{tube_id:g} mm ({res.dofs} dofs, "
                 f"{res.solve_time_s * 1e3:.0f} ms)"
             )
-            for c in ("P (MPa)", "OD FE (mm)", "ID FE (mm)", "OD closed form (mm)", "Newton it."):
+            est = res.outer_diameter_error_estimate_mm
+            cols = ["P (MPa)", "OD FE (mm)", "ID FE (mm)", "OD closed form (mm)"]
+            cols += ["OD error est. (mm)"] if est is not None else ["Newton it."]
+            for c in cols:
                 t.add_column(c, justify="right")
-            for row in zip(
+            for i, row in enumerate(zip(
                 out["pressure_mpa"],
                 out["outer_diameter_mm"],
                 out["inner_diameter_mm"],
                 out["analytic_outer_diameter_mm"],
                 out["newton_iterations"],
                 strict=True,
-            ):
-                t.add_row(
-                    f"{row[0]:g}", f"{row[1]:.4f}", f"{row[2]:.4f}", f"{row[3]:.4f}", str(row[4])
-                )
+            )):
+                last = f"{est[i]:.1e}" if est is not None else str(row[4])
+                t.add_row(f"{row[0]:g}", f"{row[1]:.4f}", f"{row[2]:.4f}", f"{row[3]:.4f}", last)
             console.print(t)
             console.print(f"[dim]{res.symmetry}. Closed form: incompressible (J = 1).[/dim]")
             for k in ("plot", "vtu"):

@@ -28,12 +28,17 @@ def register(app: typer.Typer) -> None:
         d: float = typer.Option(None, help="Override d (1/MPa)."),
         length: float = typer.Option(116.0, help="Tube length L (mm) for total forces."),
         pressures: str = typer.Option(DEFAULT_P, help="Increasing pressures (MPa)."),
-        n_radial: int = typer.Option(defaults.SQUEEZE_MESH["n_radial"],
-                                     help="Elements through the wall."),
-        n_circ: int = typer.Option(defaults.SQUEEZE_MESH["n_circ"],
-                                   help="Elements around the half tube."),
+        accuracy: str = typer.Option(
+            None, help="Accuracy level: draft, standard or fine (two nested meshes, error "
+            f"estimate per pressure; default {defaults.ACCURACY}). Not with --n-radial/--n-circ."),
+        gravity: str = typer.Option(
+            defaults.GRAVITY, help="The tube's weight: none, toward-wall (resting on the hole "
+            "wall) or toward-wire (hanging on the wire)."),
+        n_radial: int = typer.Option(None, help="Explicit mesh: elements through the wall "
+                                     "(no error estimate)."),
+        n_circ: int = typer.Option(None, help="Explicit mesh: elements around the half tube."),
         grading: float = typer.Option(defaults.SQUEEZE_MESH["grading"],
-                                      help="Element size ratio, graded toward the wire."),
+                                      help="Explicit mesh: element size ratio toward the wire."),
         penalty: float = typer.Option(defaults.CONTACT_PENALTY_N_PER_MM3,
                                       help="Contact penalty (N/mm^3)."),
         plot: Path = typer.Option(None, help="PNG: deformed sections (Fig 6) and N(P) (Fig 7)."),
@@ -48,7 +53,13 @@ def register(app: typer.Typer) -> None:
         mat = material_from_options(shore, c10, c01, d)
         st = Structure(hole, tube_od, tube_id, wire, length)
         p = parse_floats("--pressures", pressures)
-        res = squeeze(st, mat, p, mesh=MeshSpec(n_radial, n_circ, grading=grading), penalty=penalty)
+        mesh = None
+        if n_radial is not None or n_circ is not None:
+            mesh = MeshSpec(defaults.SQUEEZE_MESH["n_radial"] if n_radial is None else n_radial,
+                            defaults.SQUEEZE_MESH["n_circ"] if n_circ is None else n_circ,
+                            grading=grading)
+        res = squeeze(st, mat, p, accuracy=accuracy, mesh=mesh, gravity=gravity,
+                      penalty=penalty)
         out = res.to_dict()
         from exofric.plots import plot_squeeze
 
@@ -57,37 +68,42 @@ def register(app: typer.Typer) -> None:
         def render() -> None:
             from rich.table import Table
 
+            m = res.mesh
             t = Table(
                 title=f"Squeeze: D={hole:g} d1={tube_od:g} ID={tube_id:g} d2={wire:g} mm, "
-                f"L={length:g} mm ({res.dofs} dofs, {res.solve_time_s:.2f} s)"
+                f"L={length:g} mm; {res.accuracy} ({m.n_radial} x {m.n_circ} mesh, "
+                f"{res.dofs} dofs, {res.solve_time_s:.2f} s); gravity {res.gravity}"
             )
-            for c in (
-                "P (MPa)",
-                "N (N)",
-                "N (N/mm)",
-                "wall (N)",
-                "wire half-width (mm)",
-                "penetration (mm)",
-                "Newton it.",
-            ):
+            est = res.n_error_estimate_pct
+            cols = ["P (MPa)", "N (N)", "N (N/mm)", "wall (N)", "wire half-width (mm)"]
+            if est is not None:
+                cols.append("N error est. (%)")
+            for c in cols:
                 t.add_column(c, justify="right")
             for i in range(len(p)):
-                t.add_row(
+                row = [
                     f"{p[i]:g}",
                     f"{res.squeeze_force_n[i]:.2f}",
                     f"{res.squeeze_force_n_per_mm[i]:.4f}",
                     f"{res.wall_force_n[i]:.2f}",
                     f"{res.wire_contact_halfwidth_mm[i]:.3f}",
-                    f"{res.max_penetration_mm[i]:.1e}",
-                    str(res.newton_iterations[i]),
-                )
+                ]
+                if est is not None:
+                    row.append("-" if res.squeeze_force_n_per_mm[i] == 0.0 and est[i] == 0.0
+                               else f"{est[i]:.2g}")
+                t.add_row(*row)
             console.print(t)
             onset = res.contact_onset_pressure_mpa
             console.print(
-                f"contact onset: {onset:.4f} MPa"
+                f"contact onset: {onset:.4f} MPa (bracketed to 2e-4 MPa)"
                 if onset is not None
                 else "the tube does not reach the wire in this pressure range"
             )
+            if est is not None:
+                cm = res.estimate_mesh
+                assert cm is not None
+                console.print(f"[dim]error estimate: 3 x |N - N({cm.n_radial} x {cm.n_circ} "
+                              "nested mesh)| (two-grid GCI); --accuracy fine for less.[/dim]")
             for k in ("plot", "vtu"):
                 if k in out:
                     console.print(f"wrote {out[k]}")

@@ -225,6 +225,7 @@ def solve_design(
         out.update(c10_mpa=mat.c10, c01_mpa=mat.c01, d_per_mpa=mat.d)
         res = solve_fn(design.structure(), mat, list(pressures_mpa), mesh=solver.mesh(),
                        penalty=solver.penalty_n_per_mm3, density=solver.density_t_per_mm3,
+                       gravity=solver.gravity,
                        settings=solver.newton(), keep_fields=False)
         for k in ("pressure_mpa", "squeeze_force_n", "squeeze_force_n_per_mm", "wall_force_n",
                   "max_penetration_mm", "newton_iterations"):

@@ -76,6 +76,8 @@ class SolverSpec:
         Largest pressure sub-step of the load path (MPa).
     max_iter : int
         Newton iterations per sub-step before the step is cut back.
+    gravity : {'none', 'toward-wall', 'toward-wire'}
+        The tube's weight (see :func:`exofric.simulate.squeeze`); default none.
 
     Examples
     --------
@@ -91,6 +93,7 @@ class SolverSpec:
     density_t_per_mm3: float = defaults.SILICONE_DENSITY_T_PER_MM3
     max_step_mpa: float = defaults.SQUEEZE_NEWTON["max_step"]
     max_iter: int = defaults.SQUEEZE_NEWTON["max_iter"]
+    gravity: str = defaults.GRAVITY
 
     def mesh(self) -> MeshSpec:
         """The :class:`MeshSpec` of the half tube."""
@@ -360,8 +363,14 @@ def _base(t: Mapping[str, Any]) -> tuple[Structure, float]:
 def _solver(t: Mapping[str, Any]) -> SolverSpec:
     names = {"n_radial": int, "n_circ": int, "grading": float, "penalty_n_per_mm3": float,
              "density_t_per_mm3": float, "max_step_mpa": float, "max_iter": int}
-    _known("[solver]", t, tuple(names))
+    _known("[solver]", t, (*names, "gravity"))
     kw: dict[str, Any] = {}
+    if "gravity" in t:
+        g = str(t["gravity"])
+        if g not in ("none", "toward-wall", "toward-wire"):
+            raise InputError(f"sweep file: [solver] gravity must be none, toward-wall or "
+                             f"toward-wire, got {g!r}")
+        kw["gravity"] = g
     for k, typ in names.items():
         if k in t:
             v = _num(f"[solver] {k}", t[k])

@@ -32,10 +32,17 @@ from exofric.fe._inflation import InflationProblem, MeshSpec, PressurizedTube
 from exofric.fe._loads import area_hessian, enclosed_area
 from exofric.fe._mesh import TubeMesh, graded_angles, polar_mesh
 from exofric.fe._solver import Assembler, NewtonSettings, PathPoint, Problem, solve_path
-from exofric.fe._squeeze import GRAVITY_MM_S2, SqueezeProblem, wall_arc, wire_halfwidth
+from exofric.fe._squeeze import (
+    GRAVITY_MM_S2,
+    GRAVITY_OPTIONS,
+    SqueezeProblem,
+    wall_arc,
+    wire_halfwidth,
+)
 
 __all__ = [
     "GRAVITY_MM_S2",
+    "GRAVITY_OPTIONS",
     "Assembler",
     "ContactState",
     "HyperelasticBody",

@@ -8,6 +8,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from exofric import defaults
+from exofric.errors import InputError
 from exofric.fe._hyperelastic import ElementState, HyperelasticBody
 from exofric.fe._loads import area_hessian
 from exofric.fe._mesh import TubeMesh, polar_mesh
@@ -31,7 +32,8 @@ class MeshSpec:
     kind : {'quad9', 'quad4'}
         Element type (quad9 = quadratic geometry and displacement).
     grading : float
-        Circumferential size ratio largest/smallest (squeeze: toward the wire).
+        Circumferential size ratio largest/smallest (unitless), toward the wire in the
+        squeeze's half model; the free inflation's quarter model is uniform and ignores it.
     formulation : {'mixed', 'displacement'}
         Volumetric treatment ('displacement' locks; kept for demonstration).
 
@@ -47,6 +49,38 @@ class MeshSpec:
     kind: str = defaults.INFLATION_MESH["kind"]
     grading: float = defaults.INFLATION_MESH["grading"]
     formulation: str = defaults.INFLATION_MESH["formulation"]
+
+    def coarsened(self, radial: int = 1, circ: int = 2) -> MeshSpec:
+        """The nested mesh with ``radial`` x ``circ`` times fewer elements.
+
+        Radial element boundaries are uniform, so every ``radial``-th one is kept. The
+        circumferential grading is geometric (per-element ratio r = grading^(1/(n-1))), so
+        merging ``circ`` neighbours gives again a geometric grading, with ratio r^circ: the
+        coarse mesh's boundaries are a subset of this mesh's (nested meshes).
+
+        Parameters
+        ----------
+        radial, circ : int
+            Coarsening factors (>= 1) through the wall and around the tube; they must divide
+            ``n_radial`` and ``n_circ``.
+
+        Returns
+        -------
+        MeshSpec
+
+        Examples
+        --------
+        >>> c = MeshSpec(2, 48, grading=6.0).coarsened(1, 2)
+        >>> c.n_radial, c.n_circ, round(c.grading, 4)
+        (2, 24, 5.7756)
+        """
+        if radial < 1 or circ < 1 or self.n_radial % radial or self.n_circ % circ:
+            raise InputError(
+                f"mesh {self.n_radial} x {self.n_circ} cannot be coarsened by {radial} x {circ}",
+                param="mesh")
+        nc = self.n_circ // circ
+        g = 1.0 if nc == 1 else self.grading ** (circ * (nc - 1) / (self.n_circ - 1))
+        return MeshSpec(self.n_radial // radial, nc, self.kind, g, self.formulation)
 
     def to_dict(self) -> dict[str, object]:
         """JSON-ready dict."""

@@ -1,10 +1,21 @@
-"""The tube-wire-hole squeeze: half model with two rigid circles and self-weight.
+"""The tube-wire-hole squeeze: half model with two rigid circles and a vertical body force.
 
 Half model x >= 0 (symmetry plane x = 0 through the hole, tube and wire centres):
 ``u_x = 0`` on the tube's nodes at theta = +-90 deg. The pressure has no net force
-on the tube, so its vertical position is fixed by contact only; the tube's
-self-weight (toward the wall, -y) regularises it physically until it touches both
-the wall and the wire. The mesh is graded toward theta = +90 deg (the wire).
+on the tube, so its vertical position is fixed by contact only.
+
+* ``gravity="toward-wall"`` / ``"toward-wire"``: the tube's weight (``density x g``), a
+  physical body force, holds it on the wall (or hangs it on the wire) until it touches
+  the other obstacle.
+* ``gravity="none"``: no body force. A vertical spring on the outer node at the wall
+  (theta = -90 deg) holds the floating mode. Until the tube touches the wire, nothing
+  pushes the tube vertically, so the spring's force is exactly zero at every converged
+  state (the node stays on the wall without penetrating it); once the wire squeezes the
+  tube, :func:`exofric.simulate.squeeze` removes the spring (:attr:`spring_k` = 0, the
+  wall and wire contacts then hold the tube) before any output is read. The regulariser
+  therefore never enters a reported force.
+
+The mesh is graded toward theta = +90 deg (the wire).
 """
 
 from __future__ import annotations
@@ -12,15 +23,20 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from exofric.errors import InputError
 from exofric.fe._contact import ContactState, RigidCircle, evaluate_contact, nodal_weights
 from exofric.fe._inflation import MeshSpec, PressurizedTube
 from exofric.fe._mesh import polar_mesh
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
 
-__all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "wire_halfwidth", "wall_arc"]
+__all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "GRAVITY_OPTIONS", "wire_halfwidth", "wall_arc"]
 
 GRAVITY_MM_S2 = 9810.0
+
+#: Orientations of gravity in the squeeze: none (regulariser only), toward the hole wall the
+#: tube rests on, or toward the wire (the device upside down).
+GRAVITY_OPTIONS = ("none", "toward-wall", "toward-wire")
 
 
 class SqueezeProblem(PressurizedTube):
@@ -37,7 +53,18 @@ class SqueezeProblem(PressurizedTube):
     penalty : float
         Contact penalty eps (N/mm^3: MPa of contact pressure per mm of penetration).
     density : float
-        Silicone density (t/mm^3) for the self-weight regulariser.
+        Silicone density (t/mm^3) of the weight (unused with ``gravity="none"``).
+    gravity : {'none', 'toward-wall', 'toward-wire'}
+        Orientation of gravity. ``'none'`` and ``'toward-wall'`` start with the tube on
+        the wall, ``'toward-wire'`` hanging on the wire.
+    spring_rel : float
+        Stiffness of the floating-mode spring of ``gravity="none"`` relative to the
+        shear modulus (unitless; the spring is ``spring_rel x mu`` N/mm per mm depth).
+
+    Attributes
+    ----------
+    spring_k : float
+        Current stiffness of the floating-mode spring (N/mm per mm depth; 0 with gravity).
 
     Examples
     --------
@@ -58,8 +85,22 @@ class SqueezeProblem(PressurizedTube):
         spec: MeshSpec,
         penalty: float,
         density: float,
+        gravity: str = "toward-wall",
+        spring_rel: float = 1.0,
     ) -> None:
+        if gravity not in GRAVITY_OPTIONS:
+            raise InputError(
+                f"gravity must be one of {', '.join(GRAVITY_OPTIONS)}, got {gravity!r}",
+                param="gravity")
         s = structure
+        self.gravity = gravity
+        # +1: the body force points to +y (the wire); -1: to -y (the wall the tube rests on)
+        self.sign = 1.0 if gravity == "toward-wire" else -1.0
+        center = s.tube_center_mm
+        if gravity == "toward-wire":  # hanging on the wire: tube top at the wire's bottom,
+            # 1e-12 mm into it so that round-off cannot leave the touching node inactive
+            wy, rw = s.wire_center_mm[1], 0.5 * s.wire_mm
+            center = (0.0, wy - rw - 0.5 * s.tube_od_mm + 1e-12)
         self.structure = s
         self.A, self.B = 0.5 * s.tube_id_mm, 0.5 * s.tube_od_mm
         mesh = polar_mesh(
@@ -72,16 +113,20 @@ class SqueezeProblem(PressurizedTube):
             grading=spec.grading,
             grade_toward=0.5 * np.pi,
             kind=spec.kind,
-            center=s.tube_center_mm,
+            center=center,
         )
         n = mesh.n_nodes
         self.outer = mesh.outer_nodes
         cd = 2 * self.outer[:, None] + np.arange(2)  # (m, 2) contact dofs
         self.contact_dofs = cd
         fixed = np.concatenate([2 * mesh.grid[:, 0], 2 * mesh.grid[:, -1]])  # on x = 0
+        self.spring_dof = int(2 * mesh.grid[-1, 0] + 1)  # u_y of the outer node at -90 deg
+        sd = np.array([self.spring_dof])
         super().__init__(
-            mesh, material, spec, fixed, ((np.repeat(cd, 2, axis=1), np.tile(cd, (1, 2))),)
+            mesh, material, spec, fixed,
+            ((np.repeat(cd, 2, axis=1), np.tile(cd, (1, 2))), (sd, sd)),
         )
+        self.spring_k = spring_rel * material.shear_modulus if gravity == "none" else 0.0
         self.w_outer = nodal_weights(mesh.boundary_edges("outer"), mesh.nodes, n)[self.outer]
         self.hole = RigidCircle((0.0, 0.0), 0.5 * s.hole_mm, inside=True, name="hole")
         self.wire = RigidCircle(s.wire_center_mm, 0.5 * s.wire_mm, inside=False, name="wire")
@@ -92,7 +137,10 @@ class SqueezeProblem(PressurizedTube):
             mesh.elements.ravel(), weights=np.einsum("eq,qa->ea", r.w, r.N).ravel(), minlength=n
         )
         self.f_body = np.zeros(self.n_dofs)
-        self.f_body[1::2] = -density * GRAVITY_MM_S2 * nodal_vol
+        self.f_body[1::2] = self.sign * density * GRAVITY_MM_S2 * nodal_vol
+        self._weight = 2.0 * density * GRAVITY_MM_S2 * float(nodal_vol.sum())
+        if gravity == "none":
+            self.f_body[:] = 0.0
 
     def contact(self, u: np.ndarray, tangent: bool = False) -> tuple[ContactState, ContactState]:
         """Contact states (hole, wire) of the outer nodes at displacement ``u``.
@@ -131,12 +179,15 @@ class SqueezeProblem(PressurizedTube):
         ch, cw = self.contact(u, tangent)
         R -= self.f_body
         np.subtract.at(R, self.contact_dofs.ravel(), (ch.force + cw.force).ravel())
-        energy += ch.energy + cw.energy - float(self.f_body @ u)
-        K = self.tangent(st, load, ch.blocks + cw.blocks) if tangent else None
+        uy = float(u[self.spring_dof])
+        R[self.spring_dof] += self.spring_k * uy
+        energy += ch.energy + cw.energy - float(self.f_body @ u) + 0.5 * self.spring_k * uy**2
+        K = (self.tangent(st, load, ch.blocks + cw.blocks, np.array([self.spring_k]))
+             if tangent else None)
         return energy, R, K
 
     def limit_predictor(self, u: np.ndarray, guess: np.ndarray) -> np.ndarray:
-        """Shorten a load-step predictor so that no node newly crosses into the wire.
+        """Shorten a load-step predictor so that no node newly crosses into the last obstacle.
 
         A secant predictor that jumps past the first touch of the wire starts Newton far
         inside the stiff penalty; stopping it at the touch (the whole increment scaled, so
@@ -153,10 +204,11 @@ class SqueezeProblem(PressurizedTube):
         -------
         ndarray (n_dofs,)
             ``guess``, or the point on the segment ``u -> guess`` where a node first
-            touches the wire (mm).
+            touches the wire (the wall when hanging on the wire) (mm).
         """
-        g0 = self.contact(u)[1].gap
-        g1 = self.contact(guess)[1].gap
+        k = 0 if self.gravity == "toward-wire" else 1  # the obstacle touched last
+        g0 = self.contact(u)[k].gap
+        g1 = self.contact(guess)[k].gap
         cross = (g0 > 0.0) & (g1 < 0.0)
         if not np.any(cross):
             return guess
@@ -174,8 +226,32 @@ class SqueezeProblem(PressurizedTube):
         return max(load, 0.01) * self.B, self.B
 
     def weight_per_mm(self) -> float:
-        """Weight of the whole tube per unit depth (N/mm), both halves."""
-        return -2.0 * float(self.f_body[1::2].sum())
+        """Weight of the whole tube per unit depth (N/mm), both halves, at ``density``."""
+        return self._weight
+
+    def spring_force(self, u: np.ndarray) -> float:
+        """Force of the floating-mode spring on the tube (N/mm), full section (0 with gravity).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        """
+        return -2.0 * self.spring_k * float(u[self.spring_dof])
+
+    def bearing_gap(self, u: np.ndarray) -> float:
+        """Smallest gap (mm) to the obstacle the tube touches last: where the squeeze begins.
+
+        The wire when the tube starts on the wall (``gravity`` none or toward the wall),
+        the hole wall when it starts hanging on the wire.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        """
+        ch, cw = self.contact(u)
+        return float((ch if self.gravity == "toward-wire" else cw).gap.min())
 
     def wire_gap(self, u: np.ndarray) -> float:
         """Smallest gap (mm) between the tube's outer nodes and the wire.

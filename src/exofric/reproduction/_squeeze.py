@@ -61,7 +61,7 @@ class SqueezeStage:
     --------
     >>> s = fast_result.squeeze       # reproduce(ReproduceConfig.for_mode(fast=True)): coarse
     >>> round(s.n_at_max_n, 1), round(s.dn_did_n_per_mm, 1), round(s.id_to_match_paper_mm, 2)
-    (239.7, 93.8, 5.27)
+    (239.8, 93.8, 5.27)
     """
 
     result: SqueezeResult

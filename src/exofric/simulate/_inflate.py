@@ -13,7 +13,14 @@ import numpy as np
 
 from exofric import defaults
 from exofric.errors import InputError, check_positive, check_pressures
-from exofric.fe import InflationProblem, MeshSpec, NewtonSettings, solve_path, von_mises
+from exofric.fe import (
+    InflationProblem,
+    MeshSpec,
+    NewtonSettings,
+    PathPoint,
+    solve_path,
+    von_mises,
+)
 from exofric.material import MooneyRivlin
 from exofric.simulate._analytic import incompressible_inflation, incompressible_limit_pressure
 from exofric.simulate._stretch import check_stretch
@@ -61,6 +68,13 @@ class InflationResult:
         Nodal displacements (mm) per pressure.
     von_mises_mpa : tuple of ndarray (e,)
         Element-mean von Mises Cauchy stress (MPa) per pressure.
+    accuracy : str
+        The named accuracy level (``'draft'``, ``'standard'``, ``'fine'``) or ``'mesh'``.
+    estimate_mesh : MeshSpec or None
+        The nested coarser mesh of the error estimate (None for an explicit mesh).
+    outer_diameter_error_estimate_mm, inner_diameter_error_estimate_mm : ndarray or None
+        Estimated discretisation error of the diameters (mm) per pressure, Fs |d - d_coarse|
+        with Fs = :data:`exofric.defaults.ESTIMATE_SAFETY_FACTOR` (None for an explicit mesh).
 
     Examples
     --------
@@ -87,6 +101,10 @@ class InflationResult:
     element_kind: str = "quad9"
     displacements: tuple[np.ndarray, ...] = field(default=(), repr=False)
     von_mises_mpa: tuple[np.ndarray, ...] = field(default=(), repr=False)
+    accuracy: str = "mesh"
+    estimate_mesh: MeshSpec | None = None
+    outer_diameter_error_estimate_mm: np.ndarray | None = None
+    inner_diameter_error_estimate_mm: np.ndarray | None = None
 
     def analytic_outer_diameter_mm(self) -> np.ndarray:
         """Incompressible closed-form outer diameters (mm) at the same pressures."""
@@ -110,6 +128,10 @@ class InflationResult:
             "tube_id_mm": self.tube_id_mm,
             "material": self.material.to_dict(),
             "mesh": self.mesh.to_dict(),
+            "accuracy": self.accuracy,
+            "estimate_mesh": None if self.estimate_mesh is None else self.estimate_mesh.to_dict(),
+            "outer_diameter_error_estimate_mm": _opt_list(self.outer_diameter_error_estimate_mm),
+            "inner_diameter_error_estimate_mm": _opt_list(self.inner_diameter_error_estimate_mm),
         }
 
     def to_frame(self) -> pd.DataFrame:
@@ -174,6 +196,7 @@ def inflate(
     material: MooneyRivlin,
     pressures_mpa: np.ndarray | list[float],
     *,
+    accuracy: str | None = None,
     mesh: MeshSpec | None = None,
     settings: NewtonSettings | None = None,
     keep_fields: bool = True,
@@ -191,8 +214,12 @@ def inflate(
         Constants C10, C01 (MPa), d (1/MPa).
     pressures_mpa : array-like
         Strictly increasing pressures (MPa), each below the tube's limit pressure.
+    accuracy : {'draft', 'standard', 'fine'}, optional
+        Named accuracy level (default :data:`exofric.defaults.ACCURACY`): solved on two nested
+        meshes (:data:`exofric.defaults.INFLATION_ACCURACY`), the finer answer returned with
+        an error estimate of the diameters. Not together with ``mesh``.
     mesh : MeshSpec, optional
-        Resolution (default :data:`exofric.defaults.INFLATION_MESH`).
+        An explicit quarter-tube mesh instead of a named level (no error estimate).
     settings : NewtonSettings, optional
         Solver tolerances and stepping.
     keep_fields : bool
@@ -229,16 +256,21 @@ def inflate(
             f"(mu ln(OD/ID)): free inflation has no equilibrium near and above it; "
             f"allowed range [0, {0.99 * plim:.4g}) MPa"
         )
-    spec = mesh or MeshSpec(**defaults.INFLATION_MESH)
-    prob = InflationProblem(od, idm, material, spec)
+    from exofric.simulate._squeeze import resolve_accuracy
+
+    level, spec, coarse_spec = resolve_accuracy(accuracy, mesh, defaults.INFLATION_ACCURACY)
+    s = settings or NewtonSettings(**defaults.INFLATION_NEWTON)
     t0 = time.perf_counter()
-    pts = solve_path(prob, p, settings or NewtonSettings(**defaults.INFLATION_NEWTON))
+    prob, pts, od_fe, id_fe = _solve_inflation(od, idm, material, p, spec, s)
+    od_est: np.ndarray | None = None
+    id_est: np.ndarray | None = None
+    if coarse_spec is not None:
+        _, _, od_c, id_c = _solve_inflation(od, idm, material, p, coarse_spec, s)
+        od_est = defaults.ESTIMATE_SAFETY_FACTOR * np.abs(od_fe - od_c)
+        id_est = defaults.ESTIMATE_SAFETY_FACTOR * np.abs(id_fe - id_c)
     dt = time.perf_counter() - t0
-    g = prob.mesh.grid
     stretch = np.array([prob.body.max_stretch(pt.u) for pt in pts])
     check_stretch(stretch, p, "free inflation")
-    xo = [(prob.X + pt.u)[2 * g[-1, 0]] for pt in pts]
-    xi = [(prob.X + pt.u)[2 * g[0, 0]] for pt in pts]
     disp: tuple[np.ndarray, ...] = ()
     vm: tuple[np.ndarray, ...] = ()
     if keep_fields:
@@ -246,8 +278,8 @@ def inflate(
         vm = tuple(von_mises(prob.body.cauchy_stress(pt.u)).mean(axis=1) for pt in pts)
     return InflationResult(
         pressure_mpa=p,
-        outer_diameter_mm=2.0 * np.array(xo),
-        inner_diameter_mm=2.0 * np.array(xi),
+        outer_diameter_mm=od_fe,
+        inner_diameter_mm=id_fe,
         max_stretch=stretch,
         newton_iterations=np.array([pt.iterations for pt in pts]),
         dofs=prob.n_dofs,
@@ -262,4 +294,26 @@ def inflate(
         element_kind=prob.mesh.kind,
         displacements=disp,
         von_mises_mpa=vm,
+        accuracy=level,
+        estimate_mesh=coarse_spec,
+        outer_diameter_error_estimate_mm=od_est,
+        inner_diameter_error_estimate_mm=id_est,
     )
+
+
+def _solve_inflation(
+    od: float, idm: float, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
+    s: NewtonSettings,
+) -> tuple[InflationProblem, list[PathPoint], np.ndarray, np.ndarray]:
+    """Solve on one mesh: (problem, states, outer and inner diameters in mm)."""
+    prob = InflationProblem(od, idm, material, spec)
+    pts = solve_path(prob, p, s)
+    g = prob.mesh.grid
+    xo = np.array([(prob.X + pt.u)[2 * g[-1, 0]] for pt in pts])
+    xi = np.array([(prob.X + pt.u)[2 * g[0, 0]] for pt in pts])
+    return prob, pts, 2.0 * xo, 2.0 * xi
+
+
+def _opt_list(a: np.ndarray | None) -> list[float] | None:
+    """An optional array as a JSON list (None stays None)."""
+    return None if a is None else np.asarray(a, dtype=float).tolist()
