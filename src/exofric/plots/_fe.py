@@ -260,6 +260,12 @@ def plot_squeeze_force(
     """
     ax, created = new_axes(ax, (6.4, 4.2))
     ax.plot(result.pressure_mpa, result.squeeze_force_n, "o-", label=label)
+    est = getattr(result, "n_error_estimate_n_per_mm", None)
+    if est is not None:  # the two-mesh discretisation error estimate, as a band (N)
+        half = np.asarray(est) * result.structure.length_mm
+        ax.fill_between(result.pressure_mpa, result.squeeze_force_n - half,
+                        result.squeeze_force_n + half, color="tab:blue", alpha=0.25, lw=0,
+                        label=f"estimated discretisation error ({result.accuracy})")
     if reference is not None:
         ax.plot([reference[0]], [reference[1]], "*", ms=12, color="tab:red", label=reference[2])
     if result.contact_onset_pressure_mpa is not None:
