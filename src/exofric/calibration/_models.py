@@ -263,9 +263,16 @@ def make_model(
             raise InputError("model 'fe' is not available in this build (exofric.simulate "
                              "missing); use model '1d'") from None
 
+        from exofric import defaults
+        from exofric.fe import MeshSpec as _MeshSpec
+
+        # one mesh per model evaluation (the fit's inner loop needs no error estimate): the
+        # 2 x 6 quarter mesh is 3e-5 from the 1D reference (defaults.INFLATION_MESH)
+        fe_mesh = mesh if mesh is not None else _MeshSpec(**defaults.INFLATION_MESH)
+
         def fn_fe(shore: float, tube_id_mm: float, pressures_mpa: np.ndarray) -> np.ndarray:
             p = check_pressures("pressures_mpa", pressures_mpa)
-            res = inflate(od, tube_id_mm, mat(shore), p, mesh=mesh, keep_fields=False)
+            res = inflate(od, tube_id_mm, mat(shore), p, mesh=fe_mesh, keep_fields=False)
             return np.asarray(res.outer_diameter_mm, dtype=float)
 
         return CachedModel(fn_fe, "fe")
