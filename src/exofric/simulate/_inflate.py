@@ -114,6 +114,8 @@ class InflationResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (unit-suffixed keys)."""
+        from exofric.simulate._squeeze import _opt_list as opt_list
+
         return {
             "pressure_mpa": self.pressure_mpa.tolist(),
             "outer_diameter_mm": self.outer_diameter_mm.tolist(),
@@ -130,8 +132,8 @@ class InflationResult:
             "mesh": self.mesh.to_dict(),
             "accuracy": self.accuracy,
             "estimate_mesh": None if self.estimate_mesh is None else self.estimate_mesh.to_dict(),
-            "outer_diameter_error_estimate_mm": _opt_list(self.outer_diameter_error_estimate_mm),
-            "inner_diameter_error_estimate_mm": _opt_list(self.inner_diameter_error_estimate_mm),
+            "outer_diameter_error_estimate_mm": opt_list(self.outer_diameter_error_estimate_mm),
+            "inner_diameter_error_estimate_mm": opt_list(self.inner_diameter_error_estimate_mm),
         }
 
     def to_frame(self) -> pd.DataFrame:
@@ -313,7 +315,3 @@ def _solve_inflation(
     xi = np.array([(prob.X + pt.u)[2 * g[0, 0]] for pt in pts])
     return prob, pts, 2.0 * xo, 2.0 * xi
 
-
-def _opt_list(a: np.ndarray | None) -> list[float] | None:
-    """An optional array as a JSON list (None stays None)."""
-    return None if a is None else np.asarray(a, dtype=float).tolist()
