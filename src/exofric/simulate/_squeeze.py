@@ -97,10 +97,11 @@ class SqueezeResult:
         The nested coarser mesh of the error estimate (None for an explicit mesh).
     n_error_estimate_pct : ndarray or None
         Estimated discretisation error of N (%) per pressure, Fs |N - N_coarse| / N with the
-        safety factor Fs = :data:`exofric.defaults.ESTIMATE_SAFETY_FACTOR`, capped at 100; 0
-        where both meshes give 0, 100 where only one has contact (None for an explicit mesh).
+        safety factor Fs = :data:`exofric.defaults.ESTIMATE_SAFETY_FACTOR`, at least
+        :data:`exofric.defaults.ESTIMATE_FLOOR_PCT` where N > 0 and at most 100; 0 where both
+        meshes give 0, 100 where only one has contact (None for an explicit mesh).
     n_error_estimate_n_per_mm : ndarray or None
-        The same estimate in N/mm (per depth), Fs |N - N_coarse|.
+        The same estimate in N/mm (per depth).
     coarse_squeeze_force_n_per_mm : ndarray or None
         N on the coarse mesh (N/mm), full section.
 
@@ -540,9 +541,10 @@ def squeeze(
                              loose, regulariser, release=False)
         onset = _bracket_onset(coarse, s, onset_tol_mpa)
         coarse_n = coarse.n.copy()
-        fs = defaults.ESTIMATE_SAFETY_FACTOR
-        est_abs = fs * np.abs(sol.n - coarse.n)
+        fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
+        est_abs = np.maximum(fs * np.abs(sol.n - coarse.n), 0.01 * floor * sol.n)
         est_pct = np.minimum(fs * _relative_pct(sol.n, coarse.n), 100.0)
+        est_pct = np.where(sol.n > 0.0, np.maximum(est_pct, floor), est_pct)
     dt = time.perf_counter() - t0
     prob = sol.prob
     L = structure.length_mm
