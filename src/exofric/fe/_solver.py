@@ -11,15 +11,19 @@ Never is an unconverged state returned.
 
 from __future__ import annotations
 
+import contextlib
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.linalg import LinAlgError, solve_banded
+from scipy.linalg import LinAlgError
+from scipy.linalg.lapack import dgbsv, dpbsv
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 from scipy.sparse.linalg import MatrixRankWarning, spsolve
+from threadpoolctl import ThreadpoolController
 
 from exofric import defaults
 from exofric.errors import ConvergenceError
@@ -47,8 +51,8 @@ class Assembler:
     --------
     >>> import numpy as np
     >>> a = Assembler(2, np.array([True, True]), [(np.array([0, 1]), np.array([0, 1]))])
-    >>> K = a.matrix([np.array([2.0, 4.0])])  # diag(2, 4)
-    >>> a.solve(K, np.array([2.0, 2.0])).tolist()
+    >>> K = a.matrix([np.array([4.0, 16.0])])  # diag(4, 16)
+    >>> a.solve(K, np.array([4.0, 8.0])).tolist()
     [1.0, 0.5]
     """
 
@@ -72,8 +76,8 @@ class Assembler:
         self.indptr = np.searchsorted(cols, np.arange(self.nf + 1)).astype(np.int32)
 
         # Reverse Cuthill-McKee ordering of the pattern: the thin structured meshes of the
-        # tube then have a narrow band, and LAPACK's banded LU (gbsv, partial pivoting) beats
-        # SuperLU's general sparse LU by ~2x at these sizes (a few hundred to a few thousand
+        # tube then have a narrow band, and LAPACK's banded solvers beat SuperLU's general
+        # sparse LU (by ~2x for the banded LU) at these sizes (a few hundred to ~20000
         # dofs). Each CSC slot's place in the band is precomputed.
         pattern = sp.csc_matrix((np.ones(self.nnz), self.indices, self.indptr),
                                 shape=(self.nf, self.nf))
@@ -83,13 +87,30 @@ class Assembler:
         rows = iperm[self.indices]
         colsp = iperm[np.repeat(np.arange(self.nf), np.diff(self.indptr))]
         self.band = int(np.max(np.abs(rows - colsp))) if self.nnz else 0
-        self.band_slot = (self.band + rows - colsp) * self.nf + colsp
+        # LAPACK's band storage, column-major (Fortran order, so that LAPACK works in place):
+        # entry (i, j) of the permuted matrix sits at flat index j * ldab + (row in the band).
+        # gbsv (LU, partial pivoting) takes ldab = 3 band + 1 (band extra rows on top for the
+        # pivoting's fill-in), entry (i, j) on row 2 band + i - j. Tangents of energy-based
+        # problems are symmetric and, near a stable equilibrium, positive definite: pbsv
+        # (Cholesky) on the upper band, ldab = band + 1, entry (i <= j) on row band + i - j,
+        # then does a quarter of the LU's work on a third of its storage. ``transpose_slot``
+        # is the CSC slot of each entry's transpose (None for a non-symmetric pattern).
+        b = self.band
+        self.lu_slot = colsp.astype(np.int64) * (3 * b + 1) + (2 * b + rows - colsp)
+        self.upper = rows <= colsp
+        self.chol_slot = (colsp.astype(np.int64) * (b + 1) + (b + rows - colsp))[self.upper]
+        tkey = self.indices.astype(np.int64) * self.nf + cols
+        tpos = np.minimum(np.searchsorted(uniq, tkey), max(self.nnz - 1, 0))
+        self.transpose_slot = tpos if self.nnz and np.array_equal(uniq[tpos], tkey) else None
 
     def solve(self, K: sp.csc_matrix, rhs: np.ndarray) -> np.ndarray:
-        """Solve ``K x = rhs`` for a matrix from :meth:`matrix` (banded LU after RCM).
+        """Solve ``K x = rhs`` for a matrix from :meth:`matrix` (banded solver after RCM).
 
-        Falls back to SuperLU when the band is wider than 1/4 of the system. Raises
-        ``LinAlgError`` for a singular matrix.
+        A matrix that is symmetric to round-off (1e-12 of its largest entry) is first given
+        to LAPACK's banded Cholesky (pbsv); if it is not positive definite (or not
+        symmetric), the banded LU with partial pivoting (gbsv) solves it. Falls back to
+        SuperLU when the band is wider than 1/4 of the system. Raises ``LinAlgError`` for a
+        singular matrix.
 
         Parameters
         ----------
@@ -104,11 +125,25 @@ class Assembler:
         """
         if 4 * self.band > self.nf:
             return np.asarray(spsolve(K, rhs))
-        ab = np.zeros((2 * self.band + 1, self.nf))
-        ab.ravel()[self.band_slot] = K.data
-        x = np.empty(self.nf)
-        x[self.perm] = solve_banded((self.band, self.band), ab, rhs[self.perm],
-                                    check_finite=False)
+        data, nf, b = K.data, self.nf, self.band
+        x = np.empty(nf)
+        rp = np.ascontiguousarray(rhs[self.perm], dtype=float)[:, None]
+        if self.transpose_slot is not None and np.max(
+                np.abs(data - data[self.transpose_slot])) <= 1e-12 * np.max(np.abs(data)):
+            ab = np.zeros((nf, b + 1))  # the transpose of the Fortran-ordered band
+            ab.ravel()[self.chol_slot] = data[self.upper]
+            _, xp, info = dpbsv(ab.T, rp, lower=0, overwrite_ab=1, overwrite_b=0)
+            if info == 0:
+                x[self.perm] = xp[:, 0]
+                return x
+        ab = np.zeros((nf, 3 * b + 1))
+        ab.ravel()[self.lu_slot] = data
+        _, _, xp, info = dgbsv(b, b, ab.T, rp, overwrite_ab=1, overwrite_b=0)
+        if info > 0:
+            raise LinAlgError("singular matrix")
+        if info < 0:
+            raise ValueError(f"illegal value in argument {-info} of gbsv")
+        x[self.perm] = xp[:, 0]
         return x
 
     def matrix(self, blocks: Sequence[np.ndarray]) -> sp.csc_matrix:
@@ -199,9 +234,13 @@ class NewtonSettings:
     min_step : float
         Smallest load sub-step, in ``load_unit`` (MPa for pressure), > 0.
     line_search_halvings : int
-        Backtracking halvings of a Newton step, >= 0.
+        Line-search evaluations allowed after the full Newton step (halvings, or steps of
+        the bracketing search for the energy minimum along the step), >= 0.
     extrapolate : bool
         Start each sub-step from a secant predictor.
+    threads : int
+        BLAS/OpenMP threads the solve may use (:func:`solve_path` limits the thread pools
+        with threadpoolctl while it runs), >= 1; 0 leaves the pools as they are.
     load_name, load_unit : str
         Name and unit of the load in messages (``"pressure"``, ``"MPa"``).
 
@@ -219,6 +258,7 @@ class NewtonSettings:
     min_step: float = defaults.NEWTON["min_step"]
     line_search_halvings: int = defaults.NEWTON["line_search_halvings"]
     extrapolate: bool = defaults.NEWTON["extrapolate"]
+    threads: int = defaults.BLAS_THREADS
     load_name: str = "pressure"
     load_unit: str = "MPa"
 
@@ -270,13 +310,122 @@ def _accept(e_t: float, r_t: float, e0: float, r0: float, slope: float, r_tol: f
     return r_t < r0
 
 
+#: Curvature condition of the bracketing search (strong Wolfe): a shortened step is accepted
+#: only where |R(u + a d) . d| <= _WOLFE_ETA |R(u) . d|, i.e. near the minimum along the line.
+#: 0.1: before a contact kink s(a) ~ s(0) (1 - a), so a step short of the kink is refused
+#: unless it is within 10% of the full one (see _line_search).
+_WOLFE_ETA = 0.1
+
+#: What Problem.evaluate returns: (energy N mm per mm, residual N per mm, tangent or None).
+_Evaluation = tuple[float, np.ndarray, sp.csc_matrix | None]
+
+
+def _line_search(
+    problem: Problem, u: np.ndarray, step: np.ndarray, load: float, energy: float,
+    rnorm: float, s0: float, r_tol: float, budget: int,
+) -> tuple[float, _Evaluation] | None:
+    """(alpha, evaluation at ``u + alpha step``) accepted by the line search, or None.
+
+    1. The full Newton step (evaluated with the tangent, which the next iteration reuses) is
+       taken when :func:`_accept` holds (Armijo). Invalid states (inverted elements) and
+       steps that neither decrease the energy nor bracket its minimum along the line are
+       halved.
+    2. When a step fails Armijo but the directional derivative s(a) = R(u + a d) . d has
+       changed sign (s(0) < 0 < s(a)), the energy's minimum along the line lies in (0, a).
+       A bracketing search then looks for a step satisfying Armijo AND the curvature
+       condition |s| <= ``_WOLFE_ETA`` |s(0)| (strong Wolfe), i.e. near that minimum.
+
+    Why not the first Armijo point (plain backtracking, or the secant shortening used
+    before): when the full step runs a node that is not yet in contact into an obstacle
+    (the linearised problem does not see that contact), the penalty makes s(a) kink sharply
+    upward where the node touches, and the energy's minimum along the line sits just past
+    that kink. A secant through s(0) and s(1) lands far short of it, where Armijo already
+    holds; the node stays out of contact, the next Newton step aims at the same point
+    again, and the iteration creeps a few per cent per step to the iteration limit (fine
+    meshes at P = 0, whose nodes next to the first contact are close to the wall). The
+    curvature condition takes the step to the minimum, past the kink: the next tangent
+    contains the new contact and Newton converges quadratically again. The energy still
+    decreases at every accepted step (Armijo), so Newton cannot cycle between active sets.
+
+    The search's proposals model the energy along the line as the Newton quadratic
+    e0 + s0 a - s0 a^2 / 2 (its curvature d.K.d = -s0) plus one penalty term
+    k/2 (a - a_c)^2 switching on at a kink a_c; k and a_c follow from the energy and slope
+    at the bracket's upper end, and the proposal is the model's root of s. For one node
+    entering contact the model is exact up to the curvature of the gap, and one evaluation
+    lands at the minimum. Proposals outside the bracket, or after a step that did not halve
+    it, are bisections, so the bracket shrinks at least by half every two evaluations. At
+    most ``budget`` evaluations follow the full step; if they run out, the lowest-energy
+    Armijo point seen is taken.
+    """
+    free = problem.free
+    d = step[free]
+    noise = 1e-13 * max(1.0, abs(energy))
+    descent = s0 < 0.0 and abs(s0) > noise
+    evals = 0
+
+    def trial(alpha: float, tangent: bool) -> tuple[_Evaluation | None, float, float]:
+        """Evaluation at ``u + alpha step``, its residual norm and s(alpha) (nan if invalid)."""
+        nonlocal evals
+        evals += 1
+        t = problem.evaluate(u + alpha * step, load, tangent)
+        if t is None:
+            return None, np.nan, np.nan
+        rt = t[1][free]
+        r_t = float(np.max(np.abs(rt))) if rt.size else 0.0
+        return t, r_t, float(rt @ d)
+
+    alpha = 1.0
+    while True:
+        t, r_t, s_hi = trial(alpha, alpha == 1.0)
+        if t is not None and np.isfinite(r_t):
+            if _accept(t[0], r_t, energy, rnorm, alpha * s0, r_tol):
+                return alpha, t
+            if descent and s_hi > 0.0:
+                break  # the line minimum is bracketed by (0, alpha)
+        if evals > budget:
+            return None
+        alpha *= 0.5
+
+    # bracketing search on s(a) in (lo, hi), proposals from the kink model (docstring)
+    lo, hi, e_hi = 0.0, alpha, t[0] if t is not None else np.inf
+    best: tuple[float, _Evaluation] | None = None
+    bisect = False
+    while evals <= budget:
+        a = np.nan
+        delta = s_hi - s0 * (1.0 - hi)  # slope above the Newton model's (> 0 here)
+        excess = e_hi - (energy + s0 * hi * (1.0 - 0.5 * hi))  # energy above it (> 0)
+        if not bisect and delta > 0.0 and excess > 0.0:
+            k = delta * delta / (2.0 * excess)
+            a_c = hi - 2.0 * excess / delta
+            a = (k * a_c - s0) / (k - s0)
+        if not lo < a < hi:
+            a = 0.5 * (lo + hi)
+        width = hi - lo
+        t, _, s_t = trial(a, False)
+        if t is None or not np.isfinite(s_t):
+            hi, s_hi, e_hi = a, np.nan, np.inf  # an invalid state: bisect towards lo
+            continue
+        if t[0] <= energy + 1e-4 * a * s0:
+            if abs(s_t) <= _WOLFE_ETA * abs(s0):
+                return a, t
+            if best is None or t[0] < best[1][0]:
+                best = (a, t)
+        if s_t > 0.0:
+            hi, s_hi, e_hi = a, s_t, t[0]
+        else:
+            lo = a
+        bisect = hi - lo > 0.5 * width
+    return best
+
+
 def _newton(
     problem: Problem, u: np.ndarray, load: float, s: NewtonSettings
 ) -> tuple[np.ndarray, int] | None:
+    """Newton iterations at a fixed load from ``u``: (converged u, iterations) or None."""
     free = problem.free
     fscale, lscale = problem.scales(load)
     du_norm = np.inf
-    cached: tuple[float, np.ndarray, sp.csc_matrix | None] | None = None
+    cached: _Evaluation | None = None
     for it in range(1, s.max_iter + 1):
         # the accepted full-step trial of the previous iteration already has the tangent
         out = cached if cached is not None else problem.evaluate(u, load, True)
@@ -291,45 +440,24 @@ def _newton(
         if rnorm <= s.tol_r * fscale and du_norm <= s.tol_u * lscale:
             return u, it - 1
         assert K is not None
-        with np.errstate(all="ignore"):
-            import warnings
-
-            with warnings.catch_warnings():
-                warnings.simplefilter("error", MatrixRankWarning)
-                try:
-                    asm = getattr(problem, "assembler", None)
-                    d = asm.solve(K, -rf) if isinstance(asm, Assembler) else spsolve(K, -rf)
-                except (MatrixRankWarning, RuntimeError, LinAlgError):
-                    return None
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("error", MatrixRankWarning)
+            try:
+                asm = getattr(problem, "assembler", None)
+                d = asm.solve(K, -rf) if isinstance(asm, Assembler) else spsolve(K, -rf)
+            except (MatrixRankWarning, RuntimeError, LinAlgError):
+                return None
         if not np.all(np.isfinite(d)):
             return None
         step = np.zeros_like(u)
         step[free] = d
-        # Line search on the energy along the Newton direction: try the full step; if
-        # neither the energy nor the residual decreased, take the secant root of the
-        # directional derivative s(a) = R(u + a d) . d (s(0) < 0), which lands next to
-        # the kink of a contact active-set change instead of halving towards it.
-        s0 = float(rf @ d)
-        alpha = 1.0
-        for _ in range(s.line_search_halvings + 1):
-            trial = u + alpha * step
-            t = problem.evaluate(trial, load, alpha == 1.0)
-            if t is None:
-                alpha *= 0.5
-                continue
-            e_t, R_t, _ = t
-            r_t = float(np.max(np.abs(R_t[free]))) if rf.size else 0.0
-            if np.isfinite(r_t) and _accept(e_t, r_t, energy, rnorm, alpha * s0, s.tol_r * fscale):
-                cached = t if t[2] is not None else None
-                break
-            s_t = float(R_t[free] @ d)
-            if s0 < 0.0 < s_t:
-                alpha *= min(0.9, max(0.05, s0 / (s0 - s_t)))
-            else:
-                alpha *= 0.5
-        else:
+        ls = _line_search(problem, u, step, load, energy, rnorm, float(rf @ d),
+                          s.tol_r * fscale, s.line_search_halvings)
+        if ls is None:
             return None
-        u = trial
+        alpha, t = ls
+        cached = t if t[2] is not None else None
+        u = u + alpha * step
         du_norm = alpha * float(np.max(np.abs(d))) if d.size else 0.0
         if rnorm <= s.tol_r * fscale and du_norm <= s.tol_u * lscale:
             # residual was already converged and the correction is negligible
@@ -387,6 +515,37 @@ def solve_path(
     1.134
     """
     s = settings or NewtonSettings()
+    with _thread_limit(s.threads):
+        return _follow(problem, loads, s, u0, load0, on_step)
+
+
+_CONTROLLER: ThreadpoolController | None = None
+
+
+def _thread_limit(threads: int) -> contextlib.AbstractContextManager[object]:
+    """Context limiting the BLAS/OpenMP pools to ``threads`` (0: no limit).
+
+    The controller inspects the loaded libraries once (numpy's and scipy's OpenBLAS are loaded
+    with this module); ``threadpool_limits`` would rescan them on every call (~2 ms, about
+    a Newton iteration on the default mesh).
+    """
+    global _CONTROLLER
+    if threads <= 0:
+        return contextlib.nullcontext()
+    if _CONTROLLER is None:
+        _CONTROLLER = ThreadpoolController()
+    return _CONTROLLER.limit(limits=int(threads))
+
+
+def _follow(
+    problem: Problem,
+    loads: Sequence[float] | np.ndarray,
+    s: NewtonSettings,
+    u0: np.ndarray | None,
+    load0: float,
+    on_step: Callable[[float, np.ndarray], None] | None,
+) -> list[PathPoint]:
+    """The load stepping of :func:`solve_path` (within its thread limit)."""
     u = np.zeros(problem.n_dofs) if u0 is None else u0.copy()
     lam = float(load0)
     u_prev: np.ndarray | None = None
