@@ -39,11 +39,10 @@ def _reference() -> dict[str, np.ndarray]:
     if not REFERENCE.exists():
         return {}
     data = json.loads(REFERENCE.read_text())
-    out: dict[str, np.ndarray] = {}
-    for s in data.get("structures", []):
-        if np.allclose(s.get("pressure_mpa", []), PRESSURES_MPA):
-            out[s["name"]] = np.asarray(s["squeeze_force_n_per_mm"], dtype=float)
-    return out
+    if not np.allclose(data["pressure_mpa"], PRESSURES_MPA):
+        return {}
+    return {name: np.asarray(s["squeeze_force_n_per_mm"], dtype=float)
+            for name, s in data["structures"].items()}
 
 
 def run(runs: int = 3, felupe_runs: int = 0) -> dict[str, Any]:
