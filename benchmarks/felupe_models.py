@@ -44,6 +44,7 @@ __all__ = [
     "FelupeInflation",
     "FelupeSqueeze",
     "SqueezeSetup",
+    "WEIGHTLESS_DENSITY",
     "felupe_inflate",
     "felupe_squeeze",
     "felupe_squeeze_model",
@@ -57,6 +58,10 @@ __all__ = [
 EXOFRIC_TO_VTK_QUAD9 = np.array([0, 2, 8, 6, 1, 5, 7, 3, 4])
 
 GRAVITY_MM_S2 = 9810.0
+
+#: Density (t/mm^3) that makes the squeeze practically weightless: 1e-4 of silicone's
+#: 1.1e-9, enough to keep the floating tube on the wall (see SqueezeSetup.from_structure).
+WEIGHTLESS_DENSITY = 1.1e-13
 
 # errors after which FElupe's CutbackPlugin halves the increment; SuperLU raises a bare
 # RuntimeError for a (numerically) singular matrix, e.g. when a contact opens mid-iteration
@@ -169,12 +174,19 @@ def polar_quad9(
     theta1: float,
     grading: float = 1.0,
     center: tuple[float, float] = (0.0, 0.0),
+    radial_grading: float = 1.0,
+    n_circ0: int = 0,
+    grading0: float = 1.0,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Structured quad9 mesh of an annular sector, graded toward ``theta1``.
 
     Written independently of exofric's mesher. Element angles grow geometrically
-    from ``theta1`` (ratio largest/smallest = ``grading``); every node lies on its
-    circle (mid-nodes at mid-radius and mid-angle).
+    from ``theta1`` (ratio largest/smallest = ``grading``); element thicknesses grow
+    geometrically from the outer radius inward (ratio innermost/outermost =
+    ``radial_grading``, 1 = uniform); every node lies on its circle (mid-nodes at
+    mid-radius and mid-angle). With ``n_circ0 > 0`` the first ``n_circ0`` elements
+    from ``theta0`` are refined toward ``theta0`` instead (ratio ``grading0``) and the
+    largest elements of both parts meet with equal size.
 
     Returns
     -------
@@ -185,10 +197,17 @@ def polar_quad9(
     grid : ndarray (2 n_radial + 1, 2 n_circ + 1)
         Node index per (radial line, angular line); row 0 inner, last row outer.
     """
-    q = grading ** (1.0 / max(n_circ - 1, 1))
-    sizes = q ** np.arange(n_circ)[::-1]  # largest at theta0, smallest at theta1
+    if n_circ0 > 0:  # two-sided: n_circ0 elements refined toward theta0, the rest theta1
+        sizes = np.concatenate([_geometric(n_circ0, grading0),
+                                _geometric(n_circ - n_circ0, grading)[::-1]])
+    else:
+        q = grading ** (1.0 / max(n_circ - 1, 1))
+        sizes = q ** np.arange(n_circ)[::-1]  # largest at theta0, smallest at theta1
     tb = theta0 + np.concatenate([[0.0], np.cumsum(sizes)]) / sizes.sum() * (theta1 - theta0)
-    rb = np.linspace(inner_radius, outer_radius, n_radial + 1)
+    qr = radial_grading ** (1.0 / max(n_radial - 1, 1))
+    thick = qr ** np.arange(n_radial)[::-1]  # thickest at the inner radius
+    rb = inner_radius + np.concatenate([[0.0], np.cumsum(thick)]) / thick.sum() * (
+        outer_radius - inner_radius)
     radii = np.sort(np.concatenate([rb, 0.5 * (rb[1:] + rb[:-1])]))
     angles = np.sort(np.concatenate([tb, 0.5 * (tb[1:] + tb[:-1])]))
     R, T = np.meshgrid(radii, angles, indexing="ij")
@@ -199,6 +218,11 @@ def polar_quad9(
     local = [(i, j) for j in range(3) for i in range(3)]  # tensor order a = 3 j + i
     tensor = np.stack([grid[i0 + i, j0 + j] for i, j in local], axis=1)
     return nodes, tensor[:, EXOFRIC_TO_VTK_QUAD9], grid
+
+
+def _geometric(n: int, ratio: float) -> np.ndarray:
+    """``n`` sizes growing geometrically from ``1 / ratio`` to 1."""
+    return ratio ** (np.arange(n) / max(n - 1, 1) - 1.0)
 
 
 def _mesh(nodes: np.ndarray, cells_vtk: np.ndarray) -> fem.Mesh:
@@ -358,6 +382,30 @@ class SqueezeSetup:
         The tube is placed this much below its touching position so that the node
         on the wall starts in (penalty) contact; the self-weight problem does not
         depend on it because the tube moves freely until its contacts carry it.
+    radial_grading : float
+        Ratio of the thickest (inner) to the thinnest (outer) element layer; > 1
+        refines toward the contact surfaces.
+    n_circ_wall : int
+        With ``n_circ_wall > 0``, that many of the ``n_circ`` elements are refined toward
+        the wall (-90 deg) instead, with ratio ``wall_grading`` (the hole contact patch);
+        the others keep ``grading`` toward the wire.
+    wall_grading : float
+        Largest/smallest element angle of the wall-side part.
+    newton_tol : float
+        FElupe's Newton tolerance: norm of the free residual over the norm of the
+        reactions (unitless; round-off floor ~3e-9).
+    contact_curvature : str
+        ``curvature`` of :class:`felupe.ContactRigidCylinder`: ``"converged"`` (FElupe's
+        default, bounded but inconsistent tangent) or ``"trial"`` (consistent tangent,
+        quadratic Newton convergence).
+
+    Examples
+    --------
+    >>> from exofric.friction import paper_structures
+    >>> from exofric.material import MooneyRivlin
+    >>> s = SqueezeSetup.from_structure(paper_structures()[4], MooneyRivlin.from_shore(62.5))
+    >>> s.hole_mm, s.density_t_per_mm3
+    (7.5, 1.1e-13)
     """
 
     hole_mm: float = 10.0
@@ -374,6 +422,52 @@ class SqueezeSetup:
     penalty: float = 1e4
     max_increment_mpa: float = 0.05
     shift_mm: float = 1e-6
+    radial_grading: float = 1.0
+    n_circ_wall: int = 0
+    wall_grading: float = 1.0
+    newton_tol: float = 1.5e-8
+    contact_curvature: str = "converged"
+
+    @classmethod
+    def from_structure(
+        cls, structure: Any, material: Any, *, density_t_per_mm3: float = WEIGHTLESS_DENSITY,
+        **settings: Any,
+    ) -> SqueezeSetup:
+        """Setup for any hole-tube-wire geometry, by default practically without weight.
+
+        The default density (1.1e-13 t/mm^3, 1e-4 of silicone's) only keeps the tube
+        on the wall before it touches the wire (the penalty contact with the wall then
+        restrains the otherwise free vertical motion); its force (~4e-8 N/mm for the
+        base tube) changes N by far less than the solver tolerance. FElupe offers no
+        weightless alternative that keeps the tube free to move: fixing a node would
+        add a support force once the tube spans wall to wire.
+
+        Parameters
+        ----------
+        structure : object
+            Anything with ``hole_mm``, ``tube_od_mm``, ``tube_id_mm`` and ``wire_mm``
+            (mm), e.g. an :class:`exofric.geometry.Structure`.
+        material : object with ``c10, c01, d`` or (c10, c01, d)
+            Mooney-Rivlin constants (MPa, MPa, 1/MPa).
+        density_t_per_mm3 : float
+            Tube density (t/mm^3) of the self-weight toward the wall.
+        **settings
+            Further :class:`SqueezeSetup` fields (mesh, penalty, increments).
+
+        Returns
+        -------
+        SqueezeSetup
+
+        Examples
+        --------
+        >>> s = SqueezeSetup.from_structure(SqueezeSetup(), (0.6, 0.03, 0.006), n_circ=80)
+        >>> s.c10, s.n_circ, s.density_t_per_mm3
+        (0.6, 80, 1.1e-13)
+        """
+        c10, c01, d = _constants(material)
+        return cls(hole_mm=float(structure.hole_mm), tube_od_mm=float(structure.tube_od_mm),
+                   tube_id_mm=float(structure.tube_id_mm), wire_mm=float(structure.wire_mm),
+                   c10=c10, c01=c01, d=d, density_t_per_mm3=density_t_per_mm3, **settings)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
@@ -459,7 +553,8 @@ def felupe_squeeze_model(
     a, b = 0.5 * s.tube_id_mm, 0.5 * s.tube_od_mm
     yc = -(0.5 * s.hole_mm - b) - s.shift_mm
     nodes, cells, grid = polar_quad9(a, b, s.n_radial, s.n_circ, -0.5 * np.pi, 0.5 * np.pi,
-                                     s.grading, (0.0, yc))
+                                     s.grading, (0.0, yc), s.radial_grading,
+                                     s.n_circ_wall, s.wall_grading)
     nodes[grid[:, [0, -1]].ravel(), 0] = 0.0  # exactly on the symmetry plane
     wire_c = (0.0, 0.5 * s.hole_mm - 0.5 * s.wire_mm)
     mesh = _mesh(np.vstack([nodes, [[0.0, 0.0], wire_c]]), cells)
@@ -476,9 +571,9 @@ def felupe_squeeze_model(
     weight = fem.SolidBodyForce(fields, values=[0.0, -GRAVITY_MM_S2], scale=s.density_t_per_mm3)
     outer = grid[-1]
     hole = fem.ContactRigidCylinder(fields, outer, i_hole, radius=0.5 * s.hole_mm, inside=True,
-                                    multiplier=s.penalty)
+                                    multiplier=s.penalty, curvature=s.contact_curvature)
     wire = fem.ContactRigidCylinder(fields, outer, i_wire, radius=0.5 * s.wire_mm,
-                                    multiplier=s.penalty)
+                                    multiplier=s.penalty, curvature=s.contact_curvature)
     sym = np.zeros(mesh.npoints, dtype=bool)
     sym[grid[:, [0, -1]].ravel()] = True
     centres = np.zeros(mesh.npoints, dtype=bool)
@@ -515,7 +610,7 @@ def felupe_squeeze_model(
     # failed attempts (inverted elements, singular matrices) are expected and cut back
     with warnings.catch_warnings(), np.errstate(invalid="ignore", divide="ignore"):
         warnings.simplefilter("ignore", MatrixRankWarning)
-        fem.Job([step], plugins=[cutback, rec]).evaluate(verbose=0)
+        fem.Job([step], plugins=[cutback, rec]).evaluate(verbose=0, tol=s.newton_tol)
     dt = time.perf_counter() - t0
     w_full = 2.0 * rho_g * float(region.dV.sum())  # weight of the discretised full tube
     per = np.array(rec.per_substep)

@@ -1,0 +1,160 @@
+"""exofric's weightless squeeze force N(P) against a stored, independent FElupe reference.
+
+The reference ``tests/data/squeeze_reference_felupe.json`` was made by
+``benchmarks/make_squeeze_reference.py`` with the independent FElupe model
+(``benchmarks/felupe_models.py``: FElupe's three-field element and rigid-cylinder penalty
+contact, nothing of exofric's FE code) on fine meshes graded toward the wire, practically
+without weight; the file records its mesh study, penalty and density studies and
+provenance. Issue 18 asks the default accuracy ("standard") to be within 1% of the
+mesh-converged N from the first output pressure where N >= 1% of N(0.6 MPa).
+
+Units: mm, N, MPa; N per unit depth (N/mm), full section.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from exofric.geometry import Structure
+from exofric.material import MooneyRivlin
+from exofric.simulate import SqueezeResult, squeeze
+
+DATA = Path(__file__).resolve().parent / "data" / "squeeze_reference_felupe.json"
+REF: dict[str, Any] = json.loads(DATA.read_text())
+P = np.array(REF["pressure_mpa"])
+MAT = MooneyRivlin.from_shore(REF["material"]["shore_a"])
+NAMES = list(REF["structures"])
+
+#: Issue 18's acceptance target for the default accuracy: 1% relative from the first
+#: pressure where N_ref >= 1% of N_ref(0.6 MPa). The reference's own mesh error there is
+#: <= 0.2% (its mesh study, checked below), so a 1% bound on the difference leaves exofric
+#: at least 0.8% of its own error budget: the test can fail on a real regression.
+REL_TOL = 0.01
+#: Where the reference has no wire contact (N_ref = 0) exofric's N must be 0 up to the
+#: Newton tolerance of its force balance (1e-9 x P x R <= 3e-9 N/mm): a force of 1e-6 N/mm
+#: (5e-7 of N(0.6 MPa)) is a contact that should not exist or a regulariser leaking into N.
+ZERO_ATOL_N_PER_MM = 1e-6
+
+
+def _structure(name: str) -> Structure:
+    """Structure (mm) of a stored reference case."""
+    d = REF["structures"][name]
+    return Structure(d["hole_mm"], d["tube_od_mm"], d["tube_id_mm"], d["wire_mm"],
+                     d["length_mm"], name)
+
+
+def _ref_n(name: str) -> np.ndarray:
+    """Reference N (N/mm, full section) per pressure."""
+    return np.array(REF["structures"][name]["squeeze_force_n_per_mm"])
+
+
+def _significant(n: np.ndarray) -> np.ndarray:
+    """Mask of pressures from the first where N >= 1% of N(0.6 MPa) on."""
+    first = np.flatnonzero(n >= REF["significance_fraction"] * n[-1])[0]
+    return np.arange(n.size) >= first
+
+
+@cache
+def _exofric(name: str) -> SqueezeResult:
+    """exofric's weightless squeeze at the default accuracy (cached per structure)."""
+    return squeeze(_structure(name), MAT, P, gravity="none", keep_fields=False)
+
+
+def test_reference_is_mesh_converged_and_weightless() -> None:
+    """The stored reference meets its own acceptance: mesh, penalty and weight errors."""
+    for name in NAMES:
+        d = REF["structures"][name]
+        sig = _significant(_ref_n(name))
+        change = np.array([np.nan if c is None else c
+                           for c in d["mesh_study"]["change_to_finer_pct"]])
+        # mesh study: reference vs 1.5x finer mesh, <= 0.2% where N is significant (the
+        # brief's bound, five times below the 1% acceptance) and <= 0.05% from 0.3 MPa
+        assert np.nanmax(change[sig]) <= 0.2, (name, change)
+        assert np.nanmax(change[P >= 0.3]) <= 0.05, (name, change)
+        # penalty penetration far below any geometric scale (clearances >= 0.1 mm)
+        assert max(d["max_penetration_mm"]) < 1e-3
+    # weightless limit: N is linear in the (vanishing) weight; 10x or 0.1x the density
+    # moves N by < 1e-6 N/mm, i.e. < 3e-5 of the smallest significant reference N
+    for change in REF["density_study"]["change_n_per_mm"].values():
+        assert np.max(np.abs(change)) < 1e-6
+    # penalty 10x stiffer moves N by < 0.02% where N is significant
+    pen = np.array([np.nan if c is None else c for c in REF["penalty_study"]["change_pct"]])
+    st = REF["penalty_study"]["structure"]
+    assert np.nanmax(pen[_significant(_ref_n(st))]) < 0.02
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_reference_onset_matches_free_inflation(name: str) -> None:
+    """FElupe's first wire contact brackets the 1D free-inflation onset (OD = D - d2)."""
+    # Without weight and friction the tube floats until it spans wall to wire, i.e. until
+    # its free OD (exofric.simulate.compressible_inflation, an independent 1D solution)
+    # reaches D - d2: the reference must be 0 below and > 0 above that pressure.
+    onset = REF["structures"][name]["onset_1d_mpa"]
+    n = _ref_n(name)
+    assert np.all(n[P < onset] == 0.0)
+    assert np.all(n[P > onset] > 0.0)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_squeeze_matches_felupe_reference(name: str) -> None:
+    """Default accuracy: within 1% from the first significant pressure, 0 before contact."""
+    n_ref = _ref_n(name)
+    n = _exofric(name).squeeze_force_n_per_mm
+    sig = _significant(n_ref)
+    np.testing.assert_allclose(n[sig], n_ref[sig], rtol=REL_TOL)
+    zero = n_ref == 0.0
+    np.testing.assert_allclose(n[zero], 0.0, atol=ZERO_ATOL_N_PER_MM)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_error_estimate_brackets_the_error(name: str) -> None:
+    """The reported n_error_estimate_pct is >= the actual error against the reference."""
+    n_ref = _ref_n(name)
+    r = _exofric(name)
+    assert r.n_error_estimate_pct is not None
+    sig = _significant(n_ref)
+    err_pct = 100.0 * np.abs(r.squeeze_force_n_per_mm[sig] / n_ref[sig] - 1.0)
+    # the reference's own error (<= 0.2%, mesh study) could make a correct estimate look
+    # too small only where the estimate is that tight; no margin is granted beyond it
+    ref_err = np.array(REF["structures"][name]["mesh_study"]["change_to_finer_pct"],
+                       dtype=float)[sig]
+    assert np.all(r.n_error_estimate_pct[sig] + ref_err >= err_pct), (
+        r.n_error_estimate_pct[sig], err_pct)
+
+
+@pytest.mark.slow
+def test_felupe_reproduces_the_stored_reference() -> None:
+    """Re-run FElupe on a coarse mesh: it agrees with the stored reference (anti-rot)."""
+    pytest.importorskip("felupe", reason="FElupe (GPL-3 test extra) is not installed")
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+    from felupe_models import SqueezeSetup, felupe_squeeze_model
+
+    chk = REF["coarse_check"]
+    name = chk["structure"]
+    m = REF["model"]
+    setup = SqueezeSetup.from_structure(
+        _structure(name), MAT, density_t_per_mm3=m["density_t_per_mm3"],
+        penalty=m["penalty_n_per_mm2"], max_increment_mpa=m["max_increment_mpa"],
+        **chk["mesh"])
+    n = felupe_squeeze_model(P, setup).squeeze_force_n_per_mm
+    n = np.maximum(n, 0.0)
+    n_ref = _ref_n(name)
+    stored = np.array(chk["squeeze_force_n_per_mm"])
+    # 1) the coarse run reproduces the stored coarse run: same code, same mesh, so only
+    #    Newton tolerances (1.5e-8 of the reactions) and BLAS round-off separate them;
+    #    1e-5 relative flags any change in FElupe or in the model
+    np.testing.assert_allclose(n, stored, rtol=1e-5, atol=1e-9)
+    # 2) and it lies within its mesh-study distance of the reference: the stored deviation
+    #    plus the 1e-5 above (the reference itself cannot have moved)
+    dev = np.array([0.0 if c is None else c for c in chk["deviation_from_reference_pct"]])
+    pos = n_ref > 0
+    rel = 100.0 * np.abs(n[pos] / n_ref[pos] - 1.0)
+    assert np.all(rel <= dev[pos] + 1e-3), (rel, dev[pos])
+    assert np.all(n[~pos] == 0.0)
