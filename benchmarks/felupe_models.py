@@ -405,7 +405,7 @@ class SqueezeSetup:
     >>> from exofric.material import MooneyRivlin
     >>> s = SqueezeSetup.from_structure(paper_structures()[4], MooneyRivlin.from_shore(62.5))
     >>> s.hole_mm, s.density_t_per_mm3
-    (7.5, 1.1e-13)
+    (11.0, 1.1e-13)
     """
 
     hole_mm: float = 10.0
