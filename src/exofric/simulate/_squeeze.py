@@ -266,10 +266,9 @@ class _MeshSolution:
     """One squeeze solve on one mesh: the per-pressure outputs and the states behind them."""
 
     def __init__(self, prob: SqueezeProblem, p: np.ndarray, states: list[np.ndarray],
-                 iterations: np.ndarray, path: list[tuple[float, np.ndarray]],
-                 solve_time_s: float) -> None:
+                 iterations: np.ndarray, path: list[tuple[float, np.ndarray]]) -> None:
         self.prob, self.p, self.states, self.iterations = prob, p, states, iterations
-        self.path, self.solve_time_s = path, solve_time_s
+        self.path = path
         rows = []
         for u in states:
             ch, cw = prob.contact(u)
@@ -293,9 +292,7 @@ class _MeshSolution:
 def _newton_at(prob: SqueezeProblem, u: np.ndarray, p: float, lam0: float,
                s: NewtonSettings) -> np.ndarray:
     """Equilibrium at pressure ``p`` (MPa) from the state ``u`` converged at ``lam0`` (MPa)."""
-    if p == lam0:
-        return solve_path(prob, [p], s, u0=u, load0=p)[0].u
-    return solve_path(prob, [p], s, u0=u, load0=lam0)[-1].u
+    return solve_path(prob, [p], s, u0=u, load0=lam0)[0].u
 
 
 def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings) -> np.ndarray:
@@ -321,7 +318,6 @@ def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spe
     """Follow the load path on one mesh; release the regulariser at each output (gravity none)."""
     prob = SqueezeProblem(structure, material, spec, penalty, density, gravity, spring_rel)
     path: list[tuple[float, np.ndarray]] = []
-    t0 = time.perf_counter()
 
     def record(lam: float, u: np.ndarray) -> None:
         path.append((lam, u.copy()))
@@ -332,8 +328,7 @@ def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spe
     states = [pt.u for pt in pts]
     if gravity == "none" and release:
         states = [_release(prob, pt.u, float(pt.load), settings) for pt in pts]
-    dt = time.perf_counter() - t0
-    return _MeshSolution(prob, p, states, np.array([pt.iterations for pt in pts]), path, dt)
+    return _MeshSolution(prob, p, states, np.array([pt.iterations for pt in pts]), path)
 
 
 def _start_state(prob: SqueezeProblem, s: NewtonSettings) -> np.ndarray:
