@@ -110,10 +110,15 @@ CONTACT_PENALTY_N_PER_MM3: Final = 1e5
 SILICONE_DENSITY_T_PER_MM3: Final = 1.1e-9
 
 #: Newton settings shared by every load path (tolerances relative to the problem's scales;
-#: ``max_iter`` iterations per sub-step before a cut-back; ``max_step`` in MPa).
+#: ``max_iter`` iterations per sub-step before a cut-back; ``max_step`` in MPa;
+#: ``active_set_iterations`` re-solves of a direction whose step would run nodes into an
+#: obstacle, see ``SqueezeProblem.refine_direction``; ``stagnation_ratio``: an attempt whose
+#: last four steps were all damped and cut the residual by less than this factor over them is
+#: abandoned at once; both measured on the base group, 2 x 24 to 8 x 128, issue 22).
 NEWTON: Final[MappingProxyType[str, Any]] = MappingProxyType({
     "tol_r": 1e-9, "tol_u": 1e-10, "max_iter": 15, "max_cutbacks": 12, "max_step": 0.05,
     "min_step": 1e-6, "line_search_halvings": 8, "extrapolate": True,
+    "active_set_iterations": 3, "stagnation_ratio": 0.5,
 })
 
 #: Newton settings of the free inflation (largest pressure step 0.05 MPa).
@@ -133,3 +138,40 @@ MR_STRETCH_LIMIT: Final = 2.5
 #: threads, and under CPU contention (parallel sweeps, other jobs) extra threads made refined
 #: meshes 6-9x slower; one thread per solve is the fast and safe setting.
 BLAS_THREADS: Final = 1
+
+# --- Design sweeps: serial, worker processes or Dask (exofric.design, `exofric sweep`) ----------
+# Block owned by the sweep scheduling (issue 22); measured 2026-11-23 on the 2-core machine
+# (benchmarks/bench_sweep.py). The rule is exofric.design.plan_execution.
+
+#: A-priori cost of one design's squeeze solve before any was timed (s): ``s_per_design +
+#: s_per_dof_step x dofs x (largest pressure / max_step_mpa)``, dofs = 2 (2 n_radial + 1)
+#: (2 n_circ + 1). Fitted to 1 x 12 ... 4 x 64 meshes up to 0.6 MPa in 0.025 MPa steps
+#: (0.08-0.73 s CPU). A sweep replaces it by the measured time once one design is solved, so
+#: a faster solver only makes this first guess pessimistic.
+SWEEP_DESIGN_COST: Final[MappingProxyType[str, float]] = MappingProxyType(
+    {"s_per_design": 0.02, "s_per_dof_step": 1.3e-5})
+
+#: Start-up of k local worker processes until all run (s) = ``fixed + per_worker x k``, by
+#: start method. fork (Linux): 0.02-0.05 s for 2 (the workers inherit this process' imports);
+#: spawn/forkserver: 0.55-0.65 s (each worker imports NumPy, SciPy and exofric). For
+#: comparison a Dask LocalCluster takes 0.65 s to start and 0.2 s to close.
+SWEEP_POOL_START_S: Final[MappingProxyType[str, MappingProxyType[str, float]]] = \
+    MappingProxyType({
+        "fork": MappingProxyType({"fixed": 0.02, "per_worker": 0.01}),
+        "forkserver": MappingProxyType({"fixed": 0.6, "per_worker": 0.05}),
+        "spawn": MappingProxyType({"fixed": 0.6, "per_worker": 0.05}),
+    })
+
+#: Cost of handing one design to a worker and getting its result back (s): local processes
+#: 0.1-0.2 ms (pickling, pipes; taken as 1 ms), Dask ~3 ms (scheduler round trip).
+SWEEP_TASK_OVERHEAD_S: Final[MappingProxyType[str, float]] = MappingProxyType(
+    {"processes": 1e-3, "dask": 3e-3})
+
+#: Worker processes are started only if they are predicted to save at least this much wall
+#: time (s) and at least SWEEP_MIN_GAIN_REL of the serial time (unitless fraction): a sweep of
+#: a few quick designs stays in the calling process.
+SWEEP_MIN_GAIN_S: Final = 0.2
+SWEEP_MIN_GAIN_REL: Final = 0.1
+
+__all__ += ["SWEEP_DESIGN_COST", "SWEEP_MIN_GAIN_REL", "SWEEP_MIN_GAIN_S", "SWEEP_POOL_START_S",
+            "SWEEP_TASK_OVERHEAD_S"]

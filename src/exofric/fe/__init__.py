@@ -31,7 +31,16 @@ from exofric.fe._hyperelastic import HyperelasticBody, mooney_rivlin_plane_strai
 from exofric.fe._inflation import InflationProblem, MeshSpec, PressurizedTube
 from exofric.fe._loads import area_hessian, enclosed_area
 from exofric.fe._mesh import TubeMesh, graded_angles, polar_mesh
-from exofric.fe._solver import Assembler, NewtonSettings, PathPoint, Problem, solve_path
+from exofric.fe._solver import (
+    Assembler,
+    NewtonSettings,
+    PathPoint,
+    Problem,
+    SolverStats,
+    StatsCollector,
+    collect_stats,
+    solve_path,
+)
 from exofric.fe._squeeze import (
     GRAVITY_MM_S2,
     GRAVITY_OPTIONS,
@@ -54,9 +63,12 @@ __all__ = [
     "Problem",
     "ReferenceData",
     "RigidCircle",
+    "SolverStats",
     "SqueezeProblem",
+    "StatsCollector",
     "TubeMesh",
     "area_hessian",
+    "collect_stats",
     "enclosed_area",
     "evaluate_contact",
     "graded_angles",

@@ -98,6 +98,14 @@ def scatter(edofs: np.ndarray, fe: np.ndarray, n: int) -> np.ndarray:
     return np.bincount(edofs.ravel(), weights=fe.ravel(), minlength=n)
 
 
+def _line_order(mesh: TubeMesh) -> np.ndarray:
+    """Dofs angle-major: the nodes of one radial line after the other (first occurrence)."""
+    nodes = mesh.grid.T.ravel()
+    _, first = np.unique(nodes, return_index=True)
+    nodes = nodes[np.sort(first)]
+    return (2 * nodes[:, None] + np.arange(2)).ravel()
+
+
 class PressurizedTube:
     """A meshed tube under internal follower pressure: what both FE problems share.
 
@@ -155,6 +163,7 @@ class PressurizedTube:
                 (self.H.row, self.H.col),
                 *extra_patterns,
             ],
+            orders=[_line_order(mesh)],
         )
 
     def pressurized(

@@ -12,9 +12,11 @@ Never is an unconverged state returned.
 from __future__ import annotations
 
 import contextlib
+import time
 import warnings
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterator, Sequence
+from contextvars import ContextVar
+from dataclasses import asdict, dataclass, field
 from typing import Protocol
 
 import numpy as np
@@ -28,7 +30,8 @@ from threadpoolctl import ThreadpoolController
 from exofric import defaults
 from exofric.errors import ConvergenceError
 
-__all__ = ["Assembler", "Problem", "NewtonSettings", "solve_path", "PathPoint"]
+__all__ = ["Assembler", "Problem", "NewtonSettings", "solve_path", "PathPoint", "SolverStats",
+           "StatsCollector", "collect_stats"]
 
 
 class Assembler:
@@ -46,6 +49,10 @@ class Assembler:
         True for unknown dofs.
     patterns : sequence of (rows, cols)
         Index arrays of the blocks that will be assembled, in call order.
+    orders : sequence of ndarray of int, optional
+        Candidate orderings of the dofs (each a permutation of ``range(n_dofs)``, e.g. a
+        structured mesh's line-by-line order) tried besides reverse Cuthill-McKee; the one
+        with the narrowest band is used. Candidates that are not permutations are ignored.
 
     Examples
     --------
@@ -57,7 +64,8 @@ class Assembler:
     """
 
     def __init__(
-        self, n_dofs: int, free: np.ndarray, patterns: Sequence[tuple[np.ndarray, np.ndarray]]
+        self, n_dofs: int, free: np.ndarray, patterns: Sequence[tuple[np.ndarray, np.ndarray]],
+        orders: Sequence[np.ndarray] = (),
     ) -> None:
         self.n_dofs = n_dofs
         self.free = np.asarray(free, dtype=bool)
@@ -68,6 +76,7 @@ class Assembler:
         cc = np.concatenate([self.red[np.asarray(c).ravel()] for _, c in patterns])
         self.sizes = [np.asarray(r).size for r, _ in patterns]
         self.keep = (rr >= 0) & (cc >= 0)
+        self._slots: list[np.ndarray] | None = None  # per pattern: CSC slot of each entry
         lin = cc[self.keep].astype(np.int64) * self.nf + rr[self.keep]
         uniq, self.inv = np.unique(lin, return_inverse=True)
         self.nnz = uniq.size
@@ -75,18 +84,34 @@ class Assembler:
         cols = uniq // self.nf
         self.indptr = np.searchsorted(cols, np.arange(self.nf + 1)).astype(np.int32)
 
-        # Reverse Cuthill-McKee ordering of the pattern: the thin structured meshes of the
-        # tube then have a narrow band, and LAPACK's banded solvers beat SuperLU's general
-        # sparse LU (by ~2x for the banded LU) at these sizes (a few hundred to ~20000
-        # dofs). Each CSC slot's place in the band is precomputed.
+        # Banded storage after a bandwidth-reducing ordering: the thin structured meshes of
+        # the tube then have a narrow band, and LAPACK's banded solvers beat SuperLU's general
+        # sparse LU (by ~2x for the banded LU) at these sizes (a few hundred to ~20000 dofs).
+        # The candidates are reverse Cuthill-McKee of the pattern and the problem's own
+        # ``orders`` (for the tube: angle-major, one radial line after the other, whose band is
+        # 2 (2 n_radial + 1) + 2 dofs for quad9 against RCM's diagonal fronts, 73 vs 127 at
+        # 8 x 128: a third of the Cholesky work, which grows as n band^2). The narrowest band
+        # wins. This is the whole symbolic analysis: the ordering and each CSC slot's place in
+        # the band are computed once here and reused by every factorisation.
+        col_of = np.repeat(np.arange(self.nf), np.diff(self.indptr))
         pattern = sp.csc_matrix((np.ones(self.nnz), self.indices, self.indptr),
                                 shape=(self.nf, self.nf))
-        self.perm = reverse_cuthill_mckee(pattern.tocsr(), symmetric_mode=True)
-        iperm = np.empty_like(self.perm)
-        iperm[self.perm] = np.arange(self.nf)
-        rows = iperm[self.indices]
-        colsp = iperm[np.repeat(np.arange(self.nf), np.diff(self.indptr))]
-        self.band = int(np.max(np.abs(rows - colsp))) if self.nnz else 0
+        candidates = [np.asarray(reverse_cuthill_mckee(pattern.tocsr(), symmetric_mode=True))]
+        for order in orders:
+            r = self.red[np.asarray(order, dtype=np.int64)]
+            r = r[r >= 0]
+            if r.size == self.nf and np.array_equal(np.sort(r), np.arange(self.nf)):
+                candidates.append(r)
+        best = None
+        for perm in candidates:
+            iperm = np.empty_like(perm)
+            iperm[perm] = np.arange(self.nf)
+            rows, colsp = iperm[self.indices], iperm[col_of]
+            band = int(np.max(np.abs(rows - colsp))) if self.nnz else 0
+            if best is None or band < best[0]:
+                best = (band, perm, rows, colsp)
+        assert best is not None
+        self.band, self.perm, rows, colsp = best
         # LAPACK's band storage, column-major (Fortran order, so that LAPACK works in place):
         # entry (i, j) of the permuted matrix sits at flat index j * ldab + (row in the band).
         # gbsv (LU, partial pivoting) takes ldab = 3 band + 1 (band extra rows on top for the
@@ -145,6 +170,40 @@ class Assembler:
             raise ValueError(f"illegal value in argument {-info} of gbsv")
         x[self.perm] = xp[:, 0]
         return x
+
+    def add(self, K: sp.csc_matrix, pattern: int, values: np.ndarray) -> sp.csc_matrix:
+        """``K`` plus values on the entries of one pattern (a new matrix; ``K`` is kept).
+
+        Parameters
+        ----------
+        K : scipy.sparse.csc_matrix (nf, nf)
+            A matrix from :meth:`matrix`.
+        pattern : int
+            Index of the pattern (in the ``patterns`` given to the constructor).
+        values : ndarray
+            Values in that pattern's order and shape; entries on fixed dofs are dropped.
+
+        Returns
+        -------
+        scipy.sparse.csc_matrix (nf, nf)
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> a = Assembler(2, np.array([True, True]), [(np.array([0, 1]), np.array([0, 1]))])
+        >>> a.add(a.matrix([np.array([4.0, 16.0])]), 0, np.array([1.0, 0.0])).toarray().tolist()
+        [[5.0, 0.0], [0.0, 16.0]]
+        """
+        if self._slots is None:
+            full = np.full(self.keep.size, -1, dtype=np.int64)
+            full[self.keep] = self.inv
+            ends = np.cumsum([0, *self.sizes])
+            self._slots = [full[a:b] for a, b in zip(ends[:-1], ends[1:], strict=True)]
+        slots = self._slots[pattern]
+        ok = slots >= 0
+        data = K.data + np.bincount(slots[ok], weights=np.asarray(values, dtype=float).ravel()[ok],
+                                    minlength=self.nnz)
+        return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.nf, self.nf))
 
     def matrix(self, blocks: Sequence[np.ndarray]) -> sp.csc_matrix:
         """CSC matrix of the free dofs from block values given in pattern order.
@@ -238,6 +297,13 @@ class NewtonSettings:
         the bracketing search for the energy minimum along the step), >= 0.
     extrapolate : bool
         Start each sub-step from a secant predictor.
+    active_set_iterations : int
+        Re-solves of a Newton direction allowed to a problem with contact
+        (``refine_direction``): nodes that the linearised step would run into an obstacle
+        join the tangent and the direction is solved again, >= 0 (0: plain Newton).
+    stagnation_ratio : float
+        An attempt whose last two steps were damped and whose residual fell by less than
+        this factor over them is abandoned (cut back) at once, in [0, 1) (0: never).
     threads : int
         BLAS/OpenMP threads the solve may use (:func:`solve_path` limits the thread pools
         with threadpoolctl while it runs), >= 1; 0 leaves the pools as they are.
@@ -258,6 +324,8 @@ class NewtonSettings:
     min_step: float = defaults.NEWTON["min_step"]
     line_search_halvings: int = defaults.NEWTON["line_search_halvings"]
     extrapolate: bool = defaults.NEWTON["extrapolate"]
+    active_set_iterations: int = defaults.NEWTON["active_set_iterations"]
+    stagnation_ratio: float = defaults.NEWTON["stagnation_ratio"]
     threads: int = defaults.BLAS_THREADS
     load_name: str = "pressure"
     load_unit: str = "MPa"
@@ -292,6 +360,136 @@ class PathPoint:
     iterations: int
     steps: int
     info: dict[str, float] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class SolverStats:
+    """Where a solve's Newton work went (accumulated by :func:`collect_stats`).
+
+    An *attempt* is one Newton iteration sequence at one load (a sub-step, a probe of the
+    contact onset, a release of the regulariser); a failed attempt ends in a cut-back or a
+    retry from the last converged state, so its time is wasted.
+
+    Parameters
+    ----------
+    attempts : int
+        Newton attempts.
+    failed_attempts : int
+        Attempts that did not converge.
+    iterations : int
+        Newton iterations (tangent evaluations), failed attempts included.
+    linear_solves : int
+        Linear solves (factorisations), the active-set re-solves included.
+    time_s : float
+        Wall time in Newton attempts (s).
+    failed_time_s : float
+        Wall time in failed attempts (s).
+
+    Examples
+    --------
+    >>> SolverStats(attempts=4, failed_attempts=1, time_s=2.0, failed_time_s=0.5).failed_time_pct
+    25.0
+    """
+
+    attempts: int = 0
+    failed_attempts: int = 0
+    iterations: int = 0
+    linear_solves: int = 0
+    time_s: float = 0.0
+    failed_time_s: float = 0.0
+
+    @property
+    def failed_time_pct(self) -> float:
+        """Share of the Newton time spent in failed attempts (%)."""
+        return 100.0 * self.failed_time_s / self.time_s if self.time_s > 0.0 else 0.0
+
+    def to_dict(self) -> dict[str, float]:
+        """The counts and times, plus ``failed_time_pct`` (%).
+
+        Examples
+        --------
+        >>> SolverStats(attempts=2).to_dict()["attempts"]
+        2
+        """
+        return {**asdict(self), "failed_time_pct": self.failed_time_pct}
+
+
+class _Tally:
+    """Mutable counters behind :func:`collect_stats`."""
+
+    def __init__(self) -> None:
+        self.counts = dict.fromkeys(("attempts", "failed_attempts", "iterations",
+                                     "linear_solves"), 0)
+        self.times = {"time_s": 0.0, "failed_time_s": 0.0}
+
+    def stats(self) -> SolverStats:
+        c, t = self.counts, self.times
+        return SolverStats(c["attempts"], c["failed_attempts"], c["iterations"],
+                           c["linear_solves"], t["time_s"], t["failed_time_s"])
+
+
+_TALLIES: ContextVar[tuple[_Tally, ...]] = ContextVar("exofric_solver_tallies", default=())
+
+
+class StatsCollector:
+    """Handle of :func:`collect_stats`; :attr:`stats` reads the counts so far.
+
+    Examples
+    --------
+    >>> with collect_stats() as c:
+    ...     pass
+    >>> c.stats.attempts
+    0
+    """
+
+    def __init__(self, tally: _Tally) -> None:
+        self._tally = tally
+
+    @property
+    def stats(self) -> SolverStats:
+        """The statistics accumulated so far."""
+        return self._tally.stats()
+
+
+@contextlib.contextmanager
+def collect_stats() -> Iterator[StatsCollector]:
+    """Count the Newton work of every :func:`solve_path` call inside the ``with`` block.
+
+    Collectors nest (each counts everything inside it) and are per context (thread or task).
+
+    Yields
+    ------
+    StatsCollector
+        Its ``stats`` (:class:`SolverStats`) hold the counts and times so far.
+
+    Examples
+    --------
+    >>> from exofric.fe import InflationProblem, MeshSpec
+    >>> from exofric.material import MooneyRivlin
+    >>> p = InflationProblem(8.3, 4.97, MooneyRivlin.from_shore(62.5), MeshSpec())
+    >>> with collect_stats() as c:
+    ...     _ = solve_path(p, [0.2])
+    >>> c.stats.attempts >= 1, c.stats.failed_attempts
+    (True, 0)
+    """
+    tally = _Tally()
+    token = _TALLIES.set((*_TALLIES.get(), tally))
+    try:
+        yield StatsCollector(tally)
+    finally:
+        _TALLIES.reset(token)
+
+
+def _record(ok: bool, iterations: int, solves: int, dt: float) -> None:
+    """Add one Newton attempt to every active collector."""
+    for t in _TALLIES.get():
+        t.counts["attempts"] += 1
+        t.counts["failed_attempts"] += not ok
+        t.counts["iterations"] += iterations
+        t.counts["linear_solves"] += solves
+        t.times["time_s"] += dt
+        if not ok:
+            t.times["failed_time_s"] += dt
 
 
 def _accept(e_t: float, r_t: float, e0: float, r0: float, slope: float, r_tol: float) -> bool:
@@ -418,14 +616,72 @@ def _line_search(
     return best
 
 
+_STAGNATION_WINDOW = 4
+
+
+def _stagnating(history: Sequence[tuple[float, float]], rnorm: float, ratio: float) -> bool:
+    """True when Newton creeps: damped steps that no longer reduce the residual.
+
+    ``history`` holds (residual norm, accepted step length) of the iterations so far and
+    ``rnorm`` is the current residual norm. Stagnation: the last ``_STAGNATION_WINDOW``
+    steps were all damped by the line search (step length < 1) and the residual is above
+    ``ratio`` times the one before them. Newton's quadratic (or, with an inexact tangent,
+    fast linear) phase takes full steps, so it is never cut; a creeping attempt is stopped
+    after a few iterations instead of running to ``max_iter`` (and, from the predictor, a
+    second time from the last state). ``ratio`` 0 disables the test. The window (4) and the
+    ratio (0.5) are the best of those tried on the base group's squeeze from 2 x 24 to
+    8 x 128 (windows 2-4, ratios 0.25-0.8): a shorter window also stopped attempts that
+    would have converged.
+
+    Examples
+    --------
+    >>> _stagnating([(9.0, 0.1), (8.0, 0.2), (7.0, 0.1), (6.0, 0.3)], 5.0, 0.5)
+    True
+    >>> _stagnating([(9.0, 0.1), (8.0, 1.0), (7.0, 0.1), (6.0, 0.3)], 5.0, 0.5)
+    False
+    """
+    if ratio <= 0.0 or len(history) < _STAGNATION_WINDOW:
+        return False
+    last = history[-_STAGNATION_WINDOW:]
+    return all(a < 1.0 for _, a in last) and rnorm > ratio * last[0][0]
+
+
+def _spsolve(K: sp.csc_matrix, rhs: np.ndarray) -> np.ndarray:
+    """SuperLU solve (problems without an :class:`Assembler`)."""
+    return np.asarray(spsolve(K, rhs))
+
+
 def _newton(
     problem: Problem, u: np.ndarray, load: float, s: NewtonSettings
 ) -> tuple[np.ndarray, int] | None:
-    """Newton iterations at a fixed load from ``u``: (converged u, iterations) or None."""
+    """Newton iterations at a fixed load from ``u``: (converged u, iterations) or None.
+
+    Each call is one attempt in the statistics of :func:`collect_stats`.
+    """
+    t0 = time.perf_counter()
+    counter = [0, 0]  # iterations, linear solves
+    out = _newton_attempt(problem, u, load, s, counter)
+    if _TALLIES.get():
+        _record(out is not None, counter[0], counter[1], time.perf_counter() - t0)
+    return out
+
+
+def _newton_attempt(
+    problem: Problem, u: np.ndarray, load: float, s: NewtonSettings, counter: list[int]
+) -> tuple[np.ndarray, int] | None:
+    """The iterations of :func:`_newton`; ``counter`` gets [iterations, linear solves]."""
     free = problem.free
     fscale, lscale = problem.scales(load)
     du_norm = np.inf
     cached: _Evaluation | None = None
+    history: list[tuple[float, float]] = []  # (residual norm, accepted step length)
+    asm = getattr(problem, "assembler", None)
+    base = asm.solve if isinstance(asm, Assembler) else _spsolve
+
+    def solve(A: sp.csc_matrix, b: np.ndarray) -> np.ndarray:
+        counter[1] += 1
+        return base(A, b)
+
     for it in range(1, s.max_iter + 1):
         # the accepted full-step trial of the previous iteration already has the tangent
         out = cached if cached is not None else problem.evaluate(u, load, True)
@@ -439,12 +695,17 @@ def _newton(
             return None
         if rnorm <= s.tol_r * fscale and du_norm <= s.tol_u * lscale:
             return u, it - 1
+        if _stagnating(history, rnorm, s.stagnation_ratio):
+            return None  # cut back now rather than creep to max_iter
         assert K is not None
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("error", MatrixRankWarning)
             try:
-                asm = getattr(problem, "assembler", None)
-                d = asm.solve(K, -rf) if isinstance(asm, Assembler) else spsolve(K, -rf)
+                counter[0] += 1
+                d = solve(K, -rf)
+                refine = getattr(problem, "refine_direction", None)
+                if refine is not None and s.active_set_iterations > 0 and np.all(np.isfinite(d)):
+                    d = refine(u, K, -rf, d, solve, s.active_set_iterations)
             except (MatrixRankWarning, RuntimeError, LinAlgError):
                 return None
         if not np.all(np.isfinite(d)):
@@ -456,6 +717,7 @@ def _newton(
         if ls is None:
             return None
         alpha, t = ls
+        history.append((rnorm, alpha))
         cached = t if t[2] is not None else None
         u = u + alpha * step
         du_norm = alpha * float(np.max(np.abs(d))) if d.size else 0.0

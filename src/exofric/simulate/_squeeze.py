@@ -19,7 +19,9 @@ from exofric.fe import (
     GRAVITY_OPTIONS,
     MeshSpec,
     NewtonSettings,
+    SolverStats,
     SqueezeProblem,
+    collect_stats,
     solve_path,
     von_mises,
     wall_arc,
@@ -104,6 +106,10 @@ class SqueezeResult:
         The same estimate in N/mm (per depth).
     coarse_squeeze_force_n_per_mm : ndarray or None
         N on the coarse mesh (N/mm), full section.
+    solver_stats : SolverStats
+        Newton attempts, failed attempts, iterations, linear solves and the wall time (s)
+        spent in them and in the failed ones, over both meshes, the onset bracketing and the
+        regulariser's release.
 
     Examples
     --------
@@ -144,6 +150,7 @@ class SqueezeResult:
     n_error_estimate_pct: np.ndarray | None = None
     n_error_estimate_n_per_mm: np.ndarray | None = None
     coarse_squeeze_force_n_per_mm: np.ndarray | None = field(default=None, repr=False)
+    solver_stats: SolverStats = field(default_factory=SolverStats, repr=False)
 
     @property
     def length_mm(self) -> float:
@@ -180,6 +187,7 @@ class SqueezeResult:
             "n_error_estimate_pct": _opt_list(self.n_error_estimate_pct),
             "n_error_estimate_n_per_mm": _opt_list(self.n_error_estimate_n_per_mm),
             "coarse_squeeze_force_n_per_mm": _opt_list(self.coarse_squeeze_force_n_per_mm),
+            "solver_stats": self.solver_stats.to_dict(),
         }
 
     def to_frame(self) -> pd.DataFrame:
@@ -425,6 +433,37 @@ def resolve_accuracy(accuracy: str | None, mesh: MeshSpec | None,
     return name, spec, spec.coarsened(fr, fc)
 
 
+def _solve_levels(
+    structure: Structure, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
+    coarse_spec: MeshSpec | None, penalty: float, density: float, gravity: str,
+    s: NewtonSettings, regulariser: float, onset_tol_mpa: float,
+) -> tuple[_MeshSolution, float | None, np.ndarray | None, np.ndarray | None,
+           np.ndarray | None]:
+    """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm) of :func:`squeeze`."""
+    sol = _solve_mesh(structure, material, p, spec, penalty, density, gravity, s, regulariser)
+    est_pct: np.ndarray | None = None
+    est_abs: np.ndarray | None = None
+    coarse_n: np.ndarray | None = None
+    if coarse_spec is None:
+        onset = _bracket_onset(sol, s, onset_tol_mpa)
+    else:
+        # The coarse mesh only serves the estimate: its states keep the floating-mode spring
+        # (a share ~ spring / contact stiffness ~ 1e-4 of N, far below the estimate's size),
+        # and it brackets the onset, which is geometric (the free tube spanning wall to wire):
+        # the two meshes' onsets agree to ~1e-5 MPa, bracketed to onset_tol_mpa on the cheaper.
+        # its N enters only the estimate (% level): Newton to 1e-7 instead of 1e-9 suffices
+        loose = replace(s, tol_r=max(s.tol_r, 1e-7), tol_u=max(s.tol_u, 1e-8))
+        coarse = _solve_mesh(structure, material, p, coarse_spec, penalty, density, gravity,
+                             loose, regulariser, release=False)
+        onset = _bracket_onset(coarse, s, onset_tol_mpa)
+        coarse_n = coarse.n.copy()
+        fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
+        est_abs = np.maximum(fs * np.abs(sol.n - coarse.n), 0.01 * floor * sol.n)
+        est_pct = np.minimum(fs * _relative_pct(sol.n, coarse.n), 100.0)
+        est_pct = np.where(sol.n > 0.0, np.maximum(est_pct, floor), est_pct)
+    return sol, onset, coarse_n, est_pct, est_abs
+
+
 def squeeze(
     structure: Structure,
     material: MooneyRivlin,
@@ -519,27 +558,10 @@ def squeeze(
     level, spec, coarse_spec = resolve_accuracy(accuracy, mesh, defaults.SQUEEZE_ACCURACY)
     s = settings or NewtonSettings(**defaults.SQUEEZE_NEWTON)
     t0 = time.perf_counter()
-    sol = _solve_mesh(structure, material, p, spec, penalty, density, gravity, s, regulariser)
-    est_pct: np.ndarray | None = None
-    est_abs: np.ndarray | None = None
-    coarse_n: np.ndarray | None = None
-    if coarse_spec is None:
-        onset = _bracket_onset(sol, s, onset_tol_mpa)
-    else:
-        # The coarse mesh only serves the estimate: its states keep the floating-mode spring
-        # (a share ~ spring / contact stiffness ~ 1e-4 of N, far below the estimate's size),
-        # and it brackets the onset, which is geometric (the free tube spanning wall to wire):
-        # the two meshes' onsets agree to ~1e-5 MPa, bracketed to onset_tol_mpa on the cheaper.
-        # its N enters only the estimate (% level): Newton to 1e-7 instead of 1e-9 suffices
-        loose = replace(s, tol_r=max(s.tol_r, 1e-7), tol_u=max(s.tol_u, 1e-8))
-        coarse = _solve_mesh(structure, material, p, coarse_spec, penalty, density, gravity,
-                             loose, regulariser, release=False)
-        onset = _bracket_onset(coarse, s, onset_tol_mpa)
-        coarse_n = coarse.n.copy()
-        fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
-        est_abs = np.maximum(fs * np.abs(sol.n - coarse.n), 0.01 * floor * sol.n)
-        est_pct = np.minimum(fs * _relative_pct(sol.n, coarse.n), 100.0)
-        est_pct = np.where(sol.n > 0.0, np.maximum(est_pct, floor), est_pct)
+    with collect_stats() as counted:
+        sol, onset, coarse_n, est_pct, est_abs = _solve_levels(
+            structure, material, p, spec, coarse_spec, penalty, density, gravity, s,
+            regulariser, onset_tol_mpa)
     dt = time.perf_counter() - t0
     prob = sol.prob
     L = structure.length_mm
@@ -582,4 +604,5 @@ def squeeze(
         n_error_estimate_pct=est_pct,
         n_error_estimate_n_per_mm=est_abs,
         coarse_squeeze_force_n_per_mm=coarse_n,
+        solver_stats=counted.stats,
     )

@@ -1,0 +1,169 @@
+"""Newton's direction, the banded solve's ordering and the solver statistics (issue 22).
+
+Independent references:
+
+* the banded solve against SciPy's SuperLU (``spsolve``) on the same matrices, and its band
+  against SciPy's reverse Cuthill-McKee ordering;
+* the active-set direction against its defining property: it minimises the piecewise-
+  quadratic model of the energy along the step, m(d) = R.d + d.K.d / 2 +
+  sum eps w / 2 <-(g + grad g . d)>^2 over the nodes outside contact (checked by random
+  perturbations, which a minimiser of this convex model cannot improve on);
+* the converged states, which must not depend on the direction Newton took (the residual
+  tolerance bounds the difference).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+from scipy.sparse.csgraph import reverse_cuthill_mckee
+from scipy.sparse.linalg import spsolve
+
+from exofric import defaults
+from exofric.fe import (
+    InflationProblem,
+    MeshSpec,
+    NewtonSettings,
+    SqueezeProblem,
+    collect_stats,
+    solve_path,
+)
+from exofric.geometry import BASE
+from exofric.material import MooneyRivlin
+from exofric.simulate import squeeze
+
+MAT = MooneyRivlin.from_shore(62.5)
+SETTINGS = NewtonSettings(**defaults.SQUEEZE_NEWTON)
+
+
+def _problem(nr: int, nc: int) -> SqueezeProblem:
+    return SqueezeProblem(BASE, MAT, MeshSpec(nr, nc), defaults.CONTACT_PENALTY_N_PER_MM3,
+                          defaults.SILICONE_DENSITY_T_PER_MM3, gravity="none")
+
+
+@pytest.mark.parametrize(("nr", "nc"), [(2, 24), (4, 48), (8, 128)])
+def test_band_is_no_wider_than_rcm_and_the_solve_matches_superlu(nr: int, nc: int) -> None:
+    """The chosen ordering's band <= SciPy's RCM band; solutions agree with SuperLU to 1e-9.
+
+    1e-9 relative: both are direct solves of a system whose condition number is ~1e7
+    (penalty contact against the soft floating mode), so agreement to ~1e-16 x 1e7 is expected.
+    """
+    prob = _problem(nr, nc)
+    asm = prob.assembler
+    [pt] = solve_path(prob, [0.3], SETTINGS)
+    _, _, K = prob.evaluate(pt.u, 0.3, True)
+    assert K is not None
+    perm = reverse_cuthill_mckee(sp.csr_matrix(K), symmetric_mode=True)
+    iperm = np.empty_like(perm)
+    iperm[perm] = np.arange(len(perm))
+    Kc = K.tocoo()
+    rcm_band = int(np.max(np.abs(iperm[Kc.row] - iperm[Kc.col])))
+    assert asm.band <= rcm_band
+    if (nr, nc) == (8, 128):  # the line-by-line order: 2 (2 n_radial + 1) + 2 dofs
+        assert asm.band < 0.7 * rcm_band
+    b = np.random.default_rng(1).standard_normal(asm.nf)
+    x = asm.solve(K, b)
+    ref = spsolve(K.tocsc(), b)
+    assert np.max(np.abs(x - ref)) <= 1e-9 * np.max(np.abs(ref))
+
+
+def _contact_model(prob: SqueezeProblem, u: np.ndarray, K: sp.csc_matrix, R: np.ndarray):
+    """m(d) over the free dofs: the Newton quadratic plus the penalty of nodes now outside."""
+    xo = (prob.X + u).reshape(-1, 2)[prob.outer]
+    lin = []
+    for c in (prob.hole, prob.wire):
+        vec = xo - np.asarray(c.center)
+        dist = np.linalg.norm(vec, axis=1)
+        n = vec / dist[:, None]
+        g, grad = (c.radius - dist, -n) if c.inside else (dist - c.radius, n)
+        lin.append((g, grad))
+    kw = prob.penalty * prob.w_outer
+    free = prob.free
+
+    def m(d: np.ndarray) -> float:
+        step = np.zeros(prob.n_dofs)
+        step[free] = d
+        dn = step[prob.contact_dofs]
+        val = float(R[free] @ d + 0.5 * d @ (K @ d))
+        for g, grad in lin:
+            gl = g + np.sum(grad * dn, axis=1)
+            outside = g > 0.0
+            val += 0.5 * float(np.sum((kw * np.minimum(gl, 0.0) ** 2)[outside]))
+        return val
+
+    def entering(d: np.ndarray) -> int:
+        step = np.zeros(prob.n_dofs)
+        step[free] = d
+        dn = step[prob.contact_dofs]
+        return sum(int(np.sum((g > 0) & (g + np.sum(grad * dn, axis=1) < 0))) for g, grad in lin)
+
+    return m, entering
+
+
+def test_active_set_direction_minimises_the_piecewise_contact_model() -> None:
+    """From the state at 0.3 MPa loaded to 0.35 MPa, the plain Newton step runs nodes into the
+    obstacles; the refined direction is the minimiser of the model with those contacts."""
+    prob = _problem(4, 48)
+    [pt] = solve_path(prob, [0.3], SETTINGS)
+    u, load = pt.u, 0.35
+    _, R, K = prob.evaluate(u, load, True)
+    assert K is not None
+    rhs = -R[prob.free]
+    plain = prob.assembler.solve(K, rhs)
+    d = prob.refine_direction(u, K, rhs, plain, prob.assembler.solve, 3)
+    m, entering = _contact_model(prob, u, K, R)
+    assert entering(plain) > 0  # the case the refinement is for
+    assert not np.array_equal(d, plain)
+    assert m(d) < m(plain)
+    rng = np.random.default_rng(7)
+    scale = float(np.max(np.abs(d)))
+    m0 = m(d)
+    for eps in (1e-3, 1e-5):
+        for _ in range(10):
+            v = rng.standard_normal(d.size)
+            v *= eps * scale / np.max(np.abs(v))
+            # a minimiser: no perturbation lowers m (beyond round-off of m's size)
+            assert m(d + v) >= m0 - 1e-12 * abs(m0)
+
+
+def test_converged_squeeze_does_not_depend_on_the_direction() -> None:
+    """Plain Newton (no active-set re-solves, no early cut-back) and the default reach the same
+    N to 1e-7 relative: both stop at a residual below 1e-9 of P x B (N/mm) and the contact
+    stiffness maps that to N changes orders of magnitude below 1e-7."""
+    p = np.array([0.1, 0.3, 0.6])
+    mesh = MeshSpec(4, 48)
+    plain = NewtonSettings(**{**defaults.SQUEEZE_NEWTON, "active_set_iterations": 0,
+                              "stagnation_ratio": 0.0})
+    a = squeeze(BASE, MAT, p, mesh=mesh, settings=plain, keep_fields=False)
+    b = squeeze(BASE, MAT, p, mesh=mesh, keep_fields=False)
+    assert np.allclose(a.squeeze_force_n, b.squeeze_force_n, rtol=1e-7, atol=0.0)
+    assert b.solver_stats.iterations < a.solver_stats.iterations  # the point of it
+
+
+def test_stats_count_attempts_and_failed_time() -> None:
+    """A 0.6 MPa inflation in one step with 3 Newton iterations allowed must cut back: the
+    failed attempts are counted and their time is part of the total; collectors nest."""
+    prob = InflationProblem(8.3, 4.97, MAT, MeshSpec())
+    s = NewtonSettings(max_step=0.6, max_iter=3, extrapolate=False)
+    with collect_stats() as outer:
+        with collect_stats() as inner:
+            solve_path(prob, [0.6], s)
+        first = inner.stats
+        solve_path(prob, [0.2], NewtonSettings())
+    st = outer.stats
+    assert first.failed_attempts >= 1
+    assert 0.0 < first.failed_time_s <= first.time_s
+    assert first.iterations >= 3 * first.failed_attempts  # each failed one used its 3
+    assert first.linear_solves >= first.iterations
+    assert st.attempts > first.attempts
+    assert st.failed_attempts == first.failed_attempts
+    assert st.to_dict()["failed_time_pct"] == pytest.approx(
+        100.0 * st.failed_time_s / st.time_s)
+
+
+def test_squeeze_reports_its_solver_stats() -> None:
+    r = squeeze(BASE, MAT, [0.3, 0.6], mesh=MeshSpec(2, 24), keep_fields=False)
+    d = r.to_dict()["solver_stats"]
+    assert d["attempts"] >= 2 and d["iterations"] >= d["attempts"] - d["failed_attempts"]
+    assert 0.0 < d["time_s"] <= r.solve_time_s
