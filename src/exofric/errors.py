@@ -8,10 +8,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from typing import overload
+from typing import TYPE_CHECKING, overload
 
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
+if TYPE_CHECKING:  # numpy is imported where it is used: the CLI imports this module first
+    import numpy as np
+    from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "ConvergenceError",
@@ -227,6 +228,8 @@ def check_pressures(
     >>> check_pressures("pressures_mpa", [0.0, 0.3, 0.6]).tolist()
     [0.0, 0.3, 0.6]
     """
+    import numpy as np
+
     arr = np.asarray(list(values), dtype=float)
     if arr.ndim != 1 or arr.size == 0:
         raise InputError(f"{name} must be a non-empty list of pressures in MPa")
@@ -243,6 +246,8 @@ def check_pressures(
 
 def _series_array(name: str, values: ArrayLike, unit: str, pre: str) -> NDArray[np.float64]:
     """``values`` as a flat float array; InputError if not numbers or not all finite."""
+    import numpy as np
+
     try:
         a = np.asarray(values, dtype=float).ravel()
     except (TypeError, ValueError):
@@ -331,6 +336,8 @@ def check_series(
     exofric.errors.InputError: pressure_mpa must be strictly increasing (MPa), got 0.2 then \
 0.1 at index 1
     """
+    import numpy as np
+
     pre = f"{where}: " if where else ""
     xu = f" ({x_unit})" if x_unit else ""
     yu = f" ({y_unit})" if y_unit else ""

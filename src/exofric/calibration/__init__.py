@@ -21,19 +21,51 @@ Examples
 ([60.0, 65.0, 70.0, 62.5], 62.5, 0.46)
 """
 
-from exofric.calibration._api import METHODS, calibrate
-from exofric.calibration._methods import Evaluator, Fit, bisection, bounded, joint, known_hardness
-from exofric.calibration._models import (
-    DEFAULT_MODEL,
-    MODEL_KINDS,
-    C10Convention,
-    CachedModel,
-    ModelFn,
-    make_model,
-    material_for,
-    paper_table1_model,
-)
-from exofric.calibration._result import CalibrationResult, InflationData, Trial, relative_errors_pct
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.calibration._api import METHODS, calibrate
+    from exofric.calibration._methods import (
+        Evaluator,
+        Fit,
+        bisection,
+        bounded,
+        joint,
+        known_hardness,
+    )
+    from exofric.calibration._models import (
+        DEFAULT_MODEL,
+        MODEL_KINDS,
+        C10Convention,
+        CachedModel,
+        ModelFn,
+        make_model,
+        material_for,
+        paper_table1_model,
+    )
+    from exofric.calibration._result import (
+        CalibrationResult,
+        InflationData,
+        Trial,
+        relative_errors_pct,
+    )
+
+# Lazy facade (PEP 562): ``CalibrationResult`` or ``InflationData`` do not load scipy.optimize
+# (``calibrate`` does); each name is loaded from its module on first use (exofric/__init__.py does
+# the same one level up).
+_MODULES: dict[str, tuple[str, ...]] = {
+    "_api": ("METHODS", "calibrate"),
+    "_methods": ("Evaluator", "Fit", "bisection", "bounded", "joint", "known_hardness"),
+    "_models": (
+        "DEFAULT_MODEL", "MODEL_KINDS", "C10Convention", "CachedModel", "ModelFn", "make_model",
+        "material_for", "paper_table1_model",
+    ),
+    "_result": ("CalibrationResult", "InflationData", "Trial", "relative_errors_pct"),
+}
+_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "bisection", "bounded", "C10Convention", "CachedModel", "calibrate", "CalibrationResult",
@@ -41,3 +73,17 @@ __all__ = [
     "material_for", "METHODS", "MODEL_KINDS", "ModelFn", "paper_table1_model",
     "relative_errors_pct", "Trial",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name of :mod:`exofric.calibration` from its module on first use."""
+    mod = _HOME.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -16,13 +16,19 @@ import re
 import sys
 import warnings
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import typer
 
 from exofric._version import __version__
-from exofric.errors import ConvergenceError, InputError
 
+if TYPE_CHECKING:
+    from exofric.errors import InputError
+
+# Start-up: module level imports typer and the command modules' option definitions only;
+# everything a command computes with is imported inside the command function, so that
+# ``exofric --help`` and the light commands start fast (tests/test_startup.py,
+# benchmarks/bench_startup.py).
 app = typer.Typer(
     name="exofric",
     help="Friction modelling, prediction and control for friction-based variable-stiffness "
@@ -54,14 +60,17 @@ for _mod in sorted(m.name for m in pkgutil.iter_modules(__path__)):
 
 
 def _click_classes(name: str) -> tuple[type[Exception], ...]:
-    """Exception class ``name`` from click and from typer's vendored click (typer >= 0.20)."""
+    """Exception class ``name`` from click and from typer's vendored click (typer >= 0.20).
+
+    Only from the one(s) already imported (``import typer`` imports the click it uses): a class
+    of a module nobody imported cannot be raised, and importing click itself would cost
+    start-up time for nothing.
+    """
     found: list[type[Exception]] = []
     for mod in ("click.exceptions", "typer._click.exceptions"):
-        try:
-            cls = getattr(importlib.import_module(mod), name)
-        except (ImportError, AttributeError):
-            continue
-        found.append(cls)
+        cls = getattr(sys.modules.get(mod), name, None)
+        if isinstance(cls, type) and issubclass(cls, Exception):
+            found.append(cls)
     return tuple(found)
 
 
@@ -146,16 +155,22 @@ def run(argv: Sequence[str] | None = None) -> int:
         msg = " ".join(str(exc.format_message()).split())  # type: ignore[attr-defined]
         print(f"exofric: error: {msg}", file=sys.stderr)
         return 2
-    except InputError as exc:
-        print(f"exofric: error: {_with_flags(exc, cmd)}", file=sys.stderr)
-        return 2
     except OSError as exc:  # files the user named: missing, unwritable, not a directory...
         where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
         print(f"exofric: error:{where} {exc.strerror or exc}", file=sys.stderr)
         return 2
-    except ConvergenceError as exc:
-        print(f"exofric: did not converge: {exc}", file=sys.stderr)
-        return 3
+    except Exception as exc:
+        # exofric's own errors (neither is an OSError), imported only now: --help and typer's
+        # own errors never load exofric.errors (and NumPy with it)
+        from exofric.errors import ConvergenceError, InputError
+
+        if isinstance(exc, InputError):
+            print(f"exofric: error: {_with_flags(exc, cmd)}", file=sys.stderr)
+            return 2
+        if isinstance(exc, ConvergenceError):
+            print(f"exofric: did not converge: {exc}", file=sys.stderr)
+            return 3
+        raise
     return int(rv) if isinstance(rv, int) else 0
 
 

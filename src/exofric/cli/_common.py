@@ -1,4 +1,8 @@
-"""Shared presentation helpers for CLI commands (no computation here)."""
+"""Shared presentation helpers for CLI commands (no computation here).
+
+Module level imports only typer and rich: every command module imports this one, so whatever
+it imports, ``exofric --help`` pays for (``tests/test_startup.py``).
+"""
 
 from __future__ import annotations
 
@@ -11,9 +15,6 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from exofric.errors import InputError
-from exofric.io import jsonable
-
 JSON_OPTION = typer.Option(False, "--json", help="Print exactly one JSON object on stdout.")
 
 console = Console()
@@ -22,6 +23,8 @@ console = Console()
 def emit(obj: dict[str, Any], as_json: bool, render: Callable[[], None]) -> None:
     """Print ``obj`` as one JSON object if ``as_json``, else call ``render``."""
     if as_json:
+        from exofric.io import jsonable
+
         print(json.dumps(jsonable(obj)))
     else:
         render()
@@ -29,6 +32,8 @@ def emit(obj: dict[str, Any], as_json: bool, render: Callable[[], None]) -> None
 
 def parse_floats(name: str, text: str) -> list[float]:
     """Parse ``"0.1,0.2, 0.3"`` into floats; the error names the option."""
+    from exofric.errors import InputError
+
     out = []
     for part in text.split(","):
         part = part.strip()

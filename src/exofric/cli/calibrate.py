@@ -7,7 +7,6 @@ from pathlib import Path
 import typer
 
 from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats, save_figure
-from exofric.errors import InputError
 
 
 def register(app: typer.Typer) -> None:
@@ -57,6 +56,7 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Identify Shore A hardness (and tube ID, mm) from inflation data. MPa, mm, %."""
         from exofric.calibration import InflationData, calibrate
+        from exofric.errors import InputError
         from exofric.io import read_inflation_table
 
         lohi = parse_floats("--bracket", bracket)

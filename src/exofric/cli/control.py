@@ -15,7 +15,6 @@ from typing import TYPE_CHECKING, Any
 import typer
 
 from exofric.cli._common import JSON_OPTION, console, emit, kv_table, save_figure
-from exofric.errors import InputError
 
 if TYPE_CHECKING:
     from exofric.reproduction import CaseResult, CompareResult, ControlSetup
@@ -47,6 +46,7 @@ PLOT = _opt(None, "Write a PNG plot of the response(s) to this path.")
 
 
 def _plant_from_file(path: str) -> dict[str, Any]:
+    from exofric.errors import InputError
     from exofric.io import read_toml
 
     p = Path(path)
@@ -68,6 +68,7 @@ def _plant_from_file(path: str) -> dict[str, Any]:
 def _structure_map(structure: str, gamma: float) -> Any:
     from exofric import paper
     from exofric.control import CubicFrictionMap, CurveFrictionMap
+    from exofric.errors import InputError
     from exofric.friction import CubicFit
     from exofric.io import read_squeeze_curve
 
@@ -100,7 +101,7 @@ def _setup(target: float, structure: str, gamma: float | None, plant: str | None
            antiwindup: str, dt: float | None, duration: float, band_pct: float) -> ControlSetup:
     from exofric import paper
     from exofric.control import PlantParams
-    from exofric.errors import check_range
+    from exofric.errors import InputError, check_range
     from exofric.reproduction import ControlSetup
 
     params = _plant_from_file(plant) if plant else {}
@@ -163,6 +164,8 @@ def register(app: typer.Typer) -> None:
         band: float = BAND, plot: str | None = PLOT, as_json: bool = JSON_OPTION,
     ) -> None:
         """Simulate one friction step (default: PID without the model, 54.40 N, test 5)."""
+        from exofric.errors import InputError
+
         if ctx.invoked_subcommand is not None:
             given = [p for p in ctx.params
                      if getattr(ctx.get_parameter_source(p), "name", "") == "COMMANDLINE"]

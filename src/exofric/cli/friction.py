@@ -9,13 +9,14 @@ TOMLs.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
 import typer
 
 from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats, save_figure
-from exofric.errors import InputError
+
+if TYPE_CHECKING:
+    import numpy as np
 
 __all__ = ["register"]
 
@@ -38,6 +39,8 @@ def _friction_data(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
 
 def _two(name: str, text: str) -> tuple[float, float]:
+    from exofric.errors import InputError
+
     v = parse_floats(name, text)
     if len(v) != 2:
         raise InputError(f"{name} must be two numbers 'low,high', got {len(v)}")
@@ -45,6 +48,8 @@ def _two(name: str, text: str) -> tuple[float, float]:
 
 
 def _choice(name: str, value: str, allowed: tuple[str, ...]) -> str:
+    from exofric.errors import InputError
+
     if value not in allowed:
         raise InputError(f"{name} must be one of {', '.join(allowed)}, got {value!r}")
     return value
@@ -65,6 +70,8 @@ def _register_fit(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Fit the equivalent coefficient gamma (Eq 7) to friction data. MPa, N."""
+        import numpy as np
+
         from exofric.friction import fit_gamma
 
         _choice("--model", model, ("proportional", "affine"))
@@ -102,6 +109,9 @@ def _register_fit(app: typer.Typer) -> None:
 
 
 def _measured_map(path: str, names: list[str]) -> dict[str, Any]:
+    import numpy as np
+
+    from exofric.errors import InputError
     from exofric.friction import MeasuredCurve
 
     pf, ff, tests, _ = _friction_data(path)
@@ -142,6 +152,7 @@ def _register_predict(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Predict friction F = gamma N(P) for other structures via the FE (Sec. 4). MPa, N."""
+        from exofric.errors import InputError
         from exofric.friction import FrictionModel, paper_structures, predict, structures_from_dict
         from exofric.geometry import BASE
         from exofric.io import read_toml
@@ -210,6 +221,7 @@ def _register_invert(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Pressure (MPa) that gives a target friction (N): inverse of Eq 9 (Sec. 5)."""
+        from exofric.errors import InputError
         from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction
 
         if (cubic is None) == (squeeze is None):
@@ -271,6 +283,7 @@ def _register_rig(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Virtual friction rig: SYNTHETIC friction data F = gamma_true N(P) + errors. MPa, N."""
+        from exofric.errors import InputError
         from exofric.friction import RigConfig, simulate_rig
         from exofric.io import write_text
 

@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import typer
 
 from exofric import defaults
 from exofric.cli._common import JSON_OPTION, console, emit, parse_floats, write_outputs
-from exofric.material import MooneyRivlin
+
+if TYPE_CHECKING:
+    from exofric.material import MooneyRivlin
 
 
 def material_from_options(
@@ -20,6 +23,7 @@ def material_from_options(
 ) -> MooneyRivlin:
     """MooneyRivlin from --shore, with --c10/--c01/--d overriding the derived constants."""
     from exofric.errors import InputError
+    from exofric.material import MooneyRivlin
 
     if shore is None and None in (c10, c01, d):
         raise InputError("give --shore, or all of --c10, --c01 and --d")

@@ -23,18 +23,38 @@ Examples
 True
 """
 
-from exofric.control._identify import IdentifiedPlant, fopdt_response, identify_step
-from exofric.control._metrics import StepMetrics, itae, step_metrics
-from exofric.control._pid import AntiWindup, Controller, ModelFeedforward, PIDGains
-from exofric.control._plant import (
-    CubicFrictionMap,
-    CurveFrictionMap,
-    PlantParams,
-    PressurePlant,
-    local_slope,
-)
-from exofric.control._simulate import SimulationResult, setpoint_profile, simulate
-from exofric.control._tuning import CONTROLLERS, TuningResult, itae_gains, rule_gains
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.control._identify import IdentifiedPlant, fopdt_response, identify_step
+    from exofric.control._metrics import StepMetrics, itae, step_metrics
+    from exofric.control._pid import AntiWindup, Controller, ModelFeedforward, PIDGains
+    from exofric.control._plant import (
+        CubicFrictionMap,
+        CurveFrictionMap,
+        PlantParams,
+        PressurePlant,
+        local_slope,
+    )
+    from exofric.control._simulate import SimulationResult, setpoint_profile, simulate
+    from exofric.control._tuning import CONTROLLERS, TuningResult, itae_gains, rule_gains
+
+# Lazy facade (PEP 562): importing one name does not load the whole stage; each name is loaded
+# from its module on first use (exofric/__init__.py does the same one level up).
+_MODULES: dict[str, tuple[str, ...]] = {
+    "_identify": ("IdentifiedPlant", "fopdt_response", "identify_step"),
+    "_metrics": ("StepMetrics", "itae", "step_metrics"),
+    "_pid": ("AntiWindup", "Controller", "ModelFeedforward", "PIDGains"),
+    "_plant": (
+        "CubicFrictionMap", "CurveFrictionMap", "PlantParams", "PressurePlant", "local_slope",
+    ),
+    "_simulate": ("SimulationResult", "setpoint_profile", "simulate"),
+    "_tuning": ("CONTROLLERS", "TuningResult", "itae_gains", "rule_gains"),
+}
+_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "AntiWindup", "Controller", "CONTROLLERS", "CubicFrictionMap", "CurveFrictionMap",
@@ -43,3 +63,17 @@ __all__ = [
     "setpoint_profile", "simulate", "SimulationResult", "step_metrics", "StepMetrics",
     "TuningResult",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name of :mod:`exofric.control` from its module on first use."""
+    mod = _HOME.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -434,6 +434,11 @@ _TALLIES: ContextVar[tuple[_Tally, ...]] = ContextVar("exofric_solver_tallies", 
 class StatsCollector:
     """Handle of :func:`collect_stats`; :attr:`stats` reads the counts so far.
 
+    Parameters
+    ----------
+    tally : _Tally
+        The counters that :func:`solve_path` adds to while the ``with`` block runs.
+
     Examples
     --------
     >>> with collect_stats() as c:

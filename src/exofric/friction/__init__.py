@@ -28,24 +28,47 @@ Examples
 0.293
 """
 
-from exofric.friction._curve import SqueezeCurve
-from exofric.friction._fit import GammaFit, fit_gamma, match_squeeze, relative_errors
-from exofric.friction._inverse import CurveInverse
-from exofric.friction._model import CubicFit, FrictionModel, pressure_for_friction
-from exofric.friction._predict import (
-    ApplicabilityWarning,
-    Deviation,
-    MeasuredCurve,
-    Prediction,
-    PredictionSet,
-    deviation,
-    paper_structures,
-    predict,
-    structures_from_dict,
-)
-from exofric.friction._rig import RigConfig, RigRun, simulate_rig
-from exofric.friction._stats import AnovaResult, anova_vs_base, one_way_anova
-from exofric.friction._torque import TorqueCheck, torque
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.friction._curve import SqueezeCurve
+    from exofric.friction._fit import GammaFit, fit_gamma, match_squeeze, relative_errors
+    from exofric.friction._inverse import CurveInverse
+    from exofric.friction._model import CubicFit, FrictionModel, pressure_for_friction
+    from exofric.friction._predict import (
+        ApplicabilityWarning,
+        Deviation,
+        MeasuredCurve,
+        Prediction,
+        PredictionSet,
+        deviation,
+        paper_structures,
+        predict,
+        structures_from_dict,
+    )
+    from exofric.friction._rig import RigConfig, RigRun, simulate_rig
+    from exofric.friction._stats import AnovaResult, anova_vs_base, one_way_anova
+    from exofric.friction._torque import TorqueCheck, torque
+
+# Lazy facade (PEP 562): importing one name does not load the whole stage; each name is loaded
+# from its module on first use (exofric/__init__.py does the same one level up).
+_MODULES: dict[str, tuple[str, ...]] = {
+    "_curve": ("SqueezeCurve",),
+    "_fit": ("GammaFit", "fit_gamma", "match_squeeze", "relative_errors"),
+    "_inverse": ("CurveInverse",),
+    "_model": ("CubicFit", "FrictionModel", "pressure_for_friction"),
+    "_predict": (
+        "ApplicabilityWarning", "Deviation", "MeasuredCurve", "Prediction", "PredictionSet",
+        "deviation", "paper_structures", "predict", "structures_from_dict",
+    ),
+    "_rig": ("RigConfig", "RigRun", "simulate_rig"),
+    "_stats": ("AnovaResult", "anova_vs_base", "one_way_anova"),
+    "_torque": ("TorqueCheck", "torque"),
+}
+_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "anova_vs_base", "AnovaResult", "ApplicabilityWarning", "CubicFit", "CurveInverse",
@@ -54,3 +77,17 @@ __all__ = [
     "pressure_for_friction", "relative_errors", "RigConfig", "RigRun", "simulate_rig",
     "SqueezeCurve", "structures_from_dict", "torque", "TorqueCheck",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name of :mod:`exofric.friction` from its module on first use."""
+    mod = _HOME.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

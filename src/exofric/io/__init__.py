@@ -24,27 +24,63 @@ Examples
 ['pressure_mpa', 'outer_diameter_mm']
 """
 
-from exofric.io._files import (
-    UNIT_SUFFIXES,
-    atomic_path,
-    jsonable,
-    read_json,
-    read_table,
-    read_toml,
-    write_json,
-    write_text,
-)
-from exofric.io._rig import (
-    read_friction_table,
-    read_inflation_table,
-    read_squeeze_curve,
-    read_step_response,
-)
-from exofric.io._store import ParquetStore
-from exofric.io._vtu import QUAD9_TO_VTK, write_vtu
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.io._files import (
+        UNIT_SUFFIXES,
+        atomic_path,
+        jsonable,
+        read_json,
+        read_table,
+        read_toml,
+        write_json,
+        write_text,
+    )
+    from exofric.io._rig import (
+        read_friction_table,
+        read_inflation_table,
+        read_squeeze_curve,
+        read_step_response,
+    )
+    from exofric.io._store import ParquetStore
+    from exofric.io._vtu import QUAD9_TO_VTK, write_vtu
+
+# Lazy facade (PEP 562): ``jsonable`` or ``read_toml`` does not load the rig, Parquet and VTU
+# modules; each name is loaded from its module on first use (exofric/__init__.py does the same one
+# level up).
+_MODULES: dict[str, tuple[str, ...]] = {
+    "_files": (
+        "UNIT_SUFFIXES", "atomic_path", "jsonable", "read_json", "read_table", "read_toml",
+        "write_json", "write_text",
+    ),
+    "_rig": (
+        "read_friction_table", "read_inflation_table", "read_squeeze_curve", "read_step_response",
+    ),
+    "_store": ("ParquetStore",),
+    "_vtu": ("QUAD9_TO_VTK", "write_vtu"),
+}
+_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "atomic_path", "jsonable", "ParquetStore", "QUAD9_TO_VTK", "read_friction_table",
     "read_inflation_table", "read_json", "read_squeeze_curve", "read_step_response",
     "read_table", "read_toml", "UNIT_SUFFIXES", "write_json", "write_text", "write_vtu",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name of :mod:`exofric.io` from its module on first use."""
+    mod = _HOME.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

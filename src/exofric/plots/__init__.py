@@ -29,20 +29,46 @@ Examples
 3
 """
 
-from exofric.plots._calibrate import plot_calibration, plot_table1
-from exofric.plots._common import save
-from exofric.plots._control import plot_control_cases, plot_simulation
-from exofric.plots._design import map_axes, plot_design_map
-from exofric.plots._fe import (
-    draw_section,
-    plot_inflation,
-    plot_inflation_curve,
-    plot_squeeze,
-    plot_squeeze_curves,
-    plot_squeeze_force,
-    section_polygons,
-)
-from exofric.plots._friction import plot_cubic_fit, plot_gamma_fit, plot_predictions, plot_torque
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.plots._calibrate import plot_calibration, plot_table1
+    from exofric.plots._common import save
+    from exofric.plots._control import plot_control_cases, plot_simulation
+    from exofric.plots._design import map_axes, plot_design_map
+    from exofric.plots._fe import (
+        draw_section,
+        plot_inflation,
+        plot_inflation_curve,
+        plot_squeeze,
+        plot_squeeze_curves,
+        plot_squeeze_force,
+        section_polygons,
+    )
+    from exofric.plots._friction import (
+        plot_cubic_fit,
+        plot_gamma_fit,
+        plot_predictions,
+        plot_torque,
+    )
+
+# Lazy facade (PEP 562): ``save`` or one figure does not load every plotting module; each name is
+# loaded from its module on first use (exofric/__init__.py does the same one level up).
+_MODULES: dict[str, tuple[str, ...]] = {
+    "_calibrate": ("plot_calibration", "plot_table1"),
+    "_common": ("save",),
+    "_control": ("plot_control_cases", "plot_simulation"),
+    "_design": ("map_axes", "plot_design_map"),
+    "_fe": (
+        "draw_section", "plot_inflation", "plot_inflation_curve", "plot_squeeze",
+        "plot_squeeze_curves", "plot_squeeze_force", "section_polygons",
+    ),
+    "_friction": ("plot_cubic_fit", "plot_gamma_fit", "plot_predictions", "plot_torque"),
+}
+_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "draw_section", "map_axes", "plot_calibration", "plot_control_cases", "plot_cubic_fit",
@@ -50,3 +76,17 @@ __all__ = [
     "plot_predictions", "plot_simulation", "plot_squeeze", "plot_squeeze_curves",
     "plot_squeeze_force", "plot_table1", "plot_torque", "save", "section_polygons",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name of :mod:`exofric.plots` from its module on first use."""
+    mod = _HOME.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

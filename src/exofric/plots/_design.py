@@ -10,11 +10,11 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-import pandas as pd
-
 from exofric.plots._common import new_axes
 
 if TYPE_CHECKING:
+    import pandas as pd
+
     from exofric.design import DesignSearch
 
 __all__ = ["plot_design_map", "map_axes"]
@@ -42,6 +42,7 @@ def map_axes(table: pd.DataFrame) -> tuple[str, str]:
 
     Examples
     --------
+    >>> import pandas as pd
     >>> t = pd.DataFrame({"tube_od_mm": [8.3, 8.3], "wire_mm": [1.6, 1.6],
     ...                   "hole_mm": [10.0, 11.0], "tube_id_mm": [4.97, 4.97],
     ...                   "shore": [62.5, 55.0], "length_mm": [116.0, 116.0]})
@@ -89,6 +90,8 @@ def plot_design_map(
     >>> save(plot_design_map(s), tmp_dir / "design-map.png").name
     'design-map.png'
     """
+    import pandas as pd  # lazy: importing exofric.plots must not load pandas
+
     ax, created = new_axes(ax, (6.4, 5.2))
     fig = ax.figure
     if created:

@@ -14,18 +14,51 @@ Examples
 '268.55'
 """
 
-from exofric.report._build import (
-    FigureFile,
-    ReportFiles,
-    find_notes_dir,
-    make_figures,
-    read_notes,
-    write_report,
-)
-from exofric.report._html import render_html
-from exofric.report._style import REPORT_CSS, fmt
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.report._build import (
+        FigureFile,
+        ReportFiles,
+        find_notes_dir,
+        make_figures,
+        read_notes,
+        write_report,
+    )
+    from exofric.report._html import render_html
+    from exofric.report._style import REPORT_CSS, fmt
+
+# Lazy facade (PEP 562): ``fmt`` and the HTML helpers do not load the figures and the pipeline;
+# each name is loaded from its module on first use (exofric/__init__.py does the same one level
+# up).
+_MODULES: dict[str, tuple[str, ...]] = {
+    "_build": (
+        "FigureFile", "ReportFiles", "find_notes_dir", "make_figures", "read_notes",
+        "write_report",
+    ),
+    "_html": ("render_html",),
+    "_style": ("REPORT_CSS", "fmt"),
+}
+_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "FigureFile", "find_notes_dir", "fmt", "make_figures", "read_notes", "render_html",
     "REPORT_CSS", "ReportFiles", "write_report",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name of :mod:`exofric.report` from its module on first use."""
+    mod = _HOME.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

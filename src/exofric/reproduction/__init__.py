@@ -24,46 +24,71 @@ Examples
 0.0
 """
 
-from exofric.reproduction._compare import Comparison, paper_checks, printed_decimals
-from exofric.reproduction._control import ControlStage, CubicStage, stage_control, stage_cubic
-from exofric.reproduction._fig12 import (
-    PAPER_SETTLING_S,
-    CaseResult,
-    CompareResult,
-    ControlSetup,
-    FrictionMapLike,
-    compare,
-    run_case,
-)
-from exofric.reproduction._pipeline import (
-    FAST_INFLATION_MESH,
-    FAST_SQUEEZE_MESH,
-    STAGES,
-    ReproduceConfig,
-    ReproduceResult,
-    StageTime,
-    reproduce,
-    software_versions,
-)
-from exofric.reproduction._predict import (
-    PredictionStage,
-    TorqueStage,
-    stage_prediction,
-    stage_torque,
-)
-from exofric.reproduction._squeeze import (
-    ID_STEP_MM,
-    GammaStage,
-    SqueezeStage,
-    stage_gamma,
-    stage_squeeze,
-)
-from exofric.reproduction._stages import (
-    CalibrationStage,
-    Table2Stage,
-    stage_calibration,
-    stage_table2,
-)
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.reproduction._compare import Comparison, paper_checks, printed_decimals
+    from exofric.reproduction._control import ControlStage, CubicStage, stage_control, stage_cubic
+    from exofric.reproduction._fig12 import (
+        PAPER_SETTLING_S,
+        CaseResult,
+        CompareResult,
+        ControlSetup,
+        FrictionMapLike,
+        compare,
+        run_case,
+    )
+    from exofric.reproduction._pipeline import (
+        FAST_INFLATION_MESH,
+        FAST_SQUEEZE_MESH,
+        STAGES,
+        ReproduceConfig,
+        ReproduceResult,
+        StageTime,
+        reproduce,
+        software_versions,
+    )
+    from exofric.reproduction._predict import (
+        PredictionStage,
+        TorqueStage,
+        stage_prediction,
+        stage_torque,
+    )
+    from exofric.reproduction._squeeze import (
+        ID_STEP_MM,
+        GammaStage,
+        SqueezeStage,
+        stage_gamma,
+        stage_squeeze,
+    )
+    from exofric.reproduction._stages import (
+        CalibrationStage,
+        Table2Stage,
+        stage_calibration,
+        stage_table2,
+    )
+
+# Lazy facade (PEP 562): importing one name does not load every stage of the pipeline; each name
+# is loaded from its module on first use (exofric/__init__.py does the same one level up).
+_MODULES: dict[str, tuple[str, ...]] = {
+    "_compare": ("Comparison", "paper_checks", "printed_decimals"),
+    "_control": ("ControlStage", "CubicStage", "stage_control", "stage_cubic"),
+    "_fig12": (
+        "PAPER_SETTLING_S", "CaseResult", "CompareResult", "ControlSetup", "FrictionMapLike",
+        "compare", "run_case",
+    ),
+    "_pipeline": (
+        "FAST_INFLATION_MESH", "FAST_SQUEEZE_MESH", "STAGES", "ReproduceConfig", "ReproduceResult",
+        "StageTime", "reproduce", "software_versions",
+    ),
+    "_predict": ("PredictionStage", "TorqueStage", "stage_prediction", "stage_torque"),
+    "_squeeze": ("ID_STEP_MM", "GammaStage", "SqueezeStage", "stage_gamma", "stage_squeeze"),
+    "_stages": ("CalibrationStage", "Table2Stage", "stage_calibration", "stage_table2"),
+}
+_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "CalibrationStage", "CaseResult", "compare", "CompareResult", "Comparison", "ControlSetup",
@@ -74,3 +99,17 @@ __all__ = [
     "stage_gamma", "stage_prediction", "stage_squeeze", "stage_table2", "stage_torque", "STAGES",
     "StageTime", "Table2Stage", "TorqueStage",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name of :mod:`exofric.reproduction` from its module on first use."""
+    mod = _HOME.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -18,16 +18,36 @@ Examples
 8.75
 """
 
-from exofric.simulate._analytic import (
-    InflationCurve,
-    compressible_inflation,
-    incompressible_inflation,
-    incompressible_limit_pressure,
-    incompressible_pressure,
-)
-from exofric.simulate._inflate import InflationResult, inflate
-from exofric.simulate._squeeze import SqueezeResult, squeeze
-from exofric.simulate._stretch import StretchWarning, check_stretch
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.simulate._analytic import (
+        InflationCurve,
+        compressible_inflation,
+        incompressible_inflation,
+        incompressible_limit_pressure,
+        incompressible_pressure,
+    )
+    from exofric.simulate._inflate import InflationResult, inflate
+    from exofric.simulate._squeeze import SqueezeResult, squeeze
+    from exofric.simulate._stretch import StretchWarning, check_stretch
+
+# Lazy facade (PEP 562): ``squeeze`` does not load the inflation and its closed-form references;
+# each name is loaded from its module on first use (exofric/__init__.py does the same one level
+# up).
+_MODULES: dict[str, tuple[str, ...]] = {
+    "_analytic": (
+        "InflationCurve", "compressible_inflation", "incompressible_inflation",
+        "incompressible_limit_pressure", "incompressible_pressure",
+    ),
+    "_inflate": ("InflationResult", "inflate"),
+    "_squeeze": ("SqueezeResult", "squeeze"),
+    "_stretch": ("StretchWarning", "check_stretch"),
+}
+_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "InflationCurve",
@@ -42,3 +62,17 @@ __all__ = [
     "inflate",
     "squeeze",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name of :mod:`exofric.simulate` from its module on first use."""
+    mod = _HOME.get(name)
+    if mod is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

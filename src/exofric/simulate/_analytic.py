@@ -27,8 +27,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_bvp
-from scipy.optimize import brentq
 
 from exofric.errors import ConvergenceError, InputError, check_positive, check_pressures
 from exofric.material import MooneyRivlin
@@ -174,6 +172,8 @@ def incompressible_inflation(
             f"pressure {p.max():g} MPa is at or above the tube's limit pressure {plim:.4g} MPa "
             "(mu ln(B/A)): no free-inflation equilibrium exists"
         )
+    from scipy.optimize import brentq  # lazy: scipy.optimize only when a reference is computed
+
     a = np.empty_like(p)
     for i, pi in enumerate(p):
         if pi == 0.0:
@@ -252,6 +252,8 @@ def compressible_inflation(
     >>> round(float(c.outer_diameter_mm[0]), 3)
     9.584
     """
+    from scipy.integrate import solve_bvp  # lazy: scipy.integrate only when this runs
+
     A, B = _radii(tube_od_mm, tube_id_mm)
     p_req = check_pressures("pressures_mpa", pressures_mpa)
 
