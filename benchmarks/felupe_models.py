@@ -30,6 +30,9 @@ array([0.413, 2.073])
 
 from __future__ import annotations
 
+import argparse
+import json
+import sys
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -46,11 +49,13 @@ __all__ = [
     "SqueezeSetup",
     "WEIGHTLESS_DENSITY",
     "felupe_inflate",
+    "felupe_inflate_tube",
     "felupe_squeeze",
     "felupe_squeeze_model",
     "mooney_rivlin_iso_stress",
     "mooney_rivlin_umat",
     "polar_quad9",
+    "main",
 ]
 
 #: exofric's quad9 local order (a = 3 j + i, tensor order) -> FElupe/VTK quad9 order
@@ -633,3 +638,91 @@ def felupe_squeeze(
     array([2.07...])
     """
     return felupe_squeeze_model(pressures_mpa, setup).squeeze_force_n_per_mm
+
+
+# ------------------------------------------------------------ standalone (whole process)
+def felupe_inflate_tube(
+    tube_od_mm: float,
+    tube_id_mm: float,
+    material: Any,
+    pressures_mpa: np.ndarray | list[float],
+    *,
+    n_radial: int = 2,
+    n_circ: int = 6,
+) -> FelupeInflation:
+    """Free inflation of a quarter tube on FElupe's own polar quad9 mesh (no exofric).
+
+    Parameters
+    ----------
+    tube_od_mm, tube_id_mm : float
+        Undeformed diameters (mm).
+    material : object with ``c10, c01, d`` or (c10, c01, d)
+        Mooney-Rivlin constants (MPa, MPa, 1/MPa).
+    pressures_mpa : array-like
+        Increasing pressures (MPa); each is one load increment.
+    n_radial, n_circ : int
+        Uniform elements through the wall and over the quarter (0..90 deg).
+
+    Returns
+    -------
+    FelupeInflation
+
+    Examples
+    --------
+    >>> r = felupe_inflate_tube(8.3, 4.97, (0.635, 0.0318, 0.006), [0.1])  # doctest: +SKIP
+    """
+    nodes, cells, grid = polar_quad9(0.5 * tube_id_mm, 0.5 * tube_od_mm, n_radial, n_circ,
+                                     0.0, 0.5 * np.pi)
+    nodes[grid[:, 0], 1] = 0.0  # exactly on the symmetry planes
+    nodes[grid[:, -1], 0] = 0.0
+    return felupe_inflate(nodes, cells, material, pressures_mpa, element_order="vtk")
+
+
+def main(argv: list[str] | None = None) -> dict[str, Any]:
+    """Standalone FElupe run for whole-process timing; prints one JSON object.
+
+    ``python benchmarks/felupe_models.py squeeze|inflate --c10 .. --c01 .. --d ..
+    --pressures 0.05,0.1 [--n-radial ..] [--n-circ ..] [--grading ..]`` (mm, MPa). The
+    squeeze is weightless (:data:`WEIGHTLESS_DENSITY`); ``--hole/--tube-od/--tube-id/--wire``
+    default to the base group.
+
+    Examples
+    --------
+    >>> main(["inflate", "--pressures", "0.1", "--c10", "0.6", "--c01", "0.03",
+    ...       "--d", "0.006"])  # doctest: +SKIP
+    """
+    ap = argparse.ArgumentParser(description="Standalone FElupe squeeze / free inflation.")
+    ap.add_argument("problem", choices=("squeeze", "inflate"))
+    ap.add_argument("--c10", type=float, required=True)
+    ap.add_argument("--c01", type=float, required=True)
+    ap.add_argument("--d", type=float, required=True)
+    ap.add_argument("--pressures", required=True, help="comma-separated, MPa")
+    ap.add_argument("--hole", type=float, default=10.0)
+    ap.add_argument("--tube-od", type=float, default=8.3)
+    ap.add_argument("--tube-id", type=float, default=4.97)
+    ap.add_argument("--wire", type=float, default=1.6)
+    ap.add_argument("--n-radial", type=int, default=None)
+    ap.add_argument("--n-circ", type=int, default=None)
+    ap.add_argument("--grading", type=float, default=10.0)
+    ap.add_argument("--penalty", type=float, default=1e4)
+    args = ap.parse_args(argv)
+    p = [float(v) for v in args.pressures.split(",")]
+    mat = (args.c10, args.c01, args.d)
+    if args.problem == "inflate":
+        r = felupe_inflate_tube(args.tube_od, args.tube_id, mat, p,
+                                n_radial=args.n_radial or 2, n_circ=args.n_circ or 6)
+        out: dict[str, Any] = {"problem": "inflate", **r.to_dict()}
+    else:
+        setup = SqueezeSetup(hole_mm=args.hole, tube_od_mm=args.tube_od,
+                             tube_id_mm=args.tube_id, wire_mm=args.wire, c10=args.c10,
+                             c01=args.c01, d=args.d, density_t_per_mm3=WEIGHTLESS_DENSITY,
+                             n_radial=args.n_radial or 4, n_circ=args.n_circ or 40,
+                             grading=args.grading, penalty=args.penalty)
+        out = {"problem": "squeeze", **felupe_squeeze_model(p, setup).to_dict()}
+    json.dump(out, sys.stdout)
+    sys.stdout.write("\n")
+    return out
+
+
+if __name__ == "__main__":
+    main()

@@ -29,6 +29,7 @@ def _load(path: Path) -> Any:
     spec = importlib.util.spec_from_file_location(path.stem, path)
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
+    sys.modules[path.stem] = module  # registered first, as an import would (dataclasses need it)
     spec.loader.exec_module(module)
     return module
 
