@@ -1,4 +1,4 @@
-"""Sweeps on a LocalCluster vs a plain loop, streaming, resume after deletion or a kill, failures.
+"""Sweeps on local workers vs a plain loop, streaming, resume after deletion or a kill, failures.
 
 Small meshes (1 x 12 quad9, 150 dofs) and three pressures keep each solve ~0.3-0.5 s.
 """
@@ -66,15 +66,15 @@ def spec() -> SweepSpec:
 
 @pytest.fixture(scope="module")
 def cluster_run(spec, tmp_path_factory):
-    """The 12-design sweep on a LocalCluster with 2 worker processes."""
+    """The 12-design sweep on 2 local worker processes (``workers=2``)."""
     out = tmp_path_factory.mktemp("cluster") / "out"
     return run_sweep(spec, out, workers=2)
 
 
-def test_local_cluster_matches_plain_serial_loop(spec, cluster_run):
+def test_local_workers_match_plain_serial_loop(spec, cluster_run):
     s = cluster_run.summary
     assert (s.designs, s.computed, s.cached, s.skipped, s.failed) == (12, 8, 0, 4, 0)
-    assert s.workers == 2 and "LocalCluster(2" in s.scheduler
+    assert s.workers == 2 and s.execution == "processes" and "processes(2" in s.scheduler
     f = cluster_run.frame
     ok = f[f["status"] == "ok"]
     assert len(ok) == 8 * len(P) and len(f) == 8 * len(P) + 4

@@ -151,15 +151,16 @@ BLAS_THREADS: Final = 1
 SWEEP_DESIGN_COST: Final[MappingProxyType[str, float]] = MappingProxyType(
     {"s_per_design": 0.02, "s_per_dof_step": 1.3e-5})
 
-#: Start-up of k local worker processes until all run (s) = ``fixed + per_worker x k``, by
-#: start method. fork (Linux): 0.02-0.05 s for 2 (the workers inherit this process' imports);
-#: spawn/forkserver: 0.55-0.65 s (each worker imports NumPy, SciPy and exofric). For
-#: comparison a Dask LocalCluster takes 0.65 s to start and 0.2 s to close.
+#: Start-up of k local worker processes until all solve (s) = ``fixed + per_worker x k``, by
+#: start method. fork (Linux): 0.01-0.03 s for 2 (the workers inherit this process' imports);
+#: forkserver / spawn: +0.7 / +1.0 s over fork for 2 workers solving 2 small designs (each
+#: worker imports NumPy, SciPy, pandas and exofric). For comparison a Dask LocalCluster took
+#: 0.65-0.75 s to start and 0.2-0.3 s to close.
 SWEEP_POOL_START_S: Final[MappingProxyType[str, MappingProxyType[str, float]]] = \
     MappingProxyType({
         "fork": MappingProxyType({"fixed": 0.02, "per_worker": 0.01}),
-        "forkserver": MappingProxyType({"fixed": 0.6, "per_worker": 0.05}),
-        "spawn": MappingProxyType({"fixed": 0.6, "per_worker": 0.05}),
+        "forkserver": MappingProxyType({"fixed": 0.7, "per_worker": 0.05}),
+        "spawn": MappingProxyType({"fixed": 1.0, "per_worker": 0.05}),
     })
 
 #: Cost of handing one design to a worker and getting its result back (s): local processes

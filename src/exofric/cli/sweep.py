@@ -1,4 +1,9 @@
-"""``exofric sweep`` (design-space sweeps on Dask) and ``exofric design`` (target torque search)."""
+"""``exofric sweep`` (design-space sweeps: serial, worker processes or Dask) and ``exofric design``
+(target torque search).
+
+Only typer and the CLI helpers are imported at start-up: exofric.design (pandas, pyarrow),
+Dask and rich's progress bar are imported inside the commands, so ``--help`` stays light.
+"""
 
 from __future__ import annotations
 
@@ -11,10 +16,14 @@ import typer
 
 from exofric.cli._common import JSON_OPTION, console, emit, kv_table, save_figure
 
-WORKERS = typer.Option(None, "--workers", help="LocalCluster worker processes (default: CPUs).")
+WORKERS = typer.Option(None, "--workers",
+                       help="Local worker processes (default: chosen by the work size).")
 SCHEDULER = typer.Option(None, "--scheduler",
                          help="Address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786.")
-SERIAL = typer.Option(False, "--serial", help="Plain in-process loop, no Dask.")
+SERIAL = typer.Option(False, "--serial", help="Plain in-process loop, no worker processes.")
+EXECUTOR = typer.Option("auto", "--executor",
+                        help="auto (serial or worker processes, by the predicted times), "
+                        "serial, processes (one per CPU) or dask (a LocalCluster).")
 TIMEOUT = typer.Option(60.0, "--timeout",
                        help="Seconds to wait for --scheduler and its first worker.")
 RETRY = typer.Option(False, "--retry-failed", help="Solve designs recorded as failed again.")
@@ -22,7 +31,8 @@ RETRY = typer.Option(False, "--retry-failed", help="Solve designs recorded as fa
 
 @contextlib.contextmanager
 def _progress(quiet: bool) -> Iterator[Callable[[int, int, str], None] | None]:
-    """A rich progress bar on stderr (None when ``quiet``)."""
+    """A rich progress bar on stderr (None when ``quiet``), started at its first update: the
+    sweep starts its worker processes before that, while this process runs no other thread."""
     if quiet:
         yield None
         return
@@ -36,20 +46,32 @@ def _progress(quiet: bool) -> Iterator[Callable[[int, int, str], None] | None]:
         TimeRemainingColumn,
     )
 
-    with Progress(TextColumn("[bold]solving designs"), BarColumn(), MofNCompleteColumn(),
-                  TimeElapsedColumn(), TimeRemainingColumn(), TextColumn("{task.description}"),
-                  console=Console(stderr=True), transient=False) as bar:
-        task = bar.add_task("", total=None)
+    bar = Progress(TextColumn("[bold]solving designs"), BarColumn(), MofNCompleteColumn(),
+                   TimeElapsedColumn(), TimeRemainingColumn(), TextColumn("{task.description}"),
+                   console=Console(stderr=True), transient=False)
+    task = bar.add_task("", total=None)
 
-        def update(done: int, total: int, label: str) -> None:
-            bar.update(task, completed=done, total=total, description=label, visible=total > 0)
+    def update(done: int, total: int, label: str) -> None:
+        if not bar.live.is_started:
+            bar.start()
+        bar.update(task, completed=done, total=total, description=label, visible=total > 0)
 
+    try:
         yield update
+    finally:
+        if bar.live.is_started:
+            bar.stop()
 
 
 def _run(config: Path | None, out: Path | None, workers: int | None, scheduler: str | None,
-         serial: bool, retry: bool, quiet: bool, timeout: float) -> Any:
-    from exofric.design import load_sweep, parse_sweep, run_sweep
+         serial: bool, retry: bool, quiet: bool, timeout: float, executor: str = "auto") -> Any:
+    from exofric.design import EXECUTORS, load_sweep, parse_sweep, run_sweep
+    from exofric.errors import InputError
+
+    if executor not in EXECUTORS:
+        raise InputError(f"--executor must be one of {', '.join(EXECUTORS)}, got {executor!r}")
+    if workers is not None and workers < 1:
+        raise InputError(f"--workers must be >= 1, got {workers}")
 
     if config is None:
         from exofric.design import DEFAULT_SPACE
@@ -60,7 +82,8 @@ def _run(config: Path | None, out: Path | None, workers: int | None, scheduler: 
     out = out or Path(".exofric-sweeps") / spec.name
     with _progress(quiet) as progress:
         return run_sweep(spec, out, workers=workers, scheduler=scheduler, serial=serial,
-                         retry_failed=retry, progress=progress, timeout_s=timeout)
+                         executor=executor, retry_failed=retry, progress=progress,
+                         timeout_s=timeout)
 
 
 def register(app: typer.Typer) -> None:
@@ -73,16 +96,20 @@ def register(app: typer.Typer) -> None:
         workers: int = WORKERS,
         scheduler: str = SCHEDULER,
         serial: bool = SERIAL,
+        executor: str = EXECUTOR,
         retry_failed: bool = RETRY,
         timeout: float = TIMEOUT,
         as_json: bool = JSON_OPTION,
     ) -> None:
-        """Solve N(P) for every design of a sweep on Dask; rows go to Parquet (mm, MPa, N, Nm).
+        """Solve N(P) for every design of a sweep; rows go to Parquet (mm, MPa, N, Nm).
 
+        By default the designs are solved in this process or on local worker processes,
+        whichever is predicted faster for the work size (the output says which and why).
         Finished designs in OUT are reused (cache keyed by inputs + solver settings), so a
         killed sweep resumes where it stopped.
         """
-        run = _run(config, out, workers, scheduler, serial, retry_failed, as_json, timeout)
+        run = _run(config, out, workers, scheduler, serial, retry_failed, as_json, timeout,
+                   executor)
         d = run.to_dict()
 
         def render() -> None:
@@ -91,7 +118,8 @@ def register(app: typer.Typer) -> None:
                 ("designs", str(s.designs), ""), ("computed now", str(s.computed), ""),
                 ("cached", str(s.cached), ""), ("skipped (impossible)", str(s.skipped), ""),
                 ("failed", str(s.failed), ""), ("rows", str(d["rows"]), ""),
-                ("scheduler", s.scheduler, ""), ("wall time", f"{s.wall_time_s:.2f}", "s"),
+                ("execution", f"{s.execution}: {s.scheduler}", ""),
+                ("why", s.execution_reason, ""), ("wall time", f"{s.wall_time_s:.2f}", "s"),
                 ("dataset", s.out, "")]))
             for x in d["skipped_designs"]:
                 console.print(f"skipped {x['name']}: {x['reason']}")
@@ -125,6 +153,7 @@ def register(app: typer.Typer) -> None:
         workers: int = WORKERS,
         scheduler: str = SCHEDULER,
         serial: bool = SERIAL,
+        executor: str = EXECUTOR,
         timeout: float = TIMEOUT,
         as_json: bool = JSON_OPTION,
     ) -> None:
@@ -141,7 +170,7 @@ def register(app: typer.Typer) -> None:
             check_positive("--gamma", gamma)
         if objective not in ("pressure", "margin"):
             raise InputError(f"--objective must be 'pressure' or 'margin', got {objective!r}")
-        run = _run(config, out, workers, scheduler, serial, False, as_json, timeout)
+        run = _run(config, out, workers, scheduler, serial, False, as_json, timeout, executor)
         frame = run.frame
         search = search_designs(frame, target_torque, arm if arm is not None else
                                 float(frame["arm_radius_m"].iloc[0]), pmax, gamma=gamma,

@@ -2,8 +2,10 @@
 
 * :func:`parse_sweep` -> :class:`SweepSpec` (grids or families of :class:`Design`, the
   :class:`MaterialSpec` and :class:`SolverSpec`) from a TOML/dict spec.
-* :func:`run_sweep` -> :class:`SweepRun` -- every design's squeeze N(P) on a LocalCluster, any
-  Dask scheduler or serially, streamed to a resumable :class:`SweepStore` (Parquet).
+* :func:`run_sweep` -> :class:`SweepRun` -- every design's squeeze N(P) serially, on local
+  worker processes (:class:`SweepPool`) or on any Dask scheduler, streamed to a resumable
+  :class:`SweepStore` (Parquet); by default :func:`plan_execution` chooses serial or workers
+  from the work size (:func:`estimate_design_time_s`, then measured solve times).
 * :func:`search_designs` -> :class:`DesignSearch` -- torque at the maximum pressure, least
   pressure reaching the target, margins, the validated region.
 
@@ -17,6 +19,13 @@ Examples
 2
 """
 
+from exofric.design._execution import (
+    EXECUTORS,
+    ExecutionPlan,
+    SweepPool,
+    estimate_design_time_s,
+    plan_execution,
+)
 from exofric.design._runner import BLAS_ENV, SweepRun, SweepSummary, run_sweep, solve_design, sweep
 from exofric.design._search import (
     DEFAULT_SPACE,
@@ -37,7 +46,8 @@ from exofric.design._store import SCHEMA, STATUSES, SweepStore, load_sweep
 
 __all__ = [
     "BLAS_ENV", "DEFAULT_SPACE", "Design", "design_key", "design_metrics", "DesignSearch",
-    "load_sweep", "MaterialSpec", "OBJECTIVES", "parse_sweep", "run_sweep", "SCHEMA",
-    "search_designs", "solve_design", "SolverSpec", "STATUSES", "sweep", "SweepRun", "SweepSpec",
+    "estimate_design_time_s", "ExecutionPlan", "EXECUTORS", "load_sweep", "MaterialSpec",
+    "OBJECTIVES", "parse_sweep", "plan_execution", "run_sweep", "SCHEMA", "search_designs",
+    "solve_design", "SolverSpec", "STATUSES", "sweep", "SweepPool", "SweepRun", "SweepSpec",
     "SweepStore", "SweepSummary",
 ]

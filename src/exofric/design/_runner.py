@@ -1,4 +1,4 @@
-"""Design-space sweeps of the squeeze simulation on dask.distributed, cached and resumable.
+"""Design-space sweeps of the squeeze simulation, cached and resumable, serial or parallel.
 
 Units: mm, MPa, N, s; torque in Nm, arm radius in m.
 
@@ -6,11 +6,15 @@ Units: mm, MPa, N, s; torque in Nm, arm radius in m.
 :func:`exofric.simulate.squeeze` and streams one Parquet file per finished design into the
 output directory (:mod:`exofric.design`), so that
 
-* without ``scheduler`` it starts an embedded ``LocalCluster`` (worker processes, one thread
-  each, BLAS/OpenMP thread variables set to 1 so that workers do not oversubscribe cores);
-  with ``scheduler="tcp://host:8786"`` the same code runs on any Dask cluster (``dask
-  scheduler`` + ``dask worker``, dask-jobqueue on SLURM...); ``serial=True`` is a plain
-  in-process loop (no Dask);
+* by default (``executor="auto"``) it solves in this process or on local worker processes,
+  whichever :func:`~exofric.design.plan_execution` predicts to be faster for the work size
+  (designs x the estimated, then measured, cost of one; worker start-up and dispatch costs);
+  ``workers=k`` asks for k local worker processes, ``serial=True`` for a plain in-process
+  loop; the workers (:class:`~exofric.design.SweepPool`) stay up for the whole sweep, one
+  BLAS/OpenMP thread each;
+* with ``scheduler="tcp://host:8786"`` the same code runs on any Dask cluster (``dask
+  scheduler`` + ``dask worker``, dask-jobqueue on SLURM...); ``executor="dask"`` without a
+  scheduler starts an embedded ``LocalCluster``;
 * designs already in the directory (same cache key: inputs + solver settings) are not
   solved again: a killed sweep resumes losing nothing that had finished;
 * a design whose solve raises is recorded (status ``failed``, the error message) and the
@@ -19,18 +23,19 @@ output directory (:mod:`exofric.design`), so that
 Rows come back as a pandas DataFrame, one row per design and pressure; friction
 F = gamma N + F0 (N), torque T = F R (Nm) and the deviation from the base (%) are
 recomputed from the sweep's current gamma, F0, R and base, so changing those reuses the
-cache.
+cache. The summary says which execution mode was used and why.
 """
 
 from __future__ import annotations
 
 import contextlib
 import logging
+import multiprocessing
 import os
 import socket
 import time
 import uuid
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Generator, Mapping, Sequence
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
@@ -39,14 +44,22 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from exofric.design._execution import (
+    BLAS_ENV,
+    ExecutionPlan,
+    SweepPool,
+    available_cpus,
+    check_executor,
+    design_dofs,
+    estimate_design_time_s,
+    plan_execution,
+)
 from exofric.design._spec import Design, MaterialSpec, SolverSpec, SweepSpec, parse_sweep
 from exofric.design._store import SweepStore, load_sweep
 from exofric.errors import InputError
 
 __all__ = ["SweepSummary", "SweepRun", "run_sweep", "sweep", "solve_design", "BLAS_ENV"]
 
-#: Environment given to LocalCluster workers: one BLAS/OpenMP thread per worker process.
-BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 #: ``progress(done, total, label)`` is called once with done = 0, then after each design.
 ProgressFn = Callable[[int, int, str], None]
 SolveFn = Callable[..., Any]
@@ -77,11 +90,17 @@ class SweepSummary:
     wall_time_s : float
         Wall time of the call (s).
     scheduler : str
-        ``"serial"``, the LocalCluster description or the scheduler address.
+        Where the solves ran: ``"serial"``, the worker pool (``"processes(2 x 1 thread,
+        fork)"``), the LocalCluster description or the scheduler address.
     workers : int
-        Dask workers used (1 when serial, 0 when nothing was solved).
+        Worker processes used (1 when serial, 0 when nothing was solved).
     run_id : str
         Random id of this call, stored in its rows.
+    execution : str
+        Execution mode: ``"serial"``, ``"processes"``, ``"dask"`` or ``"none"`` (nothing to
+        solve).
+    execution_reason : str
+        Why: the option that asked for it, or the predicted times (s) that decided.
 
     Examples
     --------
@@ -100,13 +119,16 @@ class SweepSummary:
     scheduler: str
     workers: int
     run_id: str
+    execution: str = "serial"
+    execution_reason: str = ""
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (times in s)."""
         return {"designs": self.designs, "computed": self.computed, "cached": self.cached,
                 "skipped": self.skipped, "failed": self.failed, "out": self.out,
                 "wall_time_s": self.wall_time_s, "scheduler": self.scheduler,
-                "workers": self.workers, "run_id": self.run_id}
+                "workers": self.workers, "run_id": self.run_id, "execution": self.execution,
+                "execution_reason": self.execution_reason}
 
 
 @dataclass(frozen=True)
@@ -243,16 +265,31 @@ def solve_design(
     return out
 
 
+def _deviation(d: Design, spec: SweepSpec) -> tuple[float, bool]:
+    """Deviation from the base (%) and whether ``d`` is in the validated region."""
+    from exofric.friction import deviation
+
+    m = deviation(d.structure(), spec.base, spec.threshold_pct)
+    return m.deviation_pct, bool(m.in_validated_region and abs(d.shore - spec.base_shore) < 1e-9)
+
+
 def _rows(d: Design, status: str, res: Mapping[str, Any], run_id: str,
           spec: SweepSpec) -> pd.DataFrame:
-    """One design's dataset rows (see :data:`exofric.design.SCHEMA`), post-processed."""
+    """One design's dataset rows (see :data:`exofric.design.SCHEMA`), post-processed.
+
+    The derived columns are those :func:`postprocess` gives (``postprocess(rows, spec)``
+    returns the same rows), computed for this one design only: the cost does not grow with
+    the number of designs in the sweep.
+    """
     n = len(res["pressure_mpa"]) if status == "ok" else 1
-    nan = [np.nan] * n
 
     def col(k: str, default: Any = np.nan) -> list[Any]:
         v = res.get(k, default)
         return list(v) if isinstance(v, list) else [v] * n
 
+    force = np.asarray(col("squeeze_force_n"), dtype=float)
+    friction = spec.gamma * force + spec.f0_n if status == "ok" else np.full(n, np.nan)
+    dev, valid = (np.nan, False) if status == "skipped" else _deviation(d, spec)
     rows = {
         "key": [d.key] * n, "design_index": [d.index] * n, "name": [d.name] * n,
         "family": [d.family] * n, "status": [status] * n, "error": [res.get("error", "")] * n,
@@ -263,9 +300,11 @@ def _rows(d: Design, status: str, res: Mapping[str, Any], run_id: str,
         "c10_mpa": col("c10_mpa"), "c01_mpa": col("c01_mpa"), "d_per_mpa": col("d_per_mpa"),
         "pressure_mpa": col("pressure_mpa"), "squeeze_force_n": col("squeeze_force_n"),
         "squeeze_force_n_per_mm": col("squeeze_force_n_per_mm"),
-        "wall_force_n": col("wall_force_n"), "friction_n": nan, "torque_nm": nan,
-        "gamma": nan, "f0_n": nan, "arm_radius_m": nan, "deviation_pct": nan,
-        "in_validated_region": [False] * n,
+        "wall_force_n": col("wall_force_n"), "friction_n": friction,
+        "torque_nm": friction * spec.arm_radius_m,
+        "gamma": [spec.gamma] * n, "f0_n": [spec.f0_n] * n,
+        "arm_radius_m": [spec.arm_radius_m] * n, "deviation_pct": [float(dev)] * n,
+        "in_validated_region": [valid] * n,
         "contact_onset_pressure_mpa": col("contact_onset_pressure_mpa"),
         "max_penetration_mm": col("max_penetration_mm"), "max_stretch": col("max_stretch"),
         "newton_iterations": col("newton_iterations", 0), "dofs": col("dofs", 0),
@@ -273,7 +312,11 @@ def _rows(d: Design, status: str, res: Mapping[str, Any], run_id: str,
         "worker": col("worker", ""), "blas_threads": col("blas_threads", ""),
         "run_id": [run_id] * n, "finished_at": [datetime.now(UTC).isoformat()] * n,
     }
-    return postprocess(pd.DataFrame(rows), spec)
+    frame = pd.DataFrame(rows)
+    frame["design_index"] = frame["design_index"].astype("int64")
+    if not frame["pressure_mpa"].is_monotonic_increasing:  # the solver keeps the given order
+        frame = frame.sort_values("pressure_mpa", kind="stable").reset_index(drop=True)
+    return frame
 
 
 def postprocess(frame: pd.DataFrame, spec: SweepSpec) -> pd.DataFrame:
@@ -307,9 +350,14 @@ def postprocess(frame: pd.DataFrame, spec: SweepSpec) -> pd.DataFrame:
     return f.sort_values(["design_index", "pressure_mpa"], kind="stable").reset_index(drop=True)
 
 
+def _failed(design: Design, message: str) -> dict[str, Any]:
+    """The result of a design whose task could not run to the end (e.g. its worker died)."""
+    return {"status": "failed", "error": message}
+
+
 def _dask_results(todo: Sequence[Design], args: tuple[Any, ...], workers: int | None,
                   scheduler: str | None, timeout_s: float, info: dict[str, Any]
-                  ) -> Iterator[tuple[Design, dict[str, Any]]]:
+                  ) -> Generator[tuple[Design, dict[str, Any]], None, None]:
     """Submit ``todo`` to Dask and yield (design, result) as they finish."""
     from distributed import Client, LocalCluster, as_completed
 
@@ -323,7 +371,7 @@ def _dask_results(todo: Sequence[Design], args: tuple[Any, ...], workers: int | 
                                  f"workers ({type(exc).__name__}: {exc})") from None
             info["scheduler"] = scheduler
         else:
-            n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
+            n = max(1, min(workers or available_cpus(), len(todo)))
             cluster = stack.enter_context(LocalCluster(
                 n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
                 dashboard_address=":0", silence_logs=logging.ERROR, env=dict(BLAS_ENV)))
@@ -342,6 +390,60 @@ def _dask_results(todo: Sequence[Design], args: tuple[Any, ...], workers: int | 
             yield d, res
 
 
+def _explicit_plan(n_todo: int, workers: int | None, scheduler: str | None, serial: bool,
+                   executor: str) -> ExecutionPlan | None:
+    """The plan an explicit option asks for (None: decide by the work size)."""
+    if n_todo == 0:
+        return ExecutionPlan("none", 0, "nothing to solve (all designs cached or impossible)")
+    if serial or executor == "serial":
+        return ExecutionPlan("serial", 1, "requested (--serial)")
+    if scheduler:
+        return ExecutionPlan("dask", 0, f"requested (--scheduler {scheduler})")
+    if executor == "dask":
+        k = max(1, min(workers or available_cpus(), n_todo))
+        return ExecutionPlan("dask", k, f"requested (--executor dask): LocalCluster of {k}")
+    if workers is not None:
+        k = min(workers, n_todo)
+        return ExecutionPlan("processes", k, f"requested (--workers {workers}), at most one "
+                             "per design to solve")
+    if executor == "processes":
+        k = max(1, min(available_cpus(), n_todo))
+        return ExecutionPlan("processes", k, "requested (--executor processes): one per CPU, "
+                             "at most one per design to solve")
+    return None
+
+
+def _auto_plan(spec: SweepSpec, n_todo: int, cpus: int) -> ExecutionPlan:
+    """The plan for ``n_todo`` designs of ``spec`` from the a-priori cost estimate."""
+    est = estimate_design_time_s(spec.solver, spec.pressures_mpa)
+    steps = max(spec.pressures_mpa) / spec.solver.max_step_mpa
+    return plan_execution(n_todo, est, cpus, basis=f"estimated from {design_dofs(spec.solver)} "
+                          f"dofs x {steps:.0f} load steps")
+
+
+def _adaptive_results(todo: Sequence[Design], args: tuple[Any, ...], cpus: int,
+                      info: dict[str, Any], stack: contextlib.ExitStack
+                      ) -> Generator[tuple[Design, dict[str, Any]], None, None]:
+    """Solve here, re-planning after every design with the measured mean time; move the
+    remaining designs to worker processes as soon as that is predicted to pay."""
+    spent = 0.0
+    for i, d in enumerate(todo):
+        if i and cpus > 1 and len(todo) - i > 1:
+            plan = plan_execution(len(todo) - i, spent / i, cpus,
+                                  basis=f"measured, mean of the first {i} solved here")
+            if plan.mode == "processes":
+                pool = stack.enter_context(SweepPool(plan.workers))
+                info.update(execution="processes", workers=plan.workers, scheduler=pool.label,
+                            execution_reason=f"{i} solved here, then {plan.reason}")
+                yield from pool.results(solve_design, todo[i:], _failed, *args)
+                return
+            info["execution_reason"] = plan.reason
+        t0 = time.perf_counter()
+        res = solve_design(d, *args)
+        spent += time.perf_counter() - t0
+        yield d, res
+
+
 def run_sweep(
     spec: SweepSpec,
     out: str | Path,
@@ -349,6 +451,7 @@ def run_sweep(
     workers: int | None = None,
     scheduler: str | None = None,
     serial: bool = False,
+    executor: str = "auto",
     retry_failed: bool = False,
     progress: ProgressFn | None = None,
     solve_fn: SolveFn | None = None,
@@ -363,28 +466,36 @@ def run_sweep(
     out : str or Path
         Result directory (Parquet dataset); created if missing, reused as the cache.
     workers : int, optional
-        LocalCluster worker processes (default: CPU count, at most the designs to solve).
+        Local worker processes (at most one per design to solve); with ``executor="dask"``
+        the LocalCluster's. Default: decided by the work size (``executor="auto"``).
     scheduler : str, optional
         Address of a running Dask scheduler (``tcp://host:8786``); ``workers`` is ignored.
     serial : bool
-        Solve in this process in a plain loop (no Dask).
+        Solve in this process in a plain loop (same as ``executor="serial"``).
+    executor : {'auto', 'serial', 'processes', 'dask'}
+        ``auto``: serial or local worker processes, whichever
+        :func:`~exofric.design.plan_execution` predicts faster (re-planned with measured
+        times while solving serially); ``processes``: one worker per CPU; ``dask``: a
+        LocalCluster (or ``scheduler``).
     retry_failed : bool
         Solve again designs recorded as failed (default: keep their cached error).
     progress : callable, optional
         ``progress(done, total, label)`` after each design.
     solve_fn : callable, optional
-        Replacement for :func:`exofric.simulate.squeeze` (must be picklable for Dask).
+        Replacement for :func:`exofric.simulate.squeeze` (must be picklable for workers).
     timeout_s : float
         How long to wait for ``scheduler`` and its first worker (s).
 
     Returns
     -------
     SweepRun
+        ``summary.execution`` and ``summary.execution_reason`` say how it ran and why.
 
     Raises
     ------
     InputError
-        ``workers`` < 1, or no scheduler with workers reachable at ``scheduler``.
+        ``workers`` < 1, an unknown ``executor``, or no scheduler with workers reachable at
+        ``scheduler``.
 
     Examples
     --------
@@ -392,9 +503,10 @@ def run_sweep(
     >>> spec = parse_sweep({"pressures_mpa": [0.3, 0.6], "grid": {"wire_mm": [1.6, 2.0]},
     ...                     "solver": {"n_radial": 1, "n_circ": 12}})
     >>> run = run_sweep(spec, tempfile.mkdtemp(), serial=True)
-    >>> run.summary.computed, run.summary.skipped, len(run.frame)
-    (1, 1, 3)
+    >>> run.summary.computed, run.summary.skipped, len(run.frame), run.summary.execution
+    (1, 1, 3, 'serial')
     """
+    check_executor(executor)
     if workers is not None and workers < 1:
         raise InputError(f"workers must be >= 1, got {workers}")
     t0 = time.perf_counter()
@@ -403,28 +515,46 @@ def run_sweep(
     store.remove_temporary()
     store.write_manifest(spec, {"run_id": run_id})
     have = store.finished()
-    for d in spec.skipped:
-        if have.get(d.key) != "skipped":
-            store.write(d.key, "skipped", _rows(d, "skipped", {"error": d.skip_reason}, run_id,
-                                                    spec))
     done_ok = ("ok",) if retry_failed else ("ok", "failed")
     todo = [d for d in spec.runnable if have.get(d.key) not in done_ok]
-    info: dict[str, Any] = {"scheduler": "serial" if serial else "none (nothing to solve)",
-                            "workers": 0}
     args = (spec.pressures_mpa, spec.material, spec.solver, solve_fn)
-    if progress:
-        progress(0, len(todo), "")
-    if serial:
-        info["workers"] = 1 if todo else 0
-        results: Iterator[tuple[Design, dict[str, Any]]] = ((d, solve_design(d, *args))
-                                                            for d in todo)
-    else:
-        results = (_dask_results(todo, args, workers, scheduler, timeout_s, info) if todo
-                   else iter(()))
-    for i, (d, res) in enumerate(results, 1):
-        store.write(d.key, res["status"], _rows(d, res["status"], res, run_id, spec))
+    cpus = available_cpus()
+    plan = _explicit_plan(len(todo), workers, scheduler, serial, executor)
+    auto = plan is None
+    if plan is None:
+        plan = _auto_plan(spec, len(todo), cpus)
+    if plan.mode == "processes" and multiprocessing.current_process().daemon:
+        plan = ExecutionPlan("serial", 1, "this process is a daemonic worker, which may not "
+                             f"start processes (wanted: {plan.reason})")
+        auto = False
+    info: dict[str, Any] = {"scheduler": {"none": "none (nothing to solve)"}.get(plan.mode,
+                                                                            plan.mode),
+                            "workers": plan.workers, "execution": plan.mode,
+                            "execution_reason": plan.reason}
+    with contextlib.ExitStack() as stack:
+        results: Generator[tuple[Design, dict[str, Any]], None, None]
+        if plan.mode == "processes":
+            # workers start (fork) before this process writes Parquet or shows progress
+            pool = stack.enter_context(SweepPool(plan.workers))
+            info["scheduler"] = pool.label
+            results = pool.results(solve_design, todo, _failed, *args)
+        elif plan.mode == "dask":
+            results = _dask_results(todo, args, workers, scheduler, timeout_s, info)
+        elif plan.mode == "serial" and auto:
+            results = _adaptive_results(todo, args, cpus, info, stack)
+        else:
+            results = ((d, solve_design(d, *args)) for d in todo)
+        results = stack.enter_context(contextlib.closing(results))
+        for d in spec.skipped:
+            if have.get(d.key) != "skipped":
+                store.write(d.key, "skipped", _rows(d, "skipped", {"error": d.skip_reason},
+                                                    run_id, spec))
         if progress:
-            progress(i, len(todo), f"{d.name} ({res['status']})")
+            progress(0, len(todo), "")
+        for i, (d, res) in enumerate(results, 1):
+            store.write(d.key, res["status"], _rows(d, res["status"], res, run_id, spec))
+            if progress:
+                progress(i, len(todo), f"{d.name} ({res['status']})")
     frame = postprocess(store.read([d.key for d in spec.designs]), spec)
     status = frame.drop_duplicates("key")["status"]
     summary = SweepSummary(
@@ -432,7 +562,8 @@ def run_sweep(
         cached=len(spec.runnable) - len(todo), skipped=len(spec.skipped),
         failed=int((status == "failed").sum()), out=str(Path(out)),
         wall_time_s=time.perf_counter() - t0, scheduler=str(info["scheduler"]),
-        workers=int(info["workers"]), run_id=run_id)
+        workers=int(info["workers"]), run_id=run_id, execution=str(info["execution"]),
+        execution_reason=str(info["execution_reason"]))
     return SweepRun(summary, frame)
 
 
@@ -458,7 +589,7 @@ def sweep(
         Result directory (Parquet dataset), reused as the cache.
     **kwargs
         Keyword arguments of :func:`run_sweep` (``workers``, ``scheduler``, ``serial``,
-        ``retry_failed``, ``progress``, ``solve_fn``, ``timeout_s`` in s).
+        ``executor``, ``retry_failed``, ``progress``, ``solve_fn``, ``timeout_s`` in s).
 
     Returns
     -------
