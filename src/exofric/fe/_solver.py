@@ -88,9 +88,10 @@ class Assembler:
         # the tube then have a narrow band, and LAPACK's banded solvers beat SuperLU's general
         # sparse LU (by ~2x for the banded LU) at these sizes (a few hundred to ~20000 dofs).
         # The candidates are reverse Cuthill-McKee of the pattern and the problem's own
-        # ``orders`` (for the tube: angle-major, one radial line after the other, whose band is
-        # 2 (2 n_radial + 1) + 2 dofs for quad9 against RCM's diagonal fronts, 73 vs 127 at
-        # 8 x 128: a third of the Cholesky work, which grows as n band^2). The narrowest band
+        # ``orders`` (for the tube: angle-major, one radial line after the other; an element
+        # spans three lines of 2 n_radial + 1 nodes, so the band is 4 (2 n_radial + 1) + 5
+        # dofs for quad9, against RCM's diagonal fronts 73 vs 127 at 8 x 128: a third of the
+        # Cholesky work, which grows as n band^2). The narrowest band
         # wins. This is the whole symbolic analysis: the ordering and each CSC slot's place in
         # the band are computed once here and reused by every factorisation.
         col_of = np.repeat(np.arange(self.nf), np.diff(self.indptr))
