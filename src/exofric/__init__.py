@@ -24,9 +24,9 @@ Examples
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
+from exofric._lazy import facade
 from exofric._version import __version__
 
 # Lazy facade (SPEC 1 style): ``import exofric`` stays cheap (the CLI and every Dask worker
@@ -90,19 +90,6 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.simulate import InflationResult, SqueezeResult, inflate, squeeze
 
 
-def __getattr__(name: str) -> Any:
-    """Load a top-level name from its home subpackage on first use."""
-    home = _HOME.get(name)
-    if home is None:
-        raise AttributeError(f"module 'exofric' has no attribute {name!r}")
-    value = getattr(importlib.import_module(home), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
-
 
 __all__ = [
     "BASE",
@@ -140,3 +127,5 @@ __all__ = [
     "squeeze",
     "torque",
 ]
+
+__getattr__, __dir__ = facade(__name__, _HOME, __all__)

@@ -30,8 +30,9 @@ Examples
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from exofric._lazy import facade
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.friction._curve import SqueezeCurve
@@ -78,16 +79,4 @@ __all__ = [
     "SqueezeCurve", "structures_from_dict", "torque", "TorqueCheck",
 ]
 
-
-def __getattr__(name: str) -> Any:
-    """Load a public name of :mod:`exofric.friction` from its module on first use."""
-    mod = _HOME.get(name)
-    if mod is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{mod}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = facade(__name__, _HOME, __all__)
