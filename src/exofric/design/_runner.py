@@ -273,6 +273,11 @@ def _deviation(d: Design, spec: SweepSpec) -> tuple[float, bool]:
     return m.deviation_pct, bool(m.in_validated_region and abs(d.shore - spec.base_shore) < 1e-9)
 
 
+def _friction_n(force_n: np.ndarray, ok: np.ndarray, spec: SweepSpec) -> np.ndarray:
+    """F = gamma N + F0 (N) where the solve succeeded, NaN elsewhere."""
+    return np.where(ok, spec.gamma * force_n + spec.f0_n, np.nan)
+
+
 def _rows(d: Design, status: str, res: Mapping[str, Any], run_id: str,
           spec: SweepSpec) -> pd.DataFrame:
     """One design's dataset rows (see :data:`exofric.design.SCHEMA`), post-processed.
@@ -288,7 +293,7 @@ def _rows(d: Design, status: str, res: Mapping[str, Any], run_id: str,
         return list(v) if isinstance(v, list) else [v] * n
 
     force = np.asarray(col("squeeze_force_n"), dtype=float)
-    friction = spec.gamma * force + spec.f0_n if status == "ok" else np.full(n, np.nan)
+    friction = _friction_n(force, np.full(n, status == "ok"), spec)
     dev, valid = (np.nan, False) if status == "skipped" else _deviation(d, spec)
     rows = {
         "key": [d.key] * n, "design_index": [d.index] * n, "name": [d.name] * n,
@@ -326,8 +331,6 @@ def postprocess(frame: pd.DataFrame, spec: SweepSpec) -> pd.DataFrame:
     most ``spec.threshold_pct`` (:func:`exofric.friction.deviation`) *and* the
     hardness equals the base's (the paper validated one material only).
     """
-    from exofric.friction import deviation
-
     by_key = {d.key: d for d in spec.designs}
     f = frame[frame["key"].isin(list(by_key))].copy()
     f["design_index"] = f["key"].map(lambda k: by_key[k].index).astype("int64")
@@ -335,15 +338,12 @@ def postprocess(frame: pd.DataFrame, spec: SweepSpec) -> pd.DataFrame:
     f["family"] = f["key"].map(lambda k: by_key[k].family)
     ok = (f["status"] == "ok").to_numpy()
     n = f["squeeze_force_n"].to_numpy(dtype=float)
-    f["friction_n"] = np.where(ok, spec.gamma * n + spec.f0_n, np.nan)
+    f["friction_n"] = _friction_n(n, ok, spec)
     f["torque_nm"] = f["friction_n"] * spec.arm_radius_m
     f["gamma"], f["f0_n"], f["arm_radius_m"] = spec.gamma, spec.f0_n, spec.arm_radius_m
     dev: dict[str, tuple[float, bool]] = {}
     for key in f.loc[f["status"] != "skipped", "key"].unique():
-        d = by_key[key]
-        m = deviation(d.structure(), spec.base, spec.threshold_pct)
-        dev[d.key] = (m.deviation_pct,
-                      m.in_validated_region and abs(d.shore - spec.base_shore) < 1e-9)
+        dev[key] = _deviation(by_key[key], spec)
     f["deviation_pct"] = f["key"].map(lambda k: dev.get(k, (np.nan, False))[0]).astype(float)
     f["in_validated_region"] = f["key"].map(lambda k: dev.get(k, (np.nan, False))[1])
     f["in_validated_region"] = f["in_validated_region"].astype(bool)
