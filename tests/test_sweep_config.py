@@ -51,7 +51,8 @@ def test_wall_thickness_and_impossible_tube():
     ids = [d.tube_id_mm for d in spec.designs]
     assert ids == pytest.approx([6.3, 0.0, -1.7])   # ID = d1 - 2 t with d1 = 8.3 mm
     assert [d.skipped for d in spec.designs] == [False, True, True]
-    assert "tube_id_mm (tube inner diameter) must be > 0" in spec.designs[1].skip_reason
+    assert ("tube_id_mm (tube inner diameter) must be in [0.01, 1000] mm, got 0"
+            in spec.designs[1].skip_reason)
 
 
 def test_impossible_hardness_is_skipped_not_fatal():

@@ -25,7 +25,7 @@ EXECUTOR = typer.Option("auto", "--executor",
                         help="auto (serial or worker processes, by the predicted times), "
                         "serial, processes (one per CPU) or dask (a LocalCluster).")
 TIMEOUT = typer.Option(60.0, "--timeout",
-                       help="Seconds to wait for --scheduler and its first worker.")
+                       help="Seconds to wait for --scheduler and its first worker (finite, > 0).")
 RETRY = typer.Option(False, "--retry-failed", help="Solve designs recorded as failed again.")
 
 
@@ -63,22 +63,43 @@ def _progress(quiet: bool) -> Iterator[Callable[[int, int, str], None] | None]:
             bar.stop()
 
 
-def _run(config: Path | None, out: Path | None, workers: int | None, scheduler: str | None,
-         serial: bool, retry: bool, quiet: bool, timeout: float, executor: str = "auto") -> Any:
-    from exofric.design import EXECUTORS, load_sweep, parse_sweep, run_sweep
+def _check_options(workers: int | None, scheduler: str | None, timeout: float,
+                   executor: str) -> None:
+    """The execution options, checked before anything is loaded or solved (one line, exit 2);
+    the scheduler's reachability is checked by the sweep itself, right before Dask."""
+    import math
+
+    from exofric.design import EXECUTORS, check_scheduler
     from exofric.errors import InputError
 
     if executor not in EXECUTORS:
         raise InputError(f"--executor must be one of {', '.join(EXECUTORS)}, got {executor!r}")
     if workers is not None and workers < 1:
         raise InputError(f"--workers must be >= 1, got {workers}")
+    if not (math.isfinite(timeout) and timeout > 0):
+        raise InputError(f"--timeout must be a finite number of seconds > 0, got {timeout}")
+    if scheduler is not None:
+        check_scheduler(scheduler)
+
+
+def _load(config: Path | None) -> Any:
+    """The sweep of ``config``, or the built-in design space."""
+    from exofric.design import load_sweep, parse_sweep
 
     if config is None:
         from exofric.design import DEFAULT_SPACE
 
-        spec = parse_sweep(DEFAULT_SPACE)
-    else:
-        spec = load_sweep(config)
+        return parse_sweep(DEFAULT_SPACE)
+    return load_sweep(config)
+
+
+def _run(config: Path | None, out: Path | None, workers: int | None, scheduler: str | None,
+         serial: bool, retry: bool, quiet: bool, timeout: float, executor: str = "auto",
+         spec: Any = None) -> Any:
+    from exofric.design import run_sweep
+
+    _check_options(workers, scheduler, timeout, executor)
+    spec = spec if spec is not None else _load(config)
     out = out or Path(".exofric-sweeps") / spec.name
     with _progress(quiet) as progress:
         return run_sweep(spec, out, workers=workers, scheduler=scheduler, serial=serial,
@@ -91,8 +112,12 @@ def register(app: typer.Typer) -> None:
 
     @app.command("sweep")
     def sweep_cmd(
-        config: Path = typer.Argument(..., help="Sweep definition (TOML), see examples/."),
-        out: Path = typer.Option(..., "--out", help="Result directory (Parquet dataset, cache)."),
+        config: Path = typer.Argument(None, help="Sweep definition (TOML), see examples/."),
+        out: Path = typer.Option(None, "--out", help="Result directory (Parquet dataset, cache)."),
+        verify: Path = typer.Option(None, "--verify", help="Check the sweep folder VERIFY "
+                                    "(checksums, files, derived columns) without solving: "
+                                    "exit 0 all ok, 1 damaged or missing designs, 2 not a "
+                                    "sweep folder.", metavar="OUT"),
         workers: int = WORKERS,
         scheduler: str = SCHEDULER,
         serial: bool = SERIAL,
@@ -106,8 +131,20 @@ def register(app: typer.Typer) -> None:
         By default the designs are solved in this process or on local worker processes,
         whichever is predicted faster for the work size (the output says which and why).
         Finished designs in OUT are reused (cache keyed by inputs + solver settings), so a
-        killed sweep resumes where it stopped.
+        killed sweep resumes where it stopped; a damaged design file is moved to
+        OUT/_quarantine/, named in one warning line and solved again. ``--verify OUT`` only
+        checks the folder.
         """
+        from exofric.errors import InputError
+
+        if verify is not None:
+            if config is not None or out is not None:
+                raise InputError("--verify takes the folder alone: exofric sweep --verify OUT")
+            _verify(verify, as_json)
+            return
+        if config is None or out is None:
+            raise InputError("sweep needs CONFIG and --out OUT (or --verify OUT)",
+                             param="config")
         run = _run(config, out, workers, scheduler, serial, retry_failed, as_json, timeout,
                    executor)
         d = run.to_dict()
@@ -159,24 +196,37 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Find swept designs reaching a target torque with the least pressure (Nm, MPa, mm)."""
         from exofric.design import search_designs
-        from exofric.errors import InputError, check_positive
+        from exofric.errors import InputError, check_finite, check_positive, check_range
 
-        # validate the search before running (or loading) the sweep
+        # validate the search before any work: options, then the sweep definition (cheap),
+        # then pmax against its pressures, all before a single design is solved or read
         check_positive("--target-torque", target_torque, "Nm")
-        check_positive("--pmax", pmax, "MPa")
+        check_range("--pmax", pmax, 0.0, 2.0, lo_open=True, unit="MPa")
         if arm is not None:
             check_positive("--arm", arm, "m")
         if gamma is not None:
             check_positive("--gamma", gamma)
+        if f0 is not None:
+            check_finite("--f0 (N)", f0)
         if objective not in ("pressure", "margin"):
             raise InputError(f"--objective must be 'pressure' or 'margin', got {objective!r}")
-        run = _run(config, out, workers, scheduler, serial, False, as_json, timeout, executor)
+        if top < 1:
+            raise InputError(f"--top must be >= 1, got {top}")
+        _check_options(workers, scheduler, timeout, executor)
+        spec = _load(config)
+        p_top = max(spec.pressures_mpa)
+        if pmax > p_top + 1e-12:
+            raise InputError(f"--pmax {pmax:g} MPa is above the sweep's largest pressure "
+                             f"{p_top:g} MPa; allowed range (0, {p_top:g}] MPa")
+        run = _run(config, out, workers, scheduler, serial, False, as_json, timeout, executor,
+                   spec=spec)
         frame = run.frame
         search = search_designs(frame, target_torque, arm if arm is not None else
                                 float(frame["arm_radius_m"].iloc[0]), pmax, gamma=gamma,
                                 f0_n=f0, objective=objective, validated_only=validated_only)
         d = search.to_dict(top=top)
         d["sweep"] = run.summary.to_dict()
+        d["warnings"] = list(run.warnings)
         if not no_plot:
             from exofric.plots import plot_design_map
 
@@ -185,6 +235,41 @@ def register(app: typer.Typer) -> None:
                                         plot or Path(run.summary.out) / "design-map.png"))
 
         emit(d, as_json, lambda: _render_design(d))
+
+
+def _verify(out: Path, as_json: bool) -> None:
+    """``exofric sweep --verify OUT``: exit 0 all ok, 1 damaged/missing, 2 not a sweep folder.
+
+    Imports exofric.design's store only (pandas, pyarrow), never Dask.
+    """
+    import sys
+
+    from exofric.design import verify_sweep
+
+    check = verify_sweep(out)
+    d = check.to_dict()
+
+    def render() -> None:
+        from rich.table import Table
+
+        c = check.counts
+        t = Table(title=f"Sweep folder {out}: {c['ok']} ok, {c['quarantined']} quarantined, "
+                  f"{c['missing']} missing; manifest {check.manifest}")
+        for col in ("design", "state", "status", "reason"):
+            t.add_column(col, overflow="fold")
+        for x in check.designs:
+            if x["state"] != "ok":
+                t.add_row(x["name"] or x["key"][:12], f"[red]{x['state']}[/red]", x["status"],
+                          x["reason"])
+        console.print(t)
+        console.print("all designs verified" if check.ok else "[red]not all verified[/red]: "
+                      "a rerun of the sweep solves the quarantined and missing designs")
+
+    for line in check.warnings:
+        print(f"exofric: warning: {line}", file=sys.stderr)
+    emit(d, as_json, render)
+    if check.exit_code:
+        raise typer.Exit(check.exit_code)
 
 
 def _render_design(d: dict[str, Any]) -> None:

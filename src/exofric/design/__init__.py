@@ -4,8 +4,9 @@
   :class:`MaterialSpec` and :class:`SolverSpec`) from a TOML/dict spec.
 * :func:`run_sweep` -> :class:`SweepRun` -- every design's squeeze N(P) serially, on local
   worker processes (:class:`SweepPool`) or on any Dask scheduler, streamed to a resumable
-  :class:`SweepStore` (Parquet); by default :func:`plan_execution` chooses serial or workers
-  from the work size (:func:`estimate_design_time_s`, then measured solve times).
+  :class:`SweepStore` (Parquet, checksummed: damaged files are quarantined and solved again,
+  :func:`verify_sweep` checks a folder); by default :func:`plan_execution` chooses serial or
+  workers from the work size (:func:`estimate_design_time_s`, then measured solve times).
 * :func:`search_designs` -> :class:`DesignSearch` -- torque at the maximum pressure, least
   pressure reaching the target, margins, the validated region.
 
@@ -23,6 +24,7 @@ from exofric.design._execution import (
     EXECUTORS,
     ExecutionPlan,
     SweepPool,
+    check_scheduler,
     estimate_design_time_s,
     plan_execution,
 )
@@ -42,12 +44,21 @@ from exofric.design._spec import (
     design_key,
     parse_sweep,
 )
-from exofric.design._store import SCHEMA, STATUSES, SweepStore, load_sweep
+from exofric.design._store import (
+    SCHEMA,
+    STATUSES,
+    SweepCheck,
+    SweepStore,
+    check_rows,
+    load_sweep,
+    verify_sweep,
+)
 
 __all__ = [
     "BLAS_ENV", "DEFAULT_SPACE", "Design", "design_key", "design_metrics", "DesignSearch",
     "estimate_design_time_s", "ExecutionPlan", "EXECUTORS", "load_sweep", "MaterialSpec",
     "OBJECTIVES", "parse_sweep", "plan_execution", "run_sweep", "SCHEMA", "search_designs",
     "solve_design", "SolverSpec", "STATUSES", "sweep", "SweepPool", "SweepRun", "SweepSpec",
-    "SweepStore", "SweepSummary",
+    "SweepStore", "SweepSummary", "SweepCheck", "check_rows", "verify_sweep",
+    "check_scheduler",
 ]

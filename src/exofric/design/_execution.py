@@ -27,6 +27,7 @@ import contextlib
 import math
 import multiprocessing
 import os
+import re
 import signal
 import sys
 import warnings
@@ -41,7 +42,7 @@ from exofric.design._spec import SolverSpec
 from exofric.errors import InputError
 
 __all__ = ["EXECUTORS", "ExecutionPlan", "plan_execution", "estimate_design_time_s",
-           "available_cpus", "start_method", "SweepPool"]
+           "available_cpus", "start_method", "SweepPool", "check_scheduler", "probe_scheduler"]
 
 #: Values of ``run_sweep(executor=...)`` / ``exofric sweep --executor``.
 EXECUTORS = ("auto", "serial", "processes", "dask")
@@ -381,3 +382,62 @@ def check_executor(executor: str) -> str:
     if executor not in EXECUTORS:
         raise InputError(f"executor must be one of {', '.join(EXECUTORS)}, got {executor!r}")
     return executor
+
+
+_ADDRESS = re.compile(r"^(?:(?P<proto>[a-z]+)://)?(?P<host>\[[0-9A-Fa-f:.]+\]|[^\s:/\[\]]+)"
+                      r":(?P<port>[0-9]{1,5})/?$")
+
+
+def check_scheduler(address: str) -> tuple[str, int]:
+    """``(host, port)`` of a Dask scheduler address ``tcp://host:port`` (or ``host:port``).
+
+    ``tls://`` is accepted too (also TCP). Anything else (no port, a port outside 1-65535,
+    another protocol, spaces) is an :class:`InputError` naming ``scheduler``.
+
+    Parameters
+    ----------
+    address : str
+        The address given to ``--scheduler`` / ``run_sweep(scheduler=...)``.
+
+    Returns
+    -------
+    tuple of (str, int)
+        Host name or IP (IPv6 without brackets) and port.
+
+    Examples
+    --------
+    >>> check_scheduler("tcp://10.0.0.1:8786"), check_scheduler("[::1]:8786")
+    (('10.0.0.1', 8786), ('::1', 8786))
+    >>> try:
+    ...     check_scheduler("tcp://10.0.0.1")            # no port
+    ... except InputError as exc:
+    ...     print(str(exc)[:46])
+    scheduler must look like tcp://host:port (port
+    """
+    m = _ADDRESS.match(address.strip())
+    proto = m.group("proto") if m else None
+    if m is None or proto not in (None, "tcp", "tls") or not 0 < int(m.group("port")) < 65536:
+        raise InputError(f"scheduler must look like tcp://host:port (port 1-65535), e.g. "
+                         f"tcp://10.0.0.1:8786, got {address!r}")
+    return m.group("host").strip("[]"), int(m.group("port"))
+
+
+def probe_scheduler(address: str, timeout_s: float | None = None) -> None:
+    """Fail fast when nothing listens at a scheduler address: one TCP connect, then close.
+
+    Waits at most ``timeout_s`` (default :data:`exofric.defaults.SWEEP_SCHEDULER_CONNECT_S`,
+    s), instead of Dask's whole ``--timeout`` for an address where nothing listens; raises
+    :class:`InputError` naming ``scheduler`` and the address.
+    """
+    import socket
+
+    host, port = check_scheduler(address)
+    wait = defaults.SWEEP_SCHEDULER_CONNECT_S if timeout_s is None else timeout_s
+    try:
+        with socket.create_connection((host, port), timeout=wait):
+            pass
+    except (OSError, TimeoutError) as exc:
+        why = "no answer" if isinstance(exc, TimeoutError) else (exc.strerror or str(exc))
+        raise InputError(f"scheduler {address}: nothing reachable there ({why} within "
+                         f"{wait:g} s); is `dask scheduler` running and the port open?",
+                         param="scheduler") from None

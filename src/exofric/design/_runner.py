@@ -17,24 +17,32 @@ output directory (:mod:`exofric.design`), so that
   scheduler starts an embedded ``LocalCluster``;
 * designs already in the directory (same cache key: inputs + solver settings) are not
   solved again: a killed sweep resumes losing nothing that had finished;
+* nothing stored is trusted blindly: every design file is checked against its SHA-256 and
+  its derived columns when read (:meth:`~exofric.design.SweepStore.load`); a damaged one is
+  moved to ``OUT/_quarantine/``, reported (one warning line each, :attr:`SweepRun.warnings`)
+  and solved again;
 * a design whose solve raises is recorded (status ``failed``, the error message) and the
   others go on; impossible designs are recorded as ``skipped`` with the reason.
 
 Rows come back as a pandas DataFrame, one row per design and pressure; friction
-F = gamma N + F0 (N), torque T = F R (Nm) and the deviation from the base (%) are
-recomputed from the sweep's current gamma, F0, R and base, so changing those reuses the
-cache. The summary says which execution mode was used and why.
+F = gamma N + F0 (N), torque T = F R (Nm), the deviation from the base (%) and the design's
+sizes, wall and clearance (mm) are recomputed from the sweep's current gamma, F0, R, base
+and designs (:func:`postprocess`), so changing those reuses the cache and no stored derived
+value can disagree with the stored squeeze force. The summary says which execution mode was
+used and why.
 """
 
 from __future__ import annotations
 
 import contextlib
 import logging
+import math
 import multiprocessing
 import os
 import socket
 import time
 import uuid
+import warnings
 from collections.abc import Callable, Generator, Mapping, Sequence
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
@@ -50,9 +58,11 @@ from exofric.design._execution import (
     SweepPool,
     available_cpus,
     check_executor,
+    check_scheduler,
     design_dofs,
     estimate_design_time_s,
     plan_execution,
+    probe_scheduler,
 )
 from exofric.design._spec import Design, MaterialSpec, SolverSpec, SweepSpec, parse_sweep
 from exofric.design._store import SweepStore, load_sweep
@@ -142,6 +152,10 @@ class SweepRun:
     frame : pandas.DataFrame
         The rows, one per design and pressure (one row for a skipped or failed design);
         columns of :data:`exofric.design.SCHEMA` (mm, MPa, N, N/mm, Nm, m, %, s).
+    warnings : tuple of str
+        One line per stored design file that failed verification and was quarantined
+        (and solved again), e.g. ``"OUT/design-<key>-ok.parquet: checksum mismatch ...;
+        moved to OUT/_quarantine/..."``; empty when everything stored was sound.
 
     Examples
     --------
@@ -157,9 +171,11 @@ class SweepRun:
 
     summary: SweepSummary
     frame: pd.DataFrame = field(repr=False)
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """Summary plus the failed (``failures``) and impossible (``skipped_designs``) ones."""
+        """Summary plus the failed (``failures``) and impossible (``skipped_designs``) ones
+        and the quarantined files (``warnings``)."""
         one = self.frame.drop_duplicates("key")
         bad = one[one["status"] == "failed"]
         skip = one[one["status"] == "skipped"]
@@ -168,7 +184,8 @@ class SweepRun:
                 "failures": [{"name": n, "error": e} for n, e in zip(bad["name"], bad["error"],
                                                                     strict=True)],
                 "skipped_designs": [{"name": n, "reason": e} for n, e in
-                                    zip(skip["name"], skip["error"], strict=True)]}
+                                    zip(skip["name"], skip["error"], strict=True)],
+                "warnings": list(self.warnings)}
 
     def to_frame(self) -> pd.DataFrame:
         """The sweep rows as a DataFrame (a copy of :attr:`frame`): one row per design and
@@ -330,12 +347,20 @@ def postprocess(frame: pd.DataFrame, spec: SweepSpec) -> pd.DataFrame:
     ``in_validated_region`` is True when the geometric deviation from ``spec.base`` is at
     most ``spec.threshold_pct`` (:func:`exofric.friction.deviation`) *and* the
     hardness equals the base's (the paper validated one material only).
+
+    Only the solved (primary) columns are taken from ``frame``: labels, sizes (mm), Shore,
+    wall and clearance (mm), friction (N), torque (Nm), deviation (%) and the validated flag
+    are derived again from ``spec`` and the squeeze force, so a stored derived value can
+    never disagree with its primary one.
     """
     by_key = {d.key: d for d in spec.designs}
     f = frame[frame["key"].isin(list(by_key))].copy()
     f["design_index"] = f["key"].map(lambda k: by_key[k].index).astype("int64")
-    f["name"] = f["key"].map(lambda k: by_key[k].name)
-    f["family"] = f["key"].map(lambda k: by_key[k].family)
+    for col in ("name", "family", "hole_mm", "tube_od_mm", "tube_id_mm", "wire_mm",
+                "length_mm", "shore"):
+        f[col] = f["key"].map(lambda k, c=col: getattr(by_key[k], c))
+    f["wall_mm"] = 0.5 * (f["tube_od_mm"] - f["tube_id_mm"])
+    f["clearance_mm"] = f["hole_mm"] - f["tube_od_mm"] - f["wire_mm"]
     ok = (f["status"] == "ok").to_numpy()
     n = f["squeeze_force_n"].to_numpy(dtype=float)
     f["friction_n"] = _friction_n(n, ok, spec)
@@ -363,6 +388,7 @@ def _dask_results(todo: Sequence[Design], args: tuple[Any, ...], workers: int | 
 
     with contextlib.ExitStack() as stack:
         if scheduler:
+            probe_scheduler(scheduler)      # seconds, not Dask's whole timeout, for a dead address
             try:
                 client = stack.enter_context(Client(scheduler, timeout=f"{timeout_s}s"))
                 client.wait_for_workers(1, timeout=timeout_s)
@@ -484,17 +510,22 @@ def run_sweep(
     solve_fn : callable, optional
         Replacement for :func:`exofric.simulate.squeeze` (must be picklable for workers).
     timeout_s : float
-        How long to wait for ``scheduler`` and its first worker (s).
+        How long to wait for ``scheduler`` and its first worker (s), finite and > 0. Before
+        that, one TCP connect (at most :data:`exofric.defaults.SWEEP_SCHEDULER_CONNECT_S`)
+        checks that something listens at the address.
 
     Returns
     -------
     SweepRun
-        ``summary.execution`` and ``summary.execution_reason`` say how it ran and why.
+        ``summary.execution`` and ``summary.execution_reason`` say how it ran and why;
+        ``warnings`` lists the stored files that failed verification (each also issued as a
+        :class:`RuntimeWarning`), which were moved to ``out/_quarantine/`` and solved again.
 
     Raises
     ------
     InputError
-        ``workers`` < 1, an unknown ``executor``, or no scheduler with workers reachable at
+        ``workers`` < 1, an unknown ``executor``, ``timeout_s`` not finite and > 0,
+        ``scheduler`` not ``tcp://host:port``, or no scheduler with workers reachable at
         ``scheduler``.
 
     Examples
@@ -509,12 +540,20 @@ def run_sweep(
     check_executor(executor)
     if workers is not None and workers < 1:
         raise InputError(f"workers must be >= 1, got {workers}")
+    if not (isinstance(timeout_s, int | float) and math.isfinite(timeout_s) and timeout_s > 0):
+        raise InputError(f"timeout_s must be a finite number of seconds > 0, got {timeout_s}")
+    if scheduler:
+        check_scheduler(scheduler)
     t0 = time.perf_counter()
     run_id = uuid.uuid4().hex[:12]
     store = SweepStore(out)
     store.remove_temporary()
     store.write_manifest(spec, {"run_id": run_id})
-    have = store.finished()
+    cached, bad = store.load([d.key for d in spec.designs])
+    problems = [q.message() for q in bad]
+    for msg in problems:
+        warnings.warn(msg, RuntimeWarning, stacklevel=2)
+    have = {k: status for k, (status, _) in cached.items()}
     done_ok = ("ok",) if retry_failed else ("ok", "failed")
     todo = [d for d in spec.runnable if have.get(d.key) not in done_ok]
     args = (spec.pressures_mpa, spec.material, spec.solver, solve_fn)
@@ -545,17 +584,26 @@ def run_sweep(
         else:
             results = ((d, solve_design(d, *args)) for d in todo)
         results = stack.enter_context(contextlib.closing(results))
+        written: list[str] = []
         for d in spec.skipped:
             if have.get(d.key) != "skipped":
                 store.write(d.key, "skipped", _rows(d, "skipped", {"error": d.skip_reason},
                                                     run_id, spec))
+                written.append(d.key)
         if progress:
             progress(0, len(todo), "")
         for i, (d, res) in enumerate(results, 1):
             store.write(d.key, res["status"], _rows(d, res["status"], res, run_id, spec))
+            written.append(d.key)
             if progress:
                 progress(i, len(todo), f"{d.name} ({res['status']})")
-    frame = postprocess(store.read([d.key for d in spec.designs]), spec)
+    fresh, bad_now = store.load(written)    # read back and verified like the cached ones
+    for q in bad_now:
+        problems.append(q.message())
+        warnings.warn(q.message(), RuntimeWarning, stacklevel=2)
+    tables = {**{k: t for k, (_, t) in cached.items()}, **{k: t for k, (_, t) in fresh.items()}}
+    frame = postprocess(store.frame(tables[d.key] for d in spec.designs if d.key in tables),
+                        spec)
     status = frame.drop_duplicates("key")["status"]
     summary = SweepSummary(
         designs=len(spec.designs), computed=len(todo),
@@ -564,7 +612,7 @@ def run_sweep(
         wall_time_s=time.perf_counter() - t0, scheduler=str(info["scheduler"]),
         workers=int(info["workers"]), run_id=run_id, execution=str(info["execution"]),
         execution_reason=str(info["execution_reason"]))
-    return SweepRun(summary, frame)
+    return SweepRun(summary, frame, tuple(problems))
 
 
 def sweep(

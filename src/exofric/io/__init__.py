@@ -9,7 +9,9 @@
 * :func:`jsonable`, :func:`write_json`, :func:`write_text`, :func:`atomic_path` -- JSON-ready
   values (NaN -> null) and atomic writes (temporary file in the same directory, then
   :func:`os.replace`): never a partial file under the final name.
-* :class:`ParquetStore` -- one Parquet file per key, written atomically, plus a JSON manifest.
+* :class:`ParquetStore` -- one Parquet file per key, written atomically with a SHA-256 sidecar
+  and verified when read (failures go to a ``_quarantine/`` folder as :class:`QuarantinedFile`),
+  plus a JSON manifest.
 * :func:`write_vtu` -- a deformed FE mesh for ParaView.
 
 ``io`` knows file formats, not exofric's domain types; it imports only :mod:`exofric.errors`.
@@ -47,7 +49,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         read_squeeze_curve,
         read_step_response,
     )
-    from exofric.io._store import ParquetStore
+    from exofric.io._store import ParquetStore, QuarantinedFile
     from exofric.io._vtu import QUAD9_TO_VTK, write_vtu
 
 # Lazy facade (PEP 562): ``jsonable`` or ``read_toml`` does not load the rig, Parquet and VTU
@@ -61,15 +63,16 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "_rig": (
         "read_friction_table", "read_inflation_table", "read_squeeze_curve", "read_step_response",
     ),
-    "_store": ("ParquetStore",),
+    "_store": ("ParquetStore", "QuarantinedFile"),
     "_vtu": ("QUAD9_TO_VTK", "write_vtu"),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
-    "atomic_path", "jsonable", "ParquetStore", "QUAD9_TO_VTK", "read_friction_table",
-    "read_inflation_table", "read_json", "read_squeeze_curve", "read_step_response",
-    "read_table", "read_toml", "UNIT_SUFFIXES", "write_json", "write_text", "write_vtu",
+    "atomic_path", "jsonable", "ParquetStore", "QUAD9_TO_VTK", "QuarantinedFile",
+    "read_friction_table", "read_inflation_table", "read_json", "read_squeeze_curve",
+    "read_step_response", "read_table", "read_toml", "UNIT_SUFFIXES", "write_json", "write_text",
+    "write_vtu",
 ]
 
 __getattr__, __dir__ = facade(__name__, _HOME, __all__)
