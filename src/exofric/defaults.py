@@ -176,3 +176,48 @@ SWEEP_MIN_GAIN_REL: Final = 0.1
 
 __all__ += ["SWEEP_DESIGN_COST", "SWEEP_MIN_GAIN_REL", "SWEEP_MIN_GAIN_S", "SWEEP_POOL_START_S",
             "SWEEP_TASK_OVERHEAD_S"]
+
+# --- Input bounds (issue 21: hostile inputs are refused before any solve) ----------------------
+# Block owned by the input validation of issue 21 (exofric.fe.MeshSpec, exofric.geometry).
+
+#: Largest explicit mesh (MeshSpec; ``--n-radial``/``--n-circ``). Memory grows with the number of
+#: quad9 elements, ~50 KB each plus ~0.1 GB of start-up (peak RSS of `exofric inflate` with one
+#: pressure, 2 x 1024, 8 x 512 and 2 x 4096 meshes, 2026-11-23): the element cap of 8192 keeps
+#: a solve near 0.5 GB, well inside a laptop, while the finest meshes of the tests and
+#: benchmarks (12 x 256 = 3072 and 8 x 256 elements; mesh-convergence references of 6 x 192)
+#: stay legal. n_radial / n_circ caps bound a single direction (32 elements through a 1.7 mm
+#: wall, 1024 around a half tube are far past mesh convergence).
+MESH_MAX_N_RADIAL: Final = 32
+#: Most elements around the modelled sector (see MESH_MAX_N_RADIAL).
+MESH_MAX_N_CIRC: Final = 1024
+#: Most elements of one mesh, n_radial x n_circ (~0.5 GB; see MESH_MAX_N_RADIAL).
+MESH_MAX_ELEMENTS: Final = 8192
+#: Memory per element (bytes) of the estimate quoted when a mesh is refused (measured above).
+MESH_BYTES_PER_ELEMENT: Final = 50e3
+#: Fixed start-up memory (bytes) of that estimate (measured above).
+MESH_BYTES_FIXED: Final = 0.1e9
+#: Largest circumferential grading (largest/smallest element, unitless): the defaults use 6;
+#: past ~100 the smallest elements are thousands of times thinner than thick, which only
+#: degrades the conditioning.
+MESH_MAX_GRADING: Final = 100.0
+
+#: Sizes of a friction structure (hole, tube and wire diameters, tube length; mm). An exosuit
+#: friction structure is worn on the body: the paper's hole is 10 mm and its tube 116 mm long, so
+#: 1000 mm (1 m) is far beyond any wearable part, and 0.01 mm (10 um) below any tube or wire that
+#: can be made; outside this range the FE mesh is ill-conditioned (sizes near 1e300 overflow
+#: the element Jacobians) and no answer would mean anything.
+SIZE_MIN_MM: Final = 0.01
+#: Largest size of a friction structure (mm); see SIZE_MIN_MM.
+SIZE_MAX_MM: Final = 1000.0
+
+__all__ += ["MESH_BYTES_FIXED", "MESH_BYTES_PER_ELEMENT", "MESH_MAX_ELEMENTS", "MESH_MAX_GRADING",
+            "MESH_MAX_N_CIRC", "MESH_MAX_N_RADIAL", "SIZE_MAX_MM", "SIZE_MIN_MM"]
+
+# --- Sweep integrity and cluster options (exofric.design, `exofric sweep`; issue 21) ----------
+
+#: How long `exofric sweep --scheduler ADDRESS` tries one TCP connection to the scheduler (s)
+#: before handing the address to Dask: an address where nothing listens fails in this time
+#: instead of waiting the whole ``--timeout``. A reachable scheduler on a LAN answers in ms.
+SWEEP_SCHEDULER_CONNECT_S: Final = 3.0
+
+__all__ += ["SWEEP_SCHEDULER_CONNECT_S"]

@@ -21,6 +21,7 @@ __all__ = [
     "check_positive",
     "check_pressures",
     "check_range",
+    "check_seed",
     "check_series",
 ]
 
@@ -230,7 +231,10 @@ def check_pressures(
     """
     import numpy as np
 
-    arr = np.asarray(list(values), dtype=float)
+    try:
+        arr = np.asarray(list(values), dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a list of numbers in MPa", param=name) from None
     if arr.ndim != 1 or arr.size == 0:
         raise InputError(f"{name} must be a non-empty list of pressures in MPa")
     if not np.all(np.isfinite(arr)):
@@ -371,3 +375,40 @@ def check_series(
                              f"{xa[i - 1]:g} then {xa[i]:g} at index {i}",
                              param=x_name if x_name.isidentifier() else None)
     return xa, ya
+
+
+def check_seed(name: str, value: object) -> int:
+    """Return ``value`` as an RNG seed: an integer in [0, 2**64 - 1], else :class:`InputError`.
+
+    NumPy's generators take only non-negative integers; this says so in one line instead of
+    NumPy's traceback.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : int
+        The seed (``bool`` and non-integral numbers are refused).
+
+    Returns
+    -------
+    int
+        ``int(value)``.
+
+    Examples
+    --------
+    >>> check_seed("seed", 7)
+    7
+    >>> check_seed("seed", -1)
+    Traceback (most recent call last):
+    ...
+    exofric.errors.InputError: seed must be an integer in [0, 2**64 - 1], got -1
+    """
+    import numbers
+
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise InputError(f"{name} must be an integer in [0, 2**64 - 1], got {value!r}")
+    v = int(value)
+    if not 0 <= v < 2**64:
+        raise InputError(f"{name} must be an integer in [0, 2**64 - 1], got {v}")
+    return v

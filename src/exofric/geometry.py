@@ -11,9 +11,54 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
-from exofric.errors import InputError, check_positive
+from exofric import defaults
+from exofric.errors import InputError, check_finite, check_positive
 
-__all__ = ["Structure", "BASE"]
+__all__ = ["Structure", "BASE", "check_size_mm"]
+
+
+def check_size_mm(name: str, value: float, what: str = "") -> float:
+    """Return ``float(value)`` if it is a physical size of a friction structure, else raise.
+
+    Allowed: finite numbers in [``defaults.SIZE_MIN_MM``, ``defaults.SIZE_MAX_MM``] mm (10 um
+    to 1 m: every hole, tube, wire and tube length of a worn exosuit lies inside).
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message (``"hole_mm"``).
+    value : float
+        The size (mm).
+    what : str
+        What the size is, quoted in the message (``"hole diameter D"``).
+
+    Returns
+    -------
+    float
+        ``float(value)`` (mm).
+
+    Raises
+    ------
+    InputError
+        Not a number (strings, None...), not finite, or outside the range.
+
+    Examples
+    --------
+    >>> check_size_mm("hole_mm", 10)
+    10.0
+    >>> check_size_mm("hole_mm", 1e300, "hole diameter D")
+    Traceback (most recent call last):
+    ...
+    exofric.errors.InputError: hole_mm (hole diameter D) must be in [0.01, 1000] mm, got 1e+300
+    """
+    label = f"{name} ({what})" if what else name
+    if isinstance(value, (str, bytes, bool)) or value is None:
+        raise InputError(f"{label} must be a number in mm, got {value!r}", param=name)
+    v = check_finite(label, value)
+    lo, hi = defaults.SIZE_MIN_MM, defaults.SIZE_MAX_MM
+    if not lo <= v <= hi:
+        raise InputError(f"{label} must be in [{lo:g}, {hi:g}] mm, got {v:g}", param=name)
+    return v
 
 
 @dataclass(frozen=True)
@@ -50,11 +95,15 @@ class Structure:
     name: str = ""
 
     def __post_init__(self) -> None:
-        check_positive("hole_mm (hole diameter D)", self.hole_mm, "mm")
-        check_positive("tube_od_mm (tube outer diameter d1)", self.tube_od_mm, "mm")
-        check_positive("tube_id_mm (tube inner diameter)", self.tube_id_mm, "mm")
-        check_positive("wire_mm (wire diameter d2)", self.wire_mm, "mm")
-        check_positive("length_mm (tube length L)", self.length_mm, "mm")
+        # Every size is a finite number in [SIZE_MIN_MM, SIZE_MAX_MM] (defaults.py says why:
+        # a worn friction structure is between 10 um and 1 m; 1e300 mm would reach the solver
+        # and fail there). Stored as float; strings ("10") are refused like any non-number.
+        for attr, what in (("hole_mm", "hole diameter D"), ("tube_od_mm", "tube outer diameter d1"),
+                           ("tube_id_mm", "tube inner diameter"), ("wire_mm", "wire diameter d2"),
+                           ("length_mm", "tube length L")):
+            object.__setattr__(self, attr, check_size_mm(attr, getattr(self, attr), what))
+        if not isinstance(self.name, str):
+            raise InputError(f"name must be a string, got {self.name!r}")
         if self.tube_id_mm >= self.tube_od_mm:
             raise InputError(
                 f"tube_id_mm must be < tube_od_mm ({self.tube_od_mm:g} mm), got {self.tube_id_mm:g}"

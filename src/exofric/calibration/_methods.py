@@ -124,10 +124,42 @@ class Evaluator:
         self.history.append(t)
         return t
 
-    def raise_if_all_failed(self) -> None:
-        """Re-raise the first model failure if no trial succeeded."""
-        if self.failures and all(not np.isfinite(t.average_error_pct) for t in self.history):
-            raise self.failures[0]
+    def raise_if_all_failed(self, bracket: tuple[float, float] | None = None) -> None:
+        """Raise if no trial succeeded: the first model failure, or a message about ``bracket``.
+
+        When the model failed at every hardness of a Shore ``bracket``, up to its upper edge,
+        because the tube inflates without bound (pressure beyond its limit pressure) or does
+        not converge, the tube is too soft throughout: the message says that the hardness lies
+        above the bracket and to widen it upward, instead of blaming the data's pressures.
+
+        Parameters
+        ----------
+        bracket : (float, float) or None
+            The Shore A bracket (lo, hi) searched, or None (re-raise the first failure).
+
+        Raises
+        ------
+        InputError
+            About ``bracket``, or the first failure itself.
+        ConvergenceError
+            The first failure, when it was one and no bracket explains it.
+        """
+        if not (self.failures and all(not np.isfinite(t.average_error_pct)
+                                      for t in self.history)):
+            return
+        first = self.failures[0]
+        if bracket is not None:
+            lo, hi = bracket
+            soft = [f for f in self.failures
+                    if isinstance(f, ConvergenceError) or "limit pressure" in str(f)]
+            if len(soft) == len(self.failures):
+                raise InputError(
+                    f"bracket [{lo:g}, {hi:g}] lies below the hardness: at every trial Shore up "
+                    f"to its upper edge {hi:g} the tube is too soft to hold the data's pressures "
+                    f"(up to {float(np.max(self.data.pressure_mpa)):g} MPa; it inflates without "
+                    f"bound), so the best value is above {hi:g}: widen the bracket upward",
+                    param="bracket") from None
+        raise first
 
 
 def bisection(
@@ -180,7 +212,7 @@ def bisection(
     lo, hi = bracket
     mid = 0.5 * (lo + hi)
     first = [ev.trial(s, tube_id_mm) for s in (lo, mid, hi)]
-    ev.raise_if_all_failed()
+    ev.raise_if_all_failed((lo, hi))
     best = min(first, key=lambda t: t.average_error_pct)
     if best.average_error_pct < tol_pct:
         return best, True, []
@@ -190,12 +222,20 @@ def bisection(
     elif sgn[1] * sgn[2] <= 0:
         a, b, sa = mid, hi, sgn[1]
     else:
-        side = "above" if sgn[0] > 0 else "below"
-        beyond = f"below {lo:g}" if sgn[0] > 0 else f"above {hi:g}"
+        # simulated diameters above the measured ones everywhere: too soft even at the upper
+        # edge, so the hardness is above the bracket; below them: too stiff even at the lower
+        # edge, the hardness is below it
+        if sgn[0] > 0:
+            side, edge, way = "above", f"upper edge {hi:g}", "upward (raise its upper end)"
+            where = f"above {hi:g}"
+        else:
+            side, edge, way = "below", f"lower edge {lo:g}", "downward (lower its lower end)"
+            where = f"below {lo:g}"
         raise InputError(
             f"bracket [{lo:g}, {hi:g}] does not contain the hardness: simulated diameters are "
-            f"{side} the measured ones at both ends (hardness {beyond}?); widen the bracket"
-        )
+            f"{side} the measured ones at both ends, so the best value lies at the bracket's "
+            f"{edge} or beyond (hardness {where}); widen the bracket {way}",
+            param="bracket")
     t = first[1]
     for _ in range(max_iter):
         if b - a <= xtol:
@@ -272,12 +312,16 @@ def bounded(
 
     res = minimize_scalar(f, bounds=(lo, hi), method="bounded",
                           options={"xatol": xtol, "maxiter": max_iter})
-    ev.raise_if_all_failed()
+    ev.raise_if_all_failed((lo, hi))
     t = ev.trial(float(res.x), tube_id_mm)
     notes = []
     if min(t.shore - lo, hi - t.shore) <= 2 * xtol:  # type: ignore[operator]
-        notes.append(f"minimum at the bracket end (Shore {t.shore:.4g}): the hardness may lie "
-                     f"outside [{lo:g}, {hi:g}]")
+        low = t.shore - lo <= hi - t.shore  # type: ignore[operator]
+        edge, way = (f"lower edge {lo:g}", "downward") if low else (f"upper edge {hi:g}",
+                                                                   "upward")
+        notes.append(f"the lowest average error is at the bracket's {edge} (Shore "
+                     f"{t.shore:.4g}): the hardness may lie {'below' if low else 'above'} "
+                     f"[{lo:g}, {hi:g}]; widen the bracket {way}")
     if t.average_error_pct >= tol_pct:
         notes.append(f"best average error {t.average_error_pct:.3g}% is not below {tol_pct:g}%")
     return t, bool(res.success), notes

@@ -156,8 +156,9 @@ def run(argv: Sequence[str] | None = None) -> int:
         print(f"exofric: error: {msg}", file=sys.stderr)
         return 2
     except OSError as exc:  # files the user named: missing, unwritable, not a directory...
-        where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
-        print(f"exofric: error:{where} {exc.strerror or exc}", file=sys.stderr)
+        where = f" {exc.filename}:" if getattr(exc, "filename", None) else ""
+        why = " ".join(str(exc.strerror or exc).split())
+        print(f"exofric: error:{where} {why}", file=sys.stderr)
         return 2
     except Exception as exc:
         # exofric's own errors (neither is an OSError), imported only now: --help and typer's

@@ -59,15 +59,58 @@ def kv_table(title: str, rows: list[tuple[str, str, str]]) -> Table:
     return t
 
 
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def plot_path(path: str | Path) -> Path:
+    """The file a ``--plot PATH`` option writes: ``PATH``, or ``PATH.png`` without a suffix.
+
+    Refuses (:class:`~exofric.errors.InputError`, exit 2) an empty path, an existing directory
+    and a suffix matplotlib is not asked to write here (only .png, .svg, .pdf). Commands call
+    it before computing, so a bad path costs no solve.
+    """
+    from exofric.errors import InputError
+
+    text = str(path)
+    if not text.strip():
+        raise InputError("plot must name a file (.png, .svg or .pdf), got ''")
+    p = Path(text)
+    if p.is_dir():
+        raise InputError(f"plot {text} is a directory; give a file such as {p / 'figure.png'}",
+                         param="plot")
+    if not p.suffix:
+        p = p.with_name(p.name + ".png")
+    if p.suffix.lower() not in PLOT_SUFFIXES:
+        raise InputError(f"plot must end in .png, .svg or .pdf, got {text!r}", param="plot")
+    return p
+
+
+def out_file(name: str, path: str | Path) -> Path:
+    """``path`` as an output file: refuses (InputError) an empty path or an existing directory.
+
+    ``name`` is the Python parameter (``"vtu"``, ``"out"``); the CLI shows it as its flag.
+    """
+    from exofric.errors import InputError
+
+    text = str(path)
+    if not text.strip():
+        raise InputError(f"{name} must name a file, got ''", param=name)
+    p = Path(text)
+    if p.is_dir():
+        raise InputError(f"{name} {text} is a directory; give a file name", param=name)
+    return p
+
+
 def save_figure(fig: Any, path: str | Path) -> Path:
     """Write a figure drawn by :mod:`exofric.plots` to ``path`` (``--plot PATH`` options).
 
-    Creates the parent directory (as every ``--plot`` always did), then
-    :func:`exofric.plots.save` writes the image and closes the figure.
+    The path is checked by :func:`plot_path` (``out`` becomes ``out.png``); creates the parent
+    directory (as every ``--plot`` always did), then :func:`exofric.plots.save` writes the image
+    atomically and closes the figure. Returns the path written.
     """
     from exofric.plots import save
 
-    p = Path(path)
+    p = plot_path(path)
     p.parent.mkdir(parents=True, exist_ok=True)
     return save(fig, p)
 

@@ -6,7 +6,15 @@ from pathlib import Path
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats, save_figure
+from exofric.cli._common import (
+    JSON_OPTION,
+    console,
+    emit,
+    kv_table,
+    parse_floats,
+    plot_path,
+    save_figure,
+)
 
 
 def register(app: typer.Typer) -> None:
@@ -59,6 +67,8 @@ def register(app: typer.Typer) -> None:
         from exofric.errors import InputError
         from exofric.io import read_inflation_table
 
+        if plot is not None:
+            plot = plot_path(plot)
         lohi = parse_floats("--bracket", bracket)
         if len(lohi) != 2:
             raise InputError(f"--bracket must be two Shore A values lo,hi, got {bracket!r}")

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table, save_figure
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table, plot_path, save_figure
 
 if TYPE_CHECKING:
     from exofric.reproduction import CaseResult, CompareResult, ControlSetup
@@ -131,10 +131,11 @@ def _setup(target: float, structure: str, gamma: float | None, plant: str | None
     return setup
 
 
-def _plot_cases(cases: list[CaseResult], path: str, title: str) -> None:
+def _plot_cases(cases: list[CaseResult], path: str, title: str) -> str:
+    """Write the response plot; return the path written (``out`` -> ``out.png``)."""
     from exofric.plots import plot_control_cases
 
-    save_figure(plot_control_cases(cases, title=title), path)
+    return str(save_figure(plot_control_cases(cases, title=title), path))
 
 
 def _fmt(v: float | None, spec: str) -> str:
@@ -178,6 +179,9 @@ def register(app: typer.Typer) -> None:
         from exofric.control import CONTROLLERS, PIDGains, itae_gains
         from exofric.reproduction import run_case
 
+        if plot:
+            plot_path(plot)
+
         kind = controller.lower()
         if kind not in CONTROLLERS:
             raise InputError(f"--controller must be pd, pi or pid, got {controller!r}")
@@ -200,9 +204,10 @@ def register(app: typer.Typer) -> None:
                        gains=None if gains == rule.gains and tuning == "rule" else gains)
         if tuning == "itae":
             res = replace(res, tuning=replace(rule, gains=gains))
-        if plot:
-            _plot_cases([res], plot, f"target {setup.target_n:g} N")
+        written = _plot_cases([res], plot, f"target {setup.target_n:g} N") if plot else None
         d = res.to_dict()
+        if written:
+            d["plot"] = written
 
         def render() -> None:
             gd = d["gains"]
@@ -234,12 +239,16 @@ def register(app: typer.Typer) -> None:
         """The six cases of Fig 12 (PD, PI, PID; without/with the model) beside the paper."""
         from exofric.reproduction import compare
 
+        if plot:
+            plot_path(plot)
         setup = _setup(target_friction, structure, gamma, plant, step_csv, mismatch, tau_c,
                        ff_mode, antiwindup, dt, duration, band)
         res: CompareResult = compare(setup)
-        if plot:
-            _plot_cases(list(res.cases), plot, f"target {setup.target_n:g} N")
+        written = (_plot_cases(list(res.cases), plot, f"target {setup.target_n:g} N")
+                   if plot else None)
         d = res.to_dict()
+        if written:
+            d["plot"] = written
 
         def render() -> None:
             from rich.table import Table

@@ -13,7 +13,16 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table, parse_floats, save_figure
+from exofric.cli._common import (
+    JSON_OPTION,
+    console,
+    emit,
+    kv_table,
+    out_file,
+    parse_floats,
+    plot_path,
+    save_figure,
+)
 
 if TYPE_CHECKING:
     import numpy as np
@@ -72,10 +81,14 @@ def _register_fit(app: typer.Typer) -> None:
         """Fit the equivalent coefficient gamma (Eq 7) to friction data. MPa, N."""
         import numpy as np
 
+        from exofric.errors import check_seed
         from exofric.friction import fit_gamma
 
         _choice("--model", model, ("proportional", "affine"))
         _choice("--ci", ci, ("analytic", "ols", "bootstrap"))
+        check_seed("seed", seed)
+        if plot:
+            plot_path(plot)
         ps, ns = _squeeze_curve(squeeze)
         pf, ff, tests, synthetic = _friction_data(friction)
         fit = fit_gamma(pf, ff, ps, ns, model=model, ci=ci, seed=seed)  # type: ignore[arg-type]
@@ -158,6 +171,8 @@ def _register_predict(app: typer.Typer) -> None:
         from exofric.io import read_toml
         from exofric.material import MooneyRivlin
 
+        if plot:
+            plot_path(plot)
         if use_paper == (structures is not None):
             raise InputError("give exactly one of --structures FILE.toml or --paper")
         model = FrictionModel(gamma, f0)
@@ -283,10 +298,12 @@ def _register_rig(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Virtual friction rig: SYNTHETIC friction data F = gamma_true N(P) + errors. MPa, N."""
-        from exofric.errors import InputError
+        from exofric.errors import InputError, check_seed
         from exofric.friction import RigConfig, simulate_rig
         from exofric.io import write_text
 
+        check_seed("seed", seed)
+        out_file("out", out)
         ps, ns = _squeeze_curve(squeeze)
         cfg = RigConfig(noise_pct=noise_pct, noise_n=noise_n, offset_n=offset_n,
                         drift_n_per_s=drift, drag_n=drag_n, pressure_noise_mpa=pressure_noise,
@@ -297,7 +314,8 @@ def _register_rig(app: typer.Typer) -> None:
         try:
             write_text(op, run.to_csv_text())
         except OSError as exc:
-            raise InputError(f"--out {out}: cannot write ({exc.__class__.__name__})") from None
+            why = " ".join(str(exc.strerror or exc).split())
+            raise InputError(f"--out {out}: cannot write ({why})") from None
         d = run.to_dict()
         d["out"] = str(op)
 

@@ -8,7 +8,15 @@ from typing import TYPE_CHECKING
 import typer
 
 from exofric import defaults
-from exofric.cli._common import JSON_OPTION, console, emit, parse_floats, write_outputs
+from exofric.cli._common import (
+    JSON_OPTION,
+    console,
+    emit,
+    out_file,
+    parse_floats,
+    plot_path,
+    write_outputs,
+)
 
 if TYPE_CHECKING:
     from exofric.material import MooneyRivlin
@@ -62,8 +70,13 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Free plane-strain inflation (FE, quarter model): diameters vs pressure (mm, MPa)."""
         from exofric.fe import MeshSpec
+        from exofric.geometry import check_size_mm
         from exofric.simulate import inflate
 
+        plot = None if plot is None else plot_path(plot)
+        vtu = None if vtu is None else out_file("vtu", vtu)
+        check_size_mm("tube_od_mm", tube_od, "tube outer diameter d1")
+        check_size_mm("tube_id_mm", tube_id, "tube inner diameter")
         mat = material_from_options(shore, c10, c01, d)
         p = parse_floats("--pressures", pressures)
         mesh = None

@@ -7,7 +7,15 @@ from pathlib import Path
 import typer
 
 from exofric import defaults
-from exofric.cli._common import JSON_OPTION, console, emit, parse_floats, write_outputs
+from exofric.cli._common import (
+    JSON_OPTION,
+    console,
+    emit,
+    out_file,
+    parse_floats,
+    plot_path,
+    write_outputs,
+)
 from exofric.cli.inflate import material_from_options
 
 DEFAULT_P = ",".join(f"{0.05 * i:.2f}" for i in range(1, 13))
@@ -50,6 +58,8 @@ def register(app: typer.Typer) -> None:
         from exofric.geometry import Structure
         from exofric.simulate import squeeze
 
+        plot = None if plot is None else plot_path(plot)
+        vtu = None if vtu is None else out_file("vtu", vtu)
         mat = material_from_options(shore, c10, c01, d)
         st = Structure(hole, tube_od, tube_id, wire, length)
         p = parse_floats("--pressures", pressures)

@@ -8,7 +8,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from exofric import defaults
-from exofric.errors import InputError
+from exofric.errors import InputError, check_range
 from exofric.fe._hyperelastic import ElementState, HyperelasticBody
 from exofric.fe._loads import area_hessian
 from exofric.fe._mesh import TubeMesh, polar_mesh
@@ -49,6 +49,37 @@ class MeshSpec:
     kind: str = defaults.INFLATION_MESH["kind"]
     grading: float = defaults.INFLATION_MESH["grading"]
     formulation: str = defaults.INFLATION_MESH["formulation"]
+
+    def __post_init__(self) -> None:
+        """Refuse meshes that are not integers >= 1 or too large to solve (InputError)."""
+        import numbers
+
+        caps = (("n_radial", self.n_radial, defaults.MESH_MAX_N_RADIAL),
+                ("n_circ", self.n_circ, defaults.MESH_MAX_N_CIRC))
+        for name, v, cap in caps:
+            if isinstance(v, bool) or not isinstance(v, numbers.Integral):
+                raise InputError(f"{name} must be an integer in [1, {cap}], got {v!r}")
+            if v < 1:
+                raise InputError(f"{name} must be an integer in [1, {cap}], got {v}")
+        n_el = int(self.n_radial) * int(self.n_circ)
+        too_big = [f"{name} <= {cap}" for name, v, cap in caps if v > cap]
+        if too_big or n_el > defaults.MESH_MAX_ELEMENTS:
+            def gib(n: int) -> float:
+                return (defaults.MESH_BYTES_FIXED + defaults.MESH_BYTES_PER_ELEMENT * n) / 2**30
+
+            limits = ", ".join([*too_big, f"n_radial x n_circ <= {defaults.MESH_MAX_ELEMENTS}"])
+            raise InputError(
+                f"mesh {self.n_radial} x {self.n_circ} ({n_el} elements) would need about "
+                f"{gib(n_el):.3g} GiB of memory; allowed: {limits} elements "
+                f"(about {gib(defaults.MESH_MAX_ELEMENTS):.2g} GiB)",
+                param="n_circ" if self.n_circ > defaults.MESH_MAX_N_CIRC or
+                self.n_radial <= defaults.MESH_MAX_N_RADIAL else "n_radial")
+        if self.kind not in ("quad9", "quad4"):
+            raise InputError(f"kind must be 'quad9' or 'quad4', got {self.kind!r}")
+        if self.formulation not in ("mixed", "displacement"):
+            raise InputError(
+                f"formulation must be 'mixed' or 'displacement', got {self.formulation!r}")
+        check_range("grading", self.grading, 1.0, defaults.MESH_MAX_GRADING)
 
     def coarsened(self, radial: int = 1, circ: int = 2) -> MeshSpec:
         """The nested mesh with ``radial`` x ``circ`` times fewer elements.

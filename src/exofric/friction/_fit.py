@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from exofric.errors import InputError, check_range, check_series
+from exofric.errors import InputError, check_range, check_seed, check_series
 from exofric.friction._curve import SqueezeCurve
 from exofric.friction._model import FrictionModel
 
@@ -352,6 +352,7 @@ def fit_gamma(
         raise InputError(f"model must be 'proportional' or 'affine', got {model!r}")
     if ci not in ("analytic", "ols", "bootstrap"):
         raise InputError(f"ci must be 'analytic', 'ols' or 'bootstrap', got {ci!r}")
+    seed = check_seed("seed", seed)
     pf, ff = check_series("friction_pressure_mpa", friction_pressure_mpa, "friction_n",
                           friction_n, x_unit="MPa", y_unit="N", increasing=False,
                           min_points=1)

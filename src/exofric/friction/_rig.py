@@ -41,7 +41,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from exofric.errors import InputError, check_finite, check_positive, check_range, check_series
+from exofric.errors import (
+    InputError,
+    check_finite,
+    check_positive,
+    check_range,
+    check_seed,
+    check_series,
+)
 from exofric.friction._fit import match_squeeze
 
 __all__ = ["RigConfig", "RigRun", "simulate_rig"]
@@ -267,6 +274,7 @@ def simulate_rig(
     """
     cfg = config or RigConfig()
     g = check_positive("gamma_true", gamma_true)
+    seed = check_seed("seed", seed)
     if not isinstance(repeats, int) or not 1 <= repeats <= 100:
         raise InputError(f"repeats must be an integer in [1, 100], got {repeats!r}")
     ps, ns = check_series("squeeze_pressure_mpa", squeeze_pressure_mpa, "squeeze_force_n",

@@ -180,7 +180,7 @@ def shore_to_modulus(shore: float, correlation: str = "paper") -> float:
     >>> round(shore_to_modulus(62.5), 5)
     4.00333
     """
-    if correlation not in CORRELATIONS:
+    if not isinstance(correlation, str) or correlation not in CORRELATIONS:
         raise InputError(
             f"correlation must be one of {', '.join(CORRELATIONS)}, got {correlation!r}"
         )
@@ -228,9 +228,23 @@ class MooneyRivlin:
     correlation: str | None = None
 
     def __post_init__(self) -> None:
-        check_finite("c10", self.c10)
-        check_finite("c01", self.c01)
+        # Bounds far outside any rubber (silicones: C10 ~ 0.01-10 MPa, d ~ 1e-4-1e-1 1/MPa) but
+        # inside what the FE solver can take: C10, C01 within +-1e4 MPa, 1e-12 <= d <= 1e4 1/MPa
+        # (bulk/shear modulus ratio up to ~1e12; 1e300 reaches the solver as inf/NaN).
+        for name, v in (("c10", self.c10), ("c01", self.c01)):
+            if isinstance(v, (str, bytes, bool)) or v is None:
+                raise InputError(f"{name} must be a number in MPa, got {v!r}")
+            object.__setattr__(self, name, check_range(name, v, -1e4, 1e4, unit="MPa"))
+        if isinstance(self.d, (str, bytes, bool)) or self.d is None:
+            raise InputError(f"d must be a number in 1/MPa, got {self.d!r}")
         check_positive("d", self.d, "1/MPa")
+        object.__setattr__(self, "d", check_range("d", self.d, 1e-12, 1e4, unit="1/MPa"))
+        if self.shore is not None:
+            if isinstance(self.shore, (str, bytes, bool)):
+                raise InputError(f"shore must be a number or None, got {self.shore!r}")
+            object.__setattr__(self, "shore", check_finite("shore", self.shore))
+        if self.correlation is not None and not isinstance(self.correlation, str):
+            raise InputError(f"correlation must be a string or None, got {self.correlation!r}")
         if self.c10 + self.c01 <= 0.0:
             raise InputError(
                 f"c10 + c01 must be > 0 MPa (shear modulus 2(c10+c01)), got {self.c10 + self.c01:g}"

@@ -40,9 +40,11 @@ def finish(fig: Any, created: bool) -> None:
 def save(fig: Any, path: str | Path, *, dpi: int = 130, close: bool = True) -> Path:
     """Write a figure (or the figure of an Axes) to ``path`` and return the path.
 
-    The format follows the suffix (``.png``, ``.svg``, ``.pdf``). Only the image file is
-    written: the parent directory must exist. The figure is closed afterwards unless
-    ``close=False``.
+    The format follows the suffix (``.png``, ``.svg``, ``.pdf``); a path without a suffix gets
+    ``.png`` appended, and the path returned is the one written. The image is written
+    atomically (a temporary file in the same directory, then renamed): a failed write leaves no
+    partial file, and its :class:`OSError` names ``path``. Only the image file is written: the
+    parent directory must exist. The figure is closed afterwards unless ``close=False``.
 
     Parameters
     ----------
@@ -58,6 +60,7 @@ def save(fig: Any, path: str | Path, *, dpi: int = 130, close: bool = True) -> P
     Returns
     -------
     Path
+        The file written.
 
     Examples
     --------
@@ -70,14 +73,33 @@ def save(fig: Any, path: str | Path, *, dpi: int = 130, close: bool = True) -> P
     >>> out.stat().st_size > 0
     True
     """
+    import os
+    import uuid
+
     from matplotlib.axes import Axes
 
     figure: Any = fig.figure if isinstance(fig, Axes) else fig
     figure = getattr(figure, "figure", figure)  # the root figure of a SubFigure
     p = Path(path)
-    figure.savefig(p, dpi=dpi, bbox_inches="tight")
-    if close:
-        import matplotlib.pyplot as plt
+    if not p.suffix:  # matplotlib would write "out.png" for "out": name the file it writes
+        p = p.with_name(p.name + ".png")
+    fmt = p.suffix[1:].lower()
+    # atomic: a full disk or a killed process leaves a hidden temporary file, never a partial
+    # image under the requested name
+    tmp = p.parent / f".{p.name}.{uuid.uuid4().hex}.tmp"
+    try:
+        figure.savefig(tmp, dpi=dpi, bbox_inches="tight", format=fmt)
+        os.replace(tmp, p)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        raise OSError(exc.errno, f"cannot write the figure ({exc.strerror or exc})",
+                      str(p)) from None
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    finally:
+        if close:
+            import matplotlib.pyplot as plt
 
-        plt.close(figure)
+            plt.close(figure)
     return p

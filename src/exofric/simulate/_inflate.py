@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric import defaults
-from exofric.errors import InputError, check_positive, check_pressures
+from exofric.errors import InputError, check_pressures
 from exofric.fe import (
     InflationProblem,
     MeshSpec,
@@ -21,6 +21,7 @@ from exofric.fe import (
     solve_path,
     von_mises,
 )
+from exofric.geometry import check_size_mm
 from exofric.material import MooneyRivlin
 from exofric.simulate._analytic import incompressible_inflation, incompressible_limit_pressure
 from exofric.simulate._stretch import check_stretch
@@ -246,8 +247,8 @@ def inflate(
     >>> [round(float(d), 3) for d in r.outer_diameter_mm]
     [8.496, 9.584]
     """
-    od = check_positive("tube_od_mm", tube_od_mm, "mm")
-    idm = check_positive("tube_id_mm", tube_id_mm, "mm")
+    od = check_size_mm("tube_od_mm", tube_od_mm, "tube outer diameter")
+    idm = check_size_mm("tube_id_mm", tube_id_mm, "tube inner diameter")
     if idm >= od:
         raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {idm:g}")
     p = check_pressures("pressures_mpa", pressures_mpa, allow_zero=True)
