@@ -27,7 +27,9 @@ def test_material_json_acceptance(cli):
         "c01_mpa",
         "d_per_mpa",
         "k_mpa",
+        "warnings",
     }
+    assert d["warnings"] == []  # every --json lists the warnings printed (none here)
     for k, v in [
         ("e0_mpa", 4.00333),
         ("g_mpa", 1.33444),

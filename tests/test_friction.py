@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from exofric import paper
-from exofric.errors import InputError
+from exofric.errors import InputError, PlausibilityWarning
 from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction, torque
 
 EQ8 = paper.eq8()
@@ -142,7 +142,8 @@ def test_curve_inverse_exact_on_fe_like_curve() -> None:
 
 
 def test_curve_inverse_refuses_non_increasing() -> None:
-    with pytest.raises(InputError, match="not strictly increasing"):
+    with pytest.raises(InputError, match="not strictly increasing"), \
+            pytest.warns(PlausibilityWarning, match="falls from 5 to 4 N"):
         CurveInverse.from_curve([0.1, 0.2, 0.3, 0.4], [1.0, 5.0, 4.0, 6.0])
     with pytest.raises(InputError, match="strictly increasing"):
         CurveInverse.from_curve([0.1, 0.1, 0.3], [1.0, 5.0, 6.0])

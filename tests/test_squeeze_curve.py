@@ -9,7 +9,7 @@ import pytest
 from scipy.interpolate import CubicSpline
 
 from exofric.control import CurveFrictionMap
-from exofric.errors import InputError, check_series
+from exofric.errors import InputError, PlausibilityWarning, check_series
 from exofric.friction import CurveInverse, SqueezeCurve, match_squeeze
 
 # Closed form: no force before contact onset P0, then N = A (P - P0)^2 (N, MPa).
@@ -98,7 +98,8 @@ def test_inverse_range_and_errors() -> None:
 
 def test_first_crossing_on_a_non_monotone_curve() -> None:
     # N rises, dips, rises again: the least pressure reaching 30 N is in the first rise.
-    c = SqueezeCurve([0.0, 0.1, 0.2, 0.3, 0.4], [0.0, 40.0, 20.0, 60.0, 80.0])
+    with pytest.warns(PlausibilityWarning, match="falls from 40 to 20 N"):
+        c = SqueezeCurve([0.0, 0.1, 0.2, 0.3, 0.4], [0.0, 40.0, 20.0, 60.0, 80.0])
     p = c.pressure(30.0)
     assert 0.0 < p < 0.1 and c(p) == pytest.approx(30.0, abs=1e-9)
 

@@ -221,3 +221,24 @@ __all__ += ["MESH_BYTES_FIXED", "MESH_BYTES_PER_ELEMENT", "MESH_MAX_ELEMENTS", "
 SWEEP_SCHEDULER_CONNECT_S: Final = 3.0
 
 __all__ += ["SWEEP_SCHEDULER_CONNECT_S"]
+
+# --- Plausibility rules for data that parses (issue 21): warnings, or errors past them -------
+
+#: Inflation tests: largest drop of the outer diameter between consecutive pressures before a
+#: warning, relative to the diameter (0.5%: ~0.04 mm on an 8-10 mm tube, twice a caliper's or a
+#: camera's typical scatter). A net drop from the lowest to the highest pressure larger than this
+#: is impossible for an inflating tube: an error.
+PLAUSIBLE_OD_DROP_REL: Final = 0.005
+#: Squeeze curves N(P): largest drop between consecutive pressures before a warning, relative
+#: to the curve's largest force (2%: the rig's force scatter); a net drop larger than this from
+#: the first pressure with force to the last is an error (N grows with P).
+PLAUSIBLE_N_DROP_REL: Final = 0.02
+#: Step-response identification: R^2 below this warns that the first-order-plus-dead-time model
+#: does not describe the data (pneumatic steps fit it with R^2 > 0.95; pure noise gives ~0).
+PLAUSIBLE_IDENTIFY_MIN_R2: Final = 0.9
+#: Materials: a small-strain Poisson ratio below this warns (silicone rubber is nearly
+#: incompressible, the paper uses 0.498); <= 0 is an error, as in ``MooneyRivlin.from_shore``.
+PLAUSIBLE_POISSON_MIN: Final = 0.45
+
+__all__ += ["PLAUSIBLE_IDENTIFY_MIN_R2", "PLAUSIBLE_N_DROP_REL", "PLAUSIBLE_OD_DROP_REL",
+            "PLAUSIBLE_POISSON_MIN"]

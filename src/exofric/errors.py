@@ -17,7 +17,9 @@ if TYPE_CHECKING:  # numpy is imported where it is used: the CLI imports this mo
 __all__ = [
     "ConvergenceError",
     "InputError",
+    "PlausibilityWarning",
     "check_finite",
+    "warn_implausible",
     "check_positive",
     "check_pressures",
     "check_range",
@@ -79,6 +81,44 @@ class ConvergenceError(RuntimeError):
     def __init__(self, message: str, reached: float | None = None) -> None:
         super().__init__(message)
         self.reached = reached
+
+
+class PlausibilityWarning(UserWarning):
+    """Data that parses and is physically possible, but unlikely to be what the user meant.
+
+    Physically impossible data raises :class:`InputError`; implausible data warns with this
+    category (the CLI prints it as one ``exofric: warning:`` line and lists it under
+    ``warnings`` in ``--json``). Each check states its rule in its docstring.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as w:
+    ...     warnings.simplefilter("always")
+    ...     warn_implausible("R^2 = 0.003: the model explains nothing")
+    >>> w[0].category.__name__
+    'PlausibilityWarning'
+    """
+
+
+def warn_implausible(message: str) -> None:
+    """Warn (:class:`PlausibilityWarning`) with a one-line ``message``.
+
+    Parameters
+    ----------
+    message : str
+        What is implausible and what to check, one line.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")
+    ...     warn_implausible("the curve falls")
+    """
+    import warnings
+
+    warnings.warn(message, PlausibilityWarning, stacklevel=3)
 
 
 def check_finite(name: str, value: float) -> float:

@@ -16,8 +16,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from exofric import defaults
 from exofric._json import jsonable
-from exofric.errors import InputError
+from exofric.errors import InputError, warn_implausible
 from exofric.material import MooneyRivlin
 
 if TYPE_CHECKING:
@@ -52,6 +53,33 @@ def relative_errors_pct(simulated_mm: np.ndarray, measured_mm: np.ndarray) -> np
     [0.234]
     """
     return 100.0 * (np.asarray(simulated_mm, float) / np.asarray(measured_mm, float) - 1.0)
+
+
+def _check_growth(name: str, where: str, p: np.ndarray, od: np.ndarray) -> None:
+    """An inflating tube grows: the plausibility rule of :class:`InflationData`.
+
+    With ``tol = defaults.PLAUSIBLE_OD_DROP_REL x`` the diameter (0.5%, above measurement
+    scatter): a net drop from the lowest to the highest pressure larger than ``tol`` is an
+    error (impossible: columns swapped, or not an inflation test); a drop between consecutive
+    pressures larger than ``tol``, or no growth at all, is a warning.
+    """
+    tol = defaults.PLAUSIBLE_OD_DROP_REL * float(np.max(od))
+    first, last = (float(p[0]), float(od[0])), (float(p[-1]), float(od[-1]))
+    if last[1] < first[1] - tol:
+        raise InputError(f"{name}: outer_diameter_mm falls from {first[1]:g} mm at {first[0]:g} "
+                         f"MPa to {last[1]:g} mm at {last[0]:g} MPa{where}; an inflating tube "
+                         "grows (are the columns swapped?)")
+    drops = np.flatnonzero(np.diff(od) < -tol)
+    if drops.size:
+        k = int(drops[0])
+        warn_implausible(f"{name}: outer_diameter_mm falls from {od[k]:g} to {od[k + 1]:g} mm "
+                         f"between {p[k]:g} and {p[k + 1]:g} MPa{where}, more than the "
+                         f"{100 * defaults.PLAUSIBLE_OD_DROP_REL:g}% scatter allowed; check "
+                         "that row")
+    elif last[1] <= first[1]:
+        warn_implausible(f"{name}: outer_diameter_mm does not grow from {first[0]:g} to "
+                         f"{last[0]:g} MPa{where}; the fit will find no hardness that explains "
+                         "it")
 
 
 @dataclass(frozen=True)
@@ -117,6 +145,7 @@ class InflationData:
                 raise InputError(f"{name}: duplicate pressure_mpa {dup[0]:g}{where}")
             if pg.size < 2:
                 raise InputError(f"{name}: needs at least 2 data rows{where}, got {pg.size}")
+            _check_growth(name, where, pg, d[key == g])
         object.__setattr__(self, "pressure_mpa", p)
         object.__setattr__(self, "outer_diameter_mm", d)
         object.__setattr__(self, "shore", None if s is None else key)

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import typer
 
 from exofric._version import __version__
+from exofric.cli._common import WARNINGS, record_warning
 
 if TYPE_CHECKING:
     from exofric.errors import InputError
@@ -79,10 +80,6 @@ _ABORT: tuple[type[Exception], ...] = (typer.Abort, *_click_classes("Abort"))
 _USAGE: tuple[type[Exception], ...] = _click_classes("ClickException")
 
 
-def _warn_line(message, category, filename, lineno, file=None, line=None):  # type: ignore[no-untyped-def,unused-ignore]
-    print(f"exofric: warning: {message}", file=sys.stderr)
-
-
 _UNIT_SUFFIXES = ("_mpa", "_mm", "_nm", "_n", "_m", "_s", "_pct")
 
 
@@ -135,7 +132,8 @@ def _with_flags(exc: InputError, cmd: Any) -> str:
 
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the CLI with ``argv`` (default ``sys.argv[1:]``) and return the exit code."""
-    warnings.showwarning = _warn_line
+    warnings.showwarning = record_warning
+    WARNINGS.clear()
     # figures are only ever written to files: a non-interactive backend, chosen once here
     # (before anything imports matplotlib; a user's MPLBACKEND wins)
     os.environ.setdefault("MPLBACKEND", "Agg")

@@ -7,6 +7,7 @@ it imports, ``exofric --help`` pays for (``tests/test_startup.py``).
 from __future__ import annotations
 
 import json
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -20,11 +21,29 @@ JSON_OPTION = typer.Option(False, "--json", help="Print exactly one JSON object 
 console = Console()
 
 
+#: Every warning printed during this command (``exofric: warning: ...`` on stderr): ``--json``
+#: output lists them under ``warnings``, so a script that reads only the JSON sees them too.
+WARNINGS: list[str] = []
+
+
+def record_warning(message: object, *args: Any, **kwargs: Any) -> None:
+    """``warnings.showwarning`` of the CLI: one stderr line, also kept for ``--json``."""
+    text = " ".join(str(message).split())
+    WARNINGS.append(text)
+    print(f"exofric: warning: {text}", file=sys.stderr)
+
+
 def emit(obj: dict[str, Any], as_json: bool, render: Callable[[], None]) -> None:
-    """Print ``obj`` as one JSON object if ``as_json``, else call ``render``."""
+    """Print ``obj`` as one JSON object if ``as_json``, else call ``render``.
+
+    The JSON object always has a ``warnings`` list: the command's own (if ``obj`` has one) and
+    every warning printed on stderr while it ran (implausible data, ranges of validity).
+    """
     if as_json:
         from exofric.io import jsonable
 
+        seen = [*obj.get("warnings", []), *WARNINGS]
+        obj = {**obj, "warnings": list(dict.fromkeys(str(w) for w in seen))}
         print(json.dumps(jsonable(obj)))
     else:
         render()

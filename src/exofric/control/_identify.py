@@ -27,8 +27,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric import defaults
 from exofric.control._plant import PlantParams
-from exofric.errors import InputError, check_series
+from exofric.errors import InputError, check_series, warn_implausible
 
 __all__ = ["IdentifiedPlant", "identify_step", "fopdt_response"]
 
@@ -232,6 +233,12 @@ def identify_step(
     InputError
         Mismatched lengths, fewer than 10 samples, no step, or a response with no change.
 
+    Warns
+    -----
+    PlausibilityWarning
+        When the fit explains less than ``defaults.PLAUSIBLE_IDENTIFY_MIN_R2`` (0.9) of the
+        response's variance (R^2): the model, and gains tuned on it, do not describe the data.
+
     Examples
     --------
     >>> import numpy as np
@@ -304,6 +311,11 @@ def identify_step(
         se = np.full(4, np.nan)
     ss_tot = float(np.sum((p - p.mean()) ** 2))
     r2 = 1.0 - float(resid @ resid) / ss_tot
+    if r2 < defaults.PLAUSIBLE_IDENTIFY_MIN_R2:  # the rule: see defaults
+        warn_implausible(f"step response: the first-order-plus-dead-time model explains only "
+                         f"R^2 = {r2:.3f} of the pressure (< "
+                         f"{defaults.PLAUSIBLE_IDENTIFY_MIN_R2:g}); the plant and any gains "
+                         "tuned on it are not meaningful; check that the file holds one step")
     step = float(k * du[main])
     gain = 1.0 if gain_assumed else float(k)
     return IdentifiedPlant(

@@ -19,12 +19,38 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from exofric.errors import InputError, check_finite, check_series
+from exofric import defaults
+from exofric.errors import InputError, check_finite, check_series, warn_implausible
 
 if TYPE_CHECKING:
     from exofric.simulate import SqueezeResult
 
 __all__ = ["SqueezeCurve"]
+
+
+def _check_rise(p: np.ndarray, n: np.ndarray) -> None:
+    """The squeeze force grows with pressure: the plausibility rule of :class:`SqueezeCurve`.
+
+    With ``tol = defaults.PLAUSIBLE_N_DROP_REL x`` the largest force (2%, the rig's scatter):
+    a net drop larger than ``tol`` from the first pressure with force to the last is an error
+    (an inflating tube squeezes harder; the columns may be swapped); a drop between
+    consecutive pressures larger than ``tol`` is a warning.
+    """
+    if n.size < 2 or float(np.max(n)) <= 0.0:
+        return
+    tol = defaults.PLAUSIBLE_N_DROP_REL * float(np.max(n))
+    k0 = int(np.argmax(n > 0.0))
+    if n[-1] < n[k0] - tol:
+        raise InputError(f"squeeze curve: squeeze_force_n falls from {n[k0]:g} N at {p[k0]:g} "
+                         f"MPa to {n[-1]:g} N at {p[-1]:g} MPa; the squeeze force grows with "
+                         "pressure (are the columns swapped?)", param="squeeze_force_n")
+    drops = np.flatnonzero(np.diff(n) < -tol)
+    if drops.size:
+        k = int(drops[0])
+        warn_implausible(f"squeeze curve: squeeze_force_n falls from {n[k]:g} to {n[k + 1]:g} N "
+                         f"between {p[k]:g} and {p[k + 1]:g} MPa, more than the "
+                         f"{100 * defaults.PLAUSIBLE_N_DROP_REL:g}% scatter allowed; check "
+                         "that row")
 
 
 @dataclass(frozen=True, init=False)
@@ -80,6 +106,7 @@ class SqueezeCurve:
         p, n = check_series("pressure_mpa", pressure_mpa, "squeeze_force_n", squeeze_force_n,
                             x_unit="MPa", y_unit="N", x_min=0.0, y_min=0.0,
                             where="squeeze curve")
+        _check_rise(p, n)
         object.__setattr__(self, "pressure_mpa", tuple(p.tolist()))
         object.__setattr__(self, "squeeze_force_n", tuple(n.tolist()))
 

@@ -23,7 +23,14 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from statistics import NormalDist
 
-from exofric.errors import InputError, check_finite, check_positive, check_range
+from exofric import defaults
+from exofric.errors import (
+    InputError,
+    check_finite,
+    check_positive,
+    check_range,
+    warn_implausible,
+)
 
 __all__ = [
     "CORRELATIONS",
@@ -208,7 +215,11 @@ class MooneyRivlin:
     c10, c01 : float
         Material constants in MPa (``c10 + c01 > 0``).
     d : float
-        Incompressibility parameter in 1/MPa (``d > 0``; bulk modulus ``2/d``).
+        Incompressibility parameter in 1/MPa (``d > 0``; bulk modulus ``2/d``). The implied
+        small-strain Poisson ratio must be > 0 (``d < 3 / (2 (c10 + c01))``, else
+        :class:`~exofric.errors.InputError`); below ``defaults.PLAUSIBLE_POISSON_MIN`` (0.45)
+        a :class:`~exofric.errors.PlausibilityWarning` says the rubber is not nearly
+        incompressible.
     shore : float or None
         The Shore A hardness it was built from, if any.
     correlation : str or None
@@ -249,6 +260,18 @@ class MooneyRivlin:
             raise InputError(
                 f"c10 + c01 must be > 0 MPa (shear modulus 2(c10+c01)), got {self.c10 + self.c01:g}"
             )
+        # the implied small-strain Poisson ratio: <= 0 is refused (as from_shore refuses it),
+        # below defaults.PLAUSIBLE_POISSON_MIN warns (a rubber is nearly incompressible)
+        mu = 2.0 * (self.c10 + self.c01)
+        nu = self.poisson
+        if nu <= 0.0:
+            raise InputError(f"d must be < 3 / (2 (c10 + c01)) = {3.0 / mu:.4g} 1/MPa (implied "
+                             f"Poisson ratio > 0), got {self.d:g} (Poisson ratio {nu:.3f})",
+                             param="d")
+        if nu < defaults.PLAUSIBLE_POISSON_MIN:
+            warn_implausible(f"d = {self.d:g} 1/MPa implies a Poisson ratio of {nu:.3f}; a "
+                             f"silicone is nearly incompressible (0.49-0.4999, the paper 0.498):"
+                             f" is d in 1/MPa?")
 
     @classmethod
     def from_shore(
