@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from exofric import paper
-from exofric.io import jsonable, write_json
+from exofric.io import jsonable, write_json, write_text
 from exofric.plots import (
     plot_control_cases,
     plot_cubic_fit,
@@ -333,7 +333,7 @@ def write_report(
     data["notes_files"] = [name for name, _ in notes]
     data["report_time_s"] = time.perf_counter() - t0   # figures; the HTML adds milliseconds
     html_path = out / "report.html"
-    html_path.write_text(render_html(data, figs, notes), encoding="utf-8")
+    html_path = write_text(html_path, render_html(data, figs, notes))  # atomic
     json_path = write_json(data, out / "results.json")
     return ReportFiles(out, html_path, json_path, figs, tuple(data["notes_files"]),
                        time.perf_counter() - t0)
