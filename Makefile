@@ -14,7 +14,7 @@ export MKL_NUM_THREADS ?= 1
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q -e ".[dask,report,bench,dev]"
+	$(BIN)/python -m pip install -q -e ".[dask,report,bench,dev,tdms]"
 	@touch $(STAMP)
 
 setup: $(STAMP)

@@ -140,7 +140,6 @@ def test_fit_friction_affine_and_tests_column(capsys: pytest.CaptureFixture[str]
         ("pressure_mpa,force_n\n0.2,1\n0.3,2\n", "missing column 'friction_n'"),
         ("pressure_mpa,friction_n\n0.2,1\n0.3,abc\n", "data row 2, column 'friction_n'"),
         ("pressure_mpa,friction_n\n0.2,1\n0.3,-2\n", "must be >= 0"),
-        ("pressure_mpa,friction_n\n0.2,1\n0.2,2\n", "duplicate pressure_mpa"),
         ("pressure_kpa,friction_n\n200,1\n300,2\n", "wrong unit"),
         ("pressure_mpa,friction_n\n0.2,1\n", "at least 2 data rows"),
         ("", "no header row"),
@@ -154,6 +153,26 @@ def test_bad_friction_csv(capsys: pytest.CaptureFixture[str], tmp_path: Path,
                           str(bad), "--json")
     _one_line_error(code, err, needle)
     assert out == ""
+
+
+def test_replicate_csv_fits_with_its_replicates(capsys: pytest.CaptureFixture[str],
+                                                tmp_path: Path, squeeze_csv: Path) -> None:
+    """Five pulls per pressure (issue 14): no 'duplicate pressure' error; the CI clusters the
+    replicates and the lack-of-fit ANOVA uses them (pure error on n - G dof)."""
+    ps, ns = np.loadtxt(squeeze_csv, delimiter=",", skiprows=1, unpack=True)
+    rng = np.random.default_rng(3)
+    p = np.repeat([0.3, 0.4, 0.5, 0.6], 5)
+    f = 0.7 * np.interp(p, ps, ns) * (1 + 0.02 * rng.standard_normal(p.size))
+    rep = tmp_path / "replicates.csv"
+    rows = "".join(f"{a},{b:.4f}\n" for a, b in zip(p, f, strict=True))
+    rep.write_text("pressure_mpa,friction_n\n" + rows)
+    code, out, err = _run(capsys, "fit-friction", "--squeeze", str(squeeze_csv), "--friction",
+                          str(rep), "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["n_points"] == 20 and d["n_clusters"] == 4 and d["ci_method"] == "cluster"
+    assert d["lack_of_fit"]["df_pure_error"] == 16 and d["lack_of_fit"]["df_lack_of_fit"] == 3
+    assert abs(d["gamma"] / 0.7 - 1) < 0.02
 
 
 @pytest.mark.parametrize(

@@ -242,3 +242,58 @@ PLAUSIBLE_POISSON_MIN: Final = 0.45
 
 __all__ += ["PLAUSIBLE_IDENTIFY_MIN_R2", "PLAUSIBLE_N_DROP_REL", "PLAUSIBLE_OD_DROP_REL",
             "PLAUSIBLE_POISSON_MIN"]
+
+# --- Raw rig logs (exofric.io.read_raw_log; issue 14) ----------------------------------------
+
+#: A time step longer than this multiple (unitless) of the log's median step is a gap: an error
+#: naming the time range (a logger that dropped samples; reducing across it would average
+#: unrelated data).
+RAWLOG_MAX_GAP_FACTOR: Final = 10.0
+#: Fewest samples a raw log must have.
+RAWLOG_MIN_SAMPLES: Final = 20
+
+__all__ += ["RAWLOG_MAX_GAP_FACTOR", "RAWLOG_MIN_SAMPLES"]
+
+# --- Reducing raw rig logs (exofric.friction.reduce_log, `exofric reduce`; issue 14) ----------
+
+#: A pressure plateau: the smoothed pressure moves less than max(abs, rel x level) over
+#: REDUCE_MIN_PLATEAU_S (0.005 MPa is 5 kPa, a regulator's typical hold accuracy; 2 % keeps the
+#: band proportionate at high pressure).
+REDUCE_PLATEAU_TOL_MPA: Final = 0.005
+REDUCE_PLATEAU_TOL_REL: Final = 0.02
+#: Shortest pressure plateau (s).
+REDUCE_MIN_PLATEAU_S: Final = 1.0
+#: Moving-median window for the pressure and displacement channels (s).
+REDUCE_SMOOTH_S: Final = 0.1
+#: Travel (mm, with a displacement column) or time (s, without) excluded from the start of a
+#: pull before the steady (kinetic) window: the stretch and the breakaway transient.
+REDUCE_SKIP_MM: Final = 2.0
+REDUCE_SKIP_S: Final = 1.0
+#: Time excluded at the end of a pull (deceleration) (s).
+REDUCE_END_TRIM_S: Final = 0.1
+#: Shortest pull (s); shorter motions are listed as skipped.
+REDUCE_MIN_PULL_S: Final = 0.5
+#: Tare: rest windows of this length (s) before and after each pull, starting this long (s)
+#: after a pull ends or before one starts (the wire relaxes).
+REDUCE_TARE_S: Final = 0.5
+REDUCE_TARE_GAP_S: Final = 0.3
+#: Moving-average window of the breakaway (static) peak (s): short against the breakaway transient,
+#: whose cusp a longer average flattens (0.02 s loses ~1 % of the peak on the virtual rig; 0.005 s
+#: loses ~0.3 % and halves nothing of the noise: the raw maximum is as good).
+REDUCE_STATIC_WINDOW_S: Final = 0.005
+#: A pull: displacement speed above this share (unitless) of the log's typical pull speed (95th
+#: percentile).
+REDUCE_SPEED_FRACTION: Final = 0.3
+#: Without displacement: a pull is where the force leaves its rest level by more than this many
+#: rest-noise standard deviations (unitless).
+REDUCE_FORCE_SIGMAS: Final = 8.0
+#: Warn when the force drifts by more than this share of the kinetic friction over its window (%).
+REDUCE_DRIFT_WARN_PCT: Final = 5.0
+#: Samples flat at the force channel's extreme that mean saturation.
+REDUCE_SATURATION_SAMPLES: Final = 5
+
+__all__ += ["REDUCE_DRIFT_WARN_PCT", "REDUCE_END_TRIM_S", "REDUCE_FORCE_SIGMAS",
+            "REDUCE_MIN_PLATEAU_S", "REDUCE_MIN_PULL_S", "REDUCE_PLATEAU_TOL_MPA",
+            "REDUCE_PLATEAU_TOL_REL", "REDUCE_SATURATION_SAMPLES", "REDUCE_SKIP_MM",
+            "REDUCE_SKIP_S", "REDUCE_SMOOTH_S", "REDUCE_SPEED_FRACTION", "REDUCE_STATIC_WINDOW_S",
+            "REDUCE_TARE_GAP_S", "REDUCE_TARE_S"]

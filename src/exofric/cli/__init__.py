@@ -169,7 +169,13 @@ def run(argv: Sequence[str] | None = None) -> int:
         if isinstance(exc, ConvergenceError):
             print(f"exofric: did not converge: {exc}", file=sys.stderr)
             return 3
-        raise
+        if os.environ.get("EXOFRIC_DEBUG"):
+            raise
+        # A bug, not the user's input: one line, never a traceback (EXOFRIC_DEBUG=1 shows it).
+        what = " ".join(f"{type(exc).__name__}: {exc}".split())
+        print(f"exofric: internal error: {what} (a bug in exofric: please report it with the "
+              "command line; EXOFRIC_DEBUG=1 prints the traceback)", file=sys.stderr)
+        return 1
     return int(rv) if isinstance(rv, int) else 0
 
 

@@ -47,6 +47,42 @@ def _friction_data(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray
             df["test"].to_numpy(str), bool(df.attrs["synthetic"]))
 
 
+def _fit_inputs(path: str, columns: str | None) -> dict[str, Any]:
+    """Friction points for fit-friction from a raw log (reduced here), a pull table or a
+    pressure_mpa,friction_n[,test] table: pressures (MPa), friction (N), cluster labels, and
+    per-point standard deviations for errors-in-variables when the data give them."""
+    import numpy as np
+
+    from exofric.cli.reduce import is_raw_log, reduce_files
+    from exofric.errors import InputError
+    from exofric.friction import ReduceSettings, friction_curve
+    from exofric.io import read_friction_table
+
+    if not Path(path).is_file():
+        raise InputError(f"{path}: file not found", param="friction")
+    if is_raw_log(path) or columns:
+        reds, pulls, meta = reduce_files([path], columns, ReduceSettings())
+        curve, _ = friction_curve(pulls)
+        sd_at = {(b, sp): sd for b, sp, sd in zip(curve["branch"], curve["setpoint"],
+                                                   curve["kinetic_sd_n"], strict=True)}
+        fsd = np.array([sd_at[(b if b == "up" else "down", sp)]
+                        for b, sp in zip(pulls["branch"], pulls["setpoint"], strict=True)])
+        return {"kind": "raw log", "pressure": pulls["pressure_mpa"].to_numpy(float),
+                "friction": pulls["kinetic_n"].to_numpy(float),
+                "groups": pulls["plateau"].to_numpy(), "tests": np.zeros(len(pulls), str),
+                "synthetic": any("SYNTHETIC" in m.upper() for m in meta),
+                "pressure_sd": np.maximum(pulls["pressure_se_mpa"].to_numpy(float), 1e-6),
+                "friction_sd": fsd, "reduction": {"n_pulls": len(pulls),
+                                                  "n_skipped": len(reds[0].skipped),
+                                                  "curve": curve}}
+    df = read_friction_table(path)
+    return {"kind": str(df.attrs.get("kind", "points")),
+            "pressure": df["pressure_mpa"].to_numpy(float),
+            "friction": df["friction_n"].to_numpy(float), "groups": df["group"].to_numpy(str),
+            "tests": df["test"].to_numpy(str), "synthetic": bool(df.attrs["synthetic"]),
+            "pressure_sd": None, "friction_sd": None, "reduction": None}
+
+
 def _two(name: str, text: str) -> tuple[float, float]:
     from exofric.errors import InputError
 
@@ -69,11 +105,22 @@ def _register_fit(app: typer.Typer) -> None:
     def fit_friction(
         squeeze: str = typer.Option(..., help="Squeeze curve N(P): JSON from `exofric squeeze "
                                     "--json` or CSV pressure_mpa,squeeze_force_n."),
-        friction: str = typer.Option(..., help="Friction CSV pressure_mpa,friction_n[,test]."),
+        friction: str = typer.Option(..., help="Friction data: CSV pressure_mpa,friction_n"
+                                     "[,test] (replicates allowed), the per-pull table of "
+                                     "`exofric reduce --out`, or a raw rig log (reduced first)."),
         model: str = typer.Option("proportional", help="proportional (F = gamma N, paper) or "
                                   "affine (F = gamma N + F0)."),
-        ci: str = typer.Option("analytic", help="95% CI: analytic (t x HC3 robust standard "
-                               "error), ols (classical) or bootstrap (pairs, percentile)."),
+        ci: str = typer.Option("auto", help="95% CI: auto (cluster with replicates, else "
+                               "analytic), analytic (t x HC3), ols, bootstrap (pairs), cluster "
+                               "(CR3 over pressure plateaus) or odr (errors in pressure too)."),
+        pressure_sd: float | None = typer.Option(None, "--pressure-sd", help="Pressure error sd "
+                                                 "in MPa for --ci odr (raw logs: each pull's "
+                                                 "standard error)."),
+        friction_sd: float | None = typer.Option(None, "--friction-sd", help="Friction error sd "
+                                                 "in N for --ci odr (raw logs: the between-pull "
+                                                 "sd at the pull's set point)."),
+        columns: str | None = typer.Option(None, "--columns", help="Header map for a raw log "
+                                           "(see `exofric reduce --help`)."),
         seed: int = typer.Option(0, help="Bootstrap RNG seed."),
         plot: str | None = typer.Option(None, help="Write a PNG of the fit and residuals."),
         as_json: bool = JSON_OPTION,
@@ -81,20 +128,39 @@ def _register_fit(app: typer.Typer) -> None:
         """Fit the equivalent coefficient gamma (Eq 7) to friction data. MPa, N."""
         import numpy as np
 
-        from exofric.errors import check_seed
+        from exofric.errors import InputError, check_seed
         from exofric.friction import fit_gamma
 
         _choice("--model", model, ("proportional", "affine"))
-        _choice("--ci", ci, ("analytic", "ols", "bootstrap"))
+        _choice("--ci", ci, ("auto", "analytic", "ols", "bootstrap", "cluster", "odr"))
         check_seed("seed", seed)
         if plot:
             plot_path(plot)
+        if ci != "odr" and (pressure_sd is not None or friction_sd is not None):
+            raise InputError("pressure_sd and friction_sd are for --ci odr only",
+                             param="pressure_sd")
         ps, ns = _squeeze_curve(squeeze)
-        pf, ff, tests, synthetic = _friction_data(friction)
-        fit = fit_gamma(pf, ff, ps, ns, model=model, ci=ci, seed=seed)  # type: ignore[arg-type]
+        data = _fit_inputs(friction, columns)
+        kw: dict[str, Any] = {}
+        if ci == "odr":
+            psd = pressure_sd if pressure_sd is not None else data["pressure_sd"]
+            fsd = friction_sd if friction_sd is not None else data["friction_sd"]
+            if psd is None or fsd is None:
+                raise InputError("--ci odr needs --pressure-sd MPa and --friction-sd N (a raw "
+                                 "log gives both)", param="pressure_sd")
+            if fsd is not None and np.ndim(fsd) and not np.all(np.isfinite(fsd)):
+                raise InputError("--ci odr: a set point has a single pull, so no between-pull "
+                                 "sd; give --friction-sd N", param="friction_sd")
+            kw = {"pressure_sd_mpa": psd, "friction_sd_n": fsd}
+        fit = fit_gamma(data["pressure"], data["friction"], ps, ns, model=model,  # type: ignore[arg-type]
+                        ci=ci, seed=seed, groups=data["groups"], **kw)  # type: ignore[arg-type]
         d = fit.to_dict()
+        synthetic = data["synthetic"]
         d["synthetic"] = synthetic
-        d["n_tests"] = int(np.unique(tests).size)
+        d["n_tests"] = int(np.unique(data["tests"]).size)
+        d["data_kind"] = data["kind"]
+        if data["reduction"] is not None:
+            d["reduction"] = data["reduction"]
         if plot:
             from exofric.plots import plot_gamma_fit
 
@@ -114,9 +180,14 @@ def _register_fit(app: typer.Typer) -> None:
                 ("mean |relative error|", f"{fit.relative_error_pct:.2f}", "%"),
                 ("max relative error", f"{fit.max_relative_error_pct:.2f}", "%"),
                 ("points used / dropped", f"{fit.n_points} / {fit.n_dropped}", ""),
+                ("pressure clusters", str(fit.n_clusters), ""),
             ]
             title = "Equivalent coefficient" + (" (SYNTHETIC data)" if synthetic else "")
             console.print(kv_table(title, rows))
+            if fit.ci_note:
+                console.print(f"CI: {fit.ci_note}")
+            if fit.lack_of_fit is not None:
+                console.print(f"lack of fit: {fit.lack_of_fit.verdict}")
 
         emit(d, as_json, render)
 
@@ -282,35 +353,103 @@ def _register_rig(app: typer.Typer) -> None:
     def rig(
         squeeze: str = typer.Option(..., help="Squeeze curve N(P) (JSON or CSV)."),
         gamma_true: float = typer.Option(..., help="Planted equivalent coefficient gamma."),
-        out: str = typer.Option(..., help="Output friction CSV (labelled SYNTHETIC)."),
+        out: str = typer.Option(..., help="Output: friction CSV, or with --raw a raw log "
+                                "(.csv or .parquet) plus OUT-stem.truth.json (labelled "
+                                "SYNTHETIC)."),
         pressures: str | None = typer.Option(None, help="Set points in MPa (default: the "
                                              "curve's pressures with N > 0)."),
-        noise_pct: float = typer.Option(2.0, help="Load-cell noise, % of force (1 sigma)."),
-        noise_n: float = typer.Option(0.0, help="Load-cell noise in N (1 sigma)."),
-        offset_n: float = typer.Option(0.0, help="Load-cell zero offset in N (tared)."),
-        drift: float = typer.Option(0.0, help="Load-cell drift in N/s."),
+        raw: bool = typer.Option(False, "--raw", help="Write the raw time series (time, "
+                                 "pressure, force, displacement) with planted truths."),
+        noise_pct: float | None = typer.Option(None, help="Load-cell noise, % of force (1 "
+                                               "sigma; default 2, raw 0.3)."),
+        noise_n: float | None = typer.Option(None, help="Load-cell noise in N (1 sigma; "
+                                             "default 0, raw 0.1)."),
+        offset_n: float | None = typer.Option(None, help="Load-cell zero offset in N (tared; "
+                                              "default 0, raw 5)."),
+        drift: float | None = typer.Option(None, help="Load-cell drift in N/s (default 0, "
+                                           "raw 0.01)."),
         drag_n: float = typer.Option(0.0, help="Pressure-independent drag F0 in N."),
-        pressure_noise: float = typer.Option(0.0, help="Pressure sensor noise in MPa."),
-        sample_rate: float = typer.Option(100.0, help="Logger rate in Hz."),
+        pressure_noise: float | None = typer.Option(None, help="Pressure sensor noise in MPa "
+                                                    "(default 0, raw 0.002)."),
+        sample_rate: float | None = typer.Option(None, help="Logger rate in Hz (default 100, "
+                                                 "raw 500)."),
         pull_speed: float = typer.Option(2.0, help="Wire speed in mm/s."),
-        repeats: int = typer.Option(1, help="Repeated tests (adds a test column)."),
+        repeats: int | None = typer.Option(None, help="Repeated tests (adds a test column); "
+                                           "raw: pulls per direction and plateau (default 5)."),
+        directions: str = typer.Option("both", help="raw: both (forward and backward pulls) "
+                                       "or forward."),
+        sweep: str = typer.Option("up", help="raw: up, or up-down (two branches)."),
+        static_ratio: float = typer.Option(1.3, help="raw: static / kinetic friction."),
+        stick_slip_pct: float = typer.Option(1.0, help="raw: stick-slip amplitude, % of "
+                                             "friction."),
+        bias_n: float = typer.Option(1.5, "--bias-n", help="raw: force of constant sign while "
+                                     "moving (gravity) in N."),
+        hysteresis_pct: float = typer.Option(0.0, help="raw: down-branch friction above the "
+                                             "up branch, %."),
+        noise_tau: float = typer.Option(0.02, help="raw: load-cell noise correlation time "
+                                        "in s."),
+        pull_scatter_pct: float = typer.Option(1.5, help="raw: per-pull friction scatter "
+                                               "(1 sigma), %."),
+        plateau_scatter_pct: float = typer.Option(1.0, help="raw: per-plateau friction "
+                                                  "scatter (1 sigma), %."),
         seed: int = typer.Option(0, help="RNG seed (deterministic output)."),
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Virtual friction rig: SYNTHETIC friction data F = gamma_true N(P) + errors. MPa, N."""
         from exofric.errors import InputError, check_seed
-        from exofric.friction import RigConfig, simulate_rig
-        from exofric.io import write_text
+        from exofric.friction import RawRigConfig, RigConfig, simulate_raw_log, simulate_rig
+        from exofric.io import write_json, write_raw_log, write_text
 
         check_seed("seed", seed)
-        out_file("out", out)
+        op = out_file("out", out)
         ps, ns = _squeeze_curve(squeeze)
-        cfg = RigConfig(noise_pct=noise_pct, noise_n=noise_n, offset_n=offset_n,
-                        drift_n_per_s=drift, drag_n=drag_n, pressure_noise_mpa=pressure_noise,
-                        sample_rate_hz=sample_rate, pull_speed_mm_per_s=pull_speed)
         sp = parse_floats("--pressures", pressures) if pressures else None
-        run = simulate_rig(ps, ns, gamma_true, sp, config=cfg, seed=seed, repeats=repeats)
-        op = Path(out)
+        given: dict[str, Any] = {k: v for k, v in {
+            "noise_pct": noise_pct, "noise_n": noise_n, "drift_n_per_s": drift,
+            "pressure_noise_mpa": pressure_noise, "sample_rate_hz": sample_rate}.items()
+            if v is not None}
+        if raw:
+            if op.suffix.lower() not in (".csv", ".parquet"):
+                raise InputError(f"out must end in .csv or .parquet with --raw, got {out!r}",
+                                 param="out")
+            if offset_n is not None:
+                given["tare_offset_n"] = offset_n
+            _choice("--directions", directions, ("both", "forward"))
+            _choice("--sweep", sweep, ("up", "up-down"))
+            rcfg = RawRigConfig(
+                pull_speed_mm_per_s=pull_speed, replicates=5 if repeats is None else repeats,
+                directions=directions, sweep=sweep,  # type: ignore[arg-type]
+                static_ratio=static_ratio, stick_slip_pct=stick_slip_pct, bias_n=bias_n,
+                drag_n=drag_n, hysteresis_pct=hysteresis_pct, noise_tau_s=noise_tau,
+                pull_scatter_pct=pull_scatter_pct, plateau_scatter_pct=plateau_scatter_pct,
+                **given)
+            log = simulate_raw_log(ps, ns, gamma_true, sp, config=rcfg, seed=seed)
+            truth_path = op.with_name(op.stem + ".truth.json")
+            try:
+                write_raw_log(op, log.to_frame(), log.metadata())
+                write_json(log.to_dict(), truth_path)
+            except OSError as exc:
+                why = " ".join(str(exc.strerror or exc).split())
+                raise InputError(f"--out {out}: cannot write ({why})") from None
+            d = {k: v for k, v in log.to_dict().items() if k != "pulls"}
+            d.update({"n_pulls": log.n_pulls, "out": str(op), "truth": str(truth_path)})
+
+            def render_raw() -> None:
+                console.print(kv_table("Virtual rig, raw log (SYNTHETIC)", [
+                    ("gamma_true", f"{gamma_true:g}", ""),
+                    ("plateaus / pulls", f"{len(log.setpoints_mpa)} / {log.n_pulls}", ""),
+                    ("samples logged", str(d["n_samples"]), ""),
+                    ("duration", f"{d['duration_s']:.1f}", "s"),
+                    ("log written", str(op), ""),
+                    ("truths written", str(truth_path), "")]))
+
+            emit(d, as_json, render_raw)
+            return
+        if offset_n is not None:
+            given["offset_n"] = offset_n
+        cfg = RigConfig(drag_n=drag_n, pull_speed_mm_per_s=pull_speed, **given)
+        run = simulate_rig(ps, ns, gamma_true, sp, config=cfg, seed=seed,
+                           repeats=1 if repeats is None else repeats)
         try:
             write_text(op, run.to_csv_text())
         except OSError as exc:

@@ -12,11 +12,16 @@ torque in Nm, arm radius in m.
   interpolation, its slope dN/dP and its inverse P(N); the one interpolant of FE curves.
 * :class:`CurveInverse` -- the exact inverse of a tabulated (FE) curve N(P) by monotone (PCHIP)
   interpolation of P against N, which the paper lacked.
-* :func:`fit_gamma` -> :class:`GammaFit` -- gamma (Eq 7) from rig data with a CI.
+* :func:`fit_gamma` -> :class:`GammaFit` -- gamma (Eq 7) from rig data with a CI (cluster-robust
+  with replicate pulls, or errors-in-variables) and a :class:`LackOfFit` F test.
 * :func:`predict` -> :class:`PredictionSet` -- friction of other structures (Table 3) and the
   applicability check; :func:`anova_vs_base` (Table 4).
 * :func:`torque` -- T = F R and a requirement check (knee 0-40 Nm).
-* :func:`simulate_rig` -- the virtual friction rig (synthetic, labelled as such).
+* :func:`simulate_rig` -- the virtual friction rig (synthetic, labelled as such);
+  :func:`simulate_raw_log` -- the same rig writing raw time-series logs with planted truths.
+* :func:`reduce_log` -> :class:`RigReduction` -- a raw rig log (time, pressure, force,
+  displacement) segmented into plateaus and pulls: static and kinetic friction per pull with
+  autocorrelation-aware errors, direction bias, up/down hysteresis.
 
 Examples
 --------
@@ -36,7 +41,13 @@ from exofric._lazy import facade
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.friction._curve import SqueezeCurve
-    from exofric.friction._fit import GammaFit, fit_gamma, match_squeeze, relative_errors
+    from exofric.friction._fit import (
+        GammaFit,
+        LackOfFit,
+        fit_gamma,
+        match_squeeze,
+        relative_errors,
+    )
     from exofric.friction._inverse import CurveInverse
     from exofric.friction._model import CubicFit, FrictionModel, pressure_for_friction
     from exofric.friction._predict import (
@@ -50,6 +61,15 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         predict,
         structures_from_dict,
     )
+    from exofric.friction._rawrig import RawRigConfig, RawRigLog, simulate_raw_log
+    from exofric.friction._reduce import (
+        ReduceSettings,
+        RigReduction,
+        friction_curve,
+        integrated_autocorr_time,
+        pool_pulls,
+        reduce_log,
+    )
     from exofric.friction._rig import RigConfig, RigRun, simulate_rig
     from exofric.friction._stats import AnovaResult, anova_vs_base, one_way_anova
     from exofric.friction._torque import TorqueCheck, torque
@@ -58,12 +78,17 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
 # from its module on first use (exofric/__init__.py does the same one level up).
 _MODULES: dict[str, tuple[str, ...]] = {
     "_curve": ("SqueezeCurve",),
-    "_fit": ("GammaFit", "fit_gamma", "match_squeeze", "relative_errors"),
+    "_fit": ("GammaFit", "LackOfFit", "fit_gamma", "match_squeeze", "relative_errors"),
     "_inverse": ("CurveInverse",),
     "_model": ("CubicFit", "FrictionModel", "pressure_for_friction"),
     "_predict": (
         "ApplicabilityWarning", "Deviation", "MeasuredCurve", "Prediction", "PredictionSet",
         "deviation", "paper_structures", "predict", "structures_from_dict",
+    ),
+    "_rawrig": ("RawRigConfig", "RawRigLog", "simulate_raw_log"),
+    "_reduce": (
+        "ReduceSettings", "RigReduction", "friction_curve", "integrated_autocorr_time",
+        "pool_pulls", "reduce_log",
     ),
     "_rig": ("RigConfig", "RigRun", "simulate_rig"),
     "_stats": ("AnovaResult", "anova_vs_base", "one_way_anova"),
@@ -73,9 +98,14 @@ _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "anova_vs_base", "AnovaResult", "ApplicabilityWarning", "CubicFit", "CurveInverse",
-    "Deviation", "deviation", "fit_gamma", "FrictionModel", "GammaFit", "match_squeeze",
+    "Deviation", "deviation", "fit_gamma", "FrictionModel", "GammaFit", "LackOfFit",
+    "match_squeeze",
     "MeasuredCurve", "one_way_anova", "paper_structures", "predict", "Prediction", "PredictionSet",
-    "pressure_for_friction", "relative_errors", "RigConfig", "RigRun", "simulate_rig",
+    "pressure_for_friction", "RawRigConfig", "RawRigLog", "ReduceSettings", "reduce_log",
+    "friction_curve", "integrated_autocorr_time", "pool_pulls", "relative_errors", "RigConfig",
+    "RigReduction",
+    "RigRun",
+    "simulate_raw_log", "simulate_rig",
     "SqueezeCurve", "structures_from_dict", "torque", "TorqueCheck",
 ]
 

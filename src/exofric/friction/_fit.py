@@ -18,33 +18,63 @@ Relative error measures (the paper's "relative error of 10.68 %" in Sec. 3.5 is 
 
 Points with F_i = 0 are left out of the relative measures (undefined there).
 
-The 95 % confidence interval is ``analytic`` by default: the t quantile (n - k dof; k = 1
+Without replicates the 95 % confidence interval is ``analytic`` (what the default ``ci="auto"``
+picks then): the t quantile (n - k dof; k = 1
 for gamma alone, 2 for the affine fit) times the heteroscedasticity-robust HC3 sandwich
 standard error, because load-cell noise usually scales with the reading. On the virtual rig
 (9 points, 400 seeds) it covered the planted gamma in 93-97 % of runs for relative and for
 absolute noise, where the classical OLS standard error (``ci="ols"``) covered only 84 % under
 2 % relative noise. A seeded pairs ``bootstrap`` (percentile interval) is also available.
+
+Replicates (several pulls at one pressure) are clusters: points with exactly the same pressure
+form one by default, or ``groups`` labels them (e.g. the pressure plateau a pull belongs to).
+Between-pull scatter is then usually the larger error, and the pulls of one plateau share it,
+so with replicates the default ``ci="auto"`` becomes ``"cluster"``: a cluster-robust
+covariance (CR3, the leave-one-cluster-out jackknife of MacKinnon, Nielsen & Webb 2023, or CR1,
+the Liang-Zeger sandwich with the small-sample factor of statsmodels' ``cov_type="cluster"``;
+:data:`_CLUSTER_VARIANT` selects) with a t quantile on G - 1 dof for G clusters. Without
+replicates ``"auto"`` is ``"analytic"``, so such fits are unchanged. ``ci="odr"`` fits
+errors-in-variables (orthogonal distance regression, :func:`odrpack.odr_fit`) for a noisy
+pressure reading, given the standard deviations of pressure and friction. With replicates
+and more clusters than parameters, the residual sum of squares is split into pure error and
+lack of fit (:class:`LackOfFit`, an F test of the model against the cluster means).
 """
 
 from __future__ import annotations
 
+from collections.abc import Hashable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from exofric.errors import InputError, check_range, check_seed, check_series
+from exofric.errors import (
+    ConvergenceError,
+    InputError,
+    check_range,
+    check_seed,
+    check_series,
+)
 from exofric.friction._curve import SqueezeCurve
 from exofric.friction._model import FrictionModel
 
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["GammaFit", "fit_gamma", "match_squeeze", "relative_errors"]
+__all__ = ["GammaFit", "LackOfFit", "fit_gamma", "match_squeeze", "relative_errors"]
 
 ModelKind = Literal["proportional", "affine"]
-CiMethod = Literal["analytic", "ols", "bootstrap"]
+CiMethod = Literal["auto", "analytic", "ols", "bootstrap", "cluster", "odr"]
+ClusterVariant = Literal["cr1", "cr3", "cr2bm"]
+
+#: Cluster-robust covariance used by ``ci="cluster"``: "cr2bm" (CR2 with Bell-McCaffrey degrees
+#: of freedom, working variance proportional to the fitted force; the default, chosen by the
+#: coverage study in benchmarks/bench_rig_coverage.py), "cr3" (leave-one-cluster-out jackknife,
+#: t on G - 1 dof) or "cr1" (Liang-Zeger sandwich x G/(G-1) x (n-1)/(n-k), t on G - 1 dof).
+_CLUSTER_VARIANT: ClusterVariant = "cr2bm"
+_VARIANT_TEXT = {"cr1": "CR1 sandwich", "cr3": "CR3 jackknife",
+                 "cr2bm": "CR2 with Bell-McCaffrey dof"}
 
 
 def match_squeeze(
@@ -126,6 +156,73 @@ def _signed_max(err_pct: NDArray[np.float64]) -> float:
 
 
 @dataclass(frozen=True)
+class LackOfFit:
+    """Lack-of-fit F test of the least-squares fit against the cluster (replicate) means.
+
+    The residual sum of squares of the fit splits into pure error, the scatter of the points
+    about their cluster's mean friction (df n - G), and lack of fit, the rest (df G - k);
+    F = (SS_lof / df_lof) / (SS_pe / df_pe) is F(df_lof, df_pe) distributed when the model
+    holds and the cluster means are its only misfit. Identical to statsmodels'
+    ``anova_lm(fit, fit on cluster dummies)``.
+
+    Attributes
+    ----------
+    ss_lack_of_fit, ss_pure_error : float
+        Sums of squares in N^2 (lack of fit is clamped at 0 when a cluster spans several
+        pressures and the model happens to beat the cluster means).
+    df_lack_of_fit, df_pure_error : int
+        Their degrees of freedom, G - k and n - G (G clusters, n points, k parameters).
+    f_stat : float
+        F statistic (unitless; inf when the pure error is 0 and the lack of fit is not).
+    p_value : float
+        Upper tail probability of ``f_stat`` under F(df_lack_of_fit, df_pure_error).
+    alpha : float
+        Significance level of :attr:`significant` (unitless, default 0.05).
+
+    Examples
+    --------
+    >>> lof = LackOfFit(12.0, 30.0, 3, 30, 4.0, 0.016)
+    >>> lof.significant, lof.to_dict()["df_pure_error"]
+    (True, 30)
+    """
+
+    ss_lack_of_fit: float
+    ss_pure_error: float
+    df_lack_of_fit: int
+    df_pure_error: int
+    f_stat: float
+    p_value: float
+    alpha: float = 0.05
+
+    @property
+    def significant(self) -> bool:
+        """True when the lack of fit is significant at :attr:`alpha` (p < alpha)."""
+        return bool(self.p_value < self.alpha)
+
+    @property
+    def verdict(self) -> str:
+        """One sentence: the F test and what it means for the model."""
+        test = (f"F = {self.f_stat:.3g} on {self.df_lack_of_fit} and {self.df_pure_error} dof, "
+                f"p = {self.p_value:.3g}")
+        if self.significant:
+            return (f"significant lack of fit ({test}): the cluster means deviate from the "
+                    "model by more than the scatter between replicates explains (a model "
+                    "error, or a cluster-to-cluster effect such as re-seating, which the "
+                    "cluster-robust interval allows for)")
+        return (f"no significant lack of fit ({test}): the model explains the cluster means "
+                "within the scatter between replicates")
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict of the fields plus ``significant`` and ``verdict`` (SS in N^2)."""
+        return {
+            "ss_lack_of_fit": self.ss_lack_of_fit, "ss_pure_error": self.ss_pure_error,
+            "df_lack_of_fit": self.df_lack_of_fit, "df_pure_error": self.df_pure_error,
+            "f_stat": self.f_stat, "p_value": self.p_value, "alpha": self.alpha,
+            "significant": self.significant, "verdict": self.verdict,
+        }
+
+
+@dataclass(frozen=True)
 class GammaFit:
     """Result of the Eq 7 least-squares fit of gamma (and F0 for the affine model).
 
@@ -138,24 +235,35 @@ class GammaFit:
         95 % confidence interval of gamma.
     f0_ci95_n : (lo, hi) or None
         95 % confidence interval of F0 in N (affine only).
-    ci_method : {"analytic", "ols", "bootstrap"}
+    ci_method : {"analytic", "ols", "bootstrap", "cluster", "odr"}
+        How the interval was computed (``"auto"`` resolved).
     pressure_mpa, squeeze_force_n, friction_n, predicted_friction_n : tuple of float
-        The matched points used (MPa, N).
+        The matched points used (MPa, N), sorted by pressure.
     relative_error_pct : float
         Mean absolute relative error in % (primary measure; see module docstring).
     max_relative_error_pct, rms_relative_error_pct : float
         Signed largest relative error and relative RMS residual, in %.
     n_dropped : int
         Friction points outside the squeeze curve's pressure range (not used).
+    n_clusters : int
+        Number of clusters G among the points used (distinct pressures, or distinct
+        ``groups`` labels); 0 when not recorded.
+    lack_of_fit : LackOfFit or None
+        Lack-of-fit F test, when some cluster has >= 2 points and G exceeds the number of
+        parameters; else None.
+    ci_note : str
+        One sentence: what the interval accounts for.
+    group : tuple
+        Cluster label of each point used (empty when not recorded).
 
     Examples
     --------
     >>> fit = fit_gamma([0.2, 0.4, 0.6], [70.0, 140.0, 190.0], [0.2, 0.4, 0.6],
     ...                 [100.0, 200.0, 268.55])
-    >>> round(fit.gamma, 4), fit.n_points, fit.kind
-    (0.7044, 3, 'proportional')
-    >>> round(fit.relative_error_pct, 2)
-    0.57
+    >>> round(fit.gamma, 4), fit.n_points, fit.kind, fit.ci_method
+    (0.7044, 3, 'proportional', 'analytic')
+    >>> round(fit.relative_error_pct, 2), fit.n_clusters, fit.lack_of_fit is None
+    (0.57, 3, True)
     """
 
     model: FrictionModel
@@ -171,6 +279,10 @@ class GammaFit:
     max_relative_error_pct: float
     rms_relative_error_pct: float
     n_dropped: int
+    n_clusters: int = 0
+    lack_of_fit: LackOfFit | None = None
+    ci_note: str = ""
+    group: tuple[Any, ...] = ()
 
     @property
     def gamma(self) -> float:
@@ -199,11 +311,14 @@ class GammaFit:
             "gamma": self.gamma,
             "gamma_ci95": list(self.gamma_ci95),
             "ci_method": self.ci_method,
+            "ci_note": self.ci_note,
             "relative_error_pct": self.relative_error_pct,
             "max_relative_error_pct": self.max_relative_error_pct,
             "rms_relative_error_pct": self.rms_relative_error_pct,
             "n_points": self.n_points,
             "n_dropped": self.n_dropped,
+            "n_clusters": self.n_clusters,
+            "lack_of_fit": None if self.lack_of_fit is None else self.lack_of_fit.to_dict(),
             "pressure_mpa": list(self.pressure_mpa),
             "squeeze_force_n": list(self.squeeze_force_n),
             "friction_n": list(self.friction_n),
@@ -220,7 +335,8 @@ class GammaFit:
         """The matched data points as a DataFrame: one row per point used (MPa, N, %).
 
         Columns: ``pressure_mpa``, ``squeeze_force_n``, ``friction_n`` (measured),
-        ``predicted_friction_n``, ``residual_n`` and ``relative_error_pct``.
+        ``predicted_friction_n``, ``residual_n``, ``relative_error_pct`` and ``group`` (the
+        cluster label; the pressure when none was recorded).
 
         Returns
         -------
@@ -242,6 +358,7 @@ class GammaFit:
             "predicted_friction_n": np.asarray(self.predicted_friction_n, dtype=float),
             "residual_n": self.residual_n,
             "relative_error_pct": self.point_relative_error_pct,
+            "group": list(self.group) if self.group else list(self.pressure_mpa),
         })
 
     def plot(self, fig: Any | None = None, *, title: str = "") -> Any:
@@ -302,6 +419,212 @@ def _covariance(
     return np.asarray(xtx_inv @ (x.T * w) @ x @ xtx_inv)
 
 
+def _factorize(labels: Any) -> tuple[NDArray[np.intp], int]:
+    """Cluster codes 0..G-1 of any hashable labels (vectorised for numbers and strings)."""
+    arr = np.asarray(labels)
+    if arr.ndim == 1 and arr.dtype != object:
+        _, codes = np.unique(arr, return_inverse=True)
+    else:                       # objects (tuples, mixed types): hash them, in order of first use
+        seen: dict[Hashable, int] = {}
+        try:
+            codes = np.array([seen.setdefault(v, len(seen)) for v in labels], dtype=np.intp)
+        except TypeError:
+            raise InputError("groups labels must be hashable (numbers, text or tuples)") from None
+    codes = np.asarray(codes, dtype=np.intp).ravel()
+    return codes, int(codes.max()) + 1 if codes.size else 0
+
+
+def _labels(groups: Any, size: int) -> NDArray[Any]:
+    """One cluster label per friction point as a 1-D array (object dtype for tuples etc.)."""
+    arr = np.asarray(groups) if isinstance(groups, np.ndarray) else None
+    if arr is None or arr.ndim != 1:
+        items = list(groups) if np.ndim(groups) > 0 or isinstance(groups, (list, tuple)) else []
+        arr = np.empty(len(items), dtype=object)
+        arr[:] = items
+        if items and (all(isinstance(v, str) for v in items) or all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) for v in items)):
+            arr = np.asarray(items)           # one plain type: np.unique can sort it
+    if arr.size != size:
+        raise InputError(f"groups has {arr.size} labels, need one per friction point ({size})")
+    return arr
+
+
+def _cluster_covariance(
+    x: NDArray[np.float64],
+    f: NDArray[np.float64],
+    beta: NDArray[np.float64],
+    codes: NDArray[np.intp],
+    n_clusters: int,
+    variant: ClusterVariant,
+) -> NDArray[np.float64]:
+    """Cluster-robust covariance of the OLS estimate ``beta`` of f on the design ``x`` (m, k).
+
+    ``cr1``: (X'X)^-1 (sum_g s_g s_g') (X'X)^-1 x G/(G-1) x (m-1)/(m-k) with the cluster score
+    s_g = sum_(i in g) x_i e_i (statsmodels' ``cov_type="cluster"``). ``cr3``: the
+    leave-one-cluster-out jackknife (G-1)/G sum_g (b_(g) - b)(b_(g) - b)', each b_(g) solved
+    in closed form from the per-cluster sums X_g'X_g and X_g'f_g (no refit loop). Raises
+    InputError when leaving out a cluster leaves the parameters unidentified.
+    """
+    m, k = x.shape
+    g = n_clusters
+    xtx = x.T @ x
+    if variant == "cr1":
+        e = f - x @ beta
+        s = np.stack([np.bincount(codes, weights=x[:, j] * e, minlength=g) for j in range(k)],
+                     axis=1)                                            # (G, k) scores
+        a = np.linalg.inv(xtx)
+        c = g / (g - 1.0) * (m - 1.0) / (m - k)
+        return np.asarray(c * a @ (s.T @ s) @ a)
+    xtx_g = np.empty((g, k, k))
+    for i in range(k):
+        for j in range(i, k):
+            xtx_g[:, i, j] = xtx_g[:, j, i] = np.bincount(codes, weights=x[:, i] * x[:, j],
+                                                          minlength=g)
+    xty_g = np.stack([np.bincount(codes, weights=x[:, j] * f, minlength=g) for j in range(k)],
+                     axis=1)
+    a_g = xtx[None] - xtx_g                                             # (G, k, k)
+    det = np.linalg.det(a_g)
+    bad = np.flatnonzero(~(np.abs(det) > 1e-10 * abs(float(np.linalg.det(xtx)))))
+    if bad.size:
+        raise InputError(f"ci cluster (CR3): leaving out cluster {int(bad[0]) + 1} of {g} "
+                         "leaves too few distinct squeeze forces to fit the model; use more "
+                         "clusters or the CR1 variant")
+    b_g = np.linalg.solve(a_g, ((x.T @ f)[None] - xty_g)[..., None])[..., 0]  # (G, k)
+    d = b_g - beta[None]
+    return np.asarray((g - 1.0) / g * (d.T @ d))
+
+
+def _cr2_bm(
+    x: NDArray[np.float64], f: NDArray[np.float64], beta: NDArray[np.float64],
+    codes: NDArray[np.intp], n_clusters: int,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """CR2 covariance and Bell-McCaffrey degrees of freedom per coefficient.
+
+    CR2 (Bell & McCaffrey 2002): (X'X)^-1 sum_g X_g' A_g e_g e_g' A_g X_g (X'X)^-1 with
+    A_g = (I - H_gg)^(-1/2), unbiased when the working model holds. The t quantile uses the
+    Satterthwaite degrees of freedom of that variance, (sum lambda)^2 / sum lambda^2 over the
+    eigenvalues of G' W G, G_g = (I - H)_(:,g) A_g X_g (X'X)^-1 l (Imbens & Kolesar 2016;
+    Pustejovsky & Tipton 2018), with the working variance W proportional to the fitted force
+    (scatter between constant and proportional to the force). With few clusters, or a few
+    clusters of large force that dominate the fit, the dof fall well below G - 1 and the
+    interval widens: that is what keeps its coverage at 95 %. G x G and n_g x n_g matrices
+    only (no n x n matrix).
+    """
+    m, k = x.shape
+    g = n_clusters
+    a = np.linalg.inv(x.T @ x)
+    e = f - x @ beta
+    w = np.abs(x @ beta)
+    w = np.where(w > 0, w, max(float(w.max()), 1.0) * 1e-6)
+    order = np.argsort(codes, kind="stable")
+    bounds = np.searchsorted(codes[order], np.arange(g + 1))
+    meat = np.zeros((k, k))
+    v_all = np.zeros((m, k))          # A_g X_g a_l for each coefficient l (columns)
+    for c in range(g):
+        idx = order[bounds[c]:bounds[c + 1]]
+        xg = x[idx]
+        lam, vec = np.linalg.eigh(np.eye(idx.size) - xg @ a @ xg.T)
+        ag = (vec / np.sqrt(np.clip(lam, 1e-12, None))) @ vec.T
+        u = xg.T @ (ag @ e[idx])
+        meat += np.outer(u, u)
+        v_all[idx] = ag @ (xg @ a)
+    cov = a @ meat @ a
+    dof = np.empty(k)
+    for j in range(k):
+        v = v_all[:, j]
+        xtv = np.stack([np.bincount(codes, weights=x[:, i] * v, minlength=g)
+                        for i in range(k)], axis=1)               # (G, k): X_g' v_g
+        cmat = a @ xtv.T                                          # (k, G)
+        sws = np.bincount(codes, weights=w * v * v, minlength=g)  # S' W S (diagonal)
+        swx = np.stack([np.bincount(codes, weights=w * v * x[:, i], minlength=g)
+                        for i in range(k)], axis=1)               # (G, k): S' W X
+        xwx = (x * w[:, None]).T @ x
+        gwg = np.diag(sws) - swx @ cmat - cmat.T @ swx.T + cmat.T @ xwx @ cmat
+        dof[j] = float(np.trace(gwg) ** 2 / np.sum(gwg * gwg))
+    return np.asarray(cov), dof
+
+
+def _lack_of_fit(
+    f: NDArray[np.float64], res: NDArray[np.float64], codes: NDArray[np.intp], n_clusters: int,
+    k: int,
+) -> LackOfFit | None:
+    """Pure-error / lack-of-fit split of the residual sum of squares, or None without replicates."""
+    from scipy import stats
+
+    m, g = f.size, n_clusters
+    if g >= m or g <= k:
+        return None
+    size = np.bincount(codes, minlength=g)
+    mean = np.bincount(codes, weights=f, minlength=g) / size
+    ss_pe = float(np.sum((f - mean[codes]) ** 2))
+    ss_lof = max(float(res @ res) - ss_pe, 0.0)
+    df_lof, df_pe = g - k, m - g
+    with np.errstate(divide="ignore", invalid="ignore"):
+        fs = float(np.float64(ss_lof / df_lof) / np.float64(ss_pe / df_pe))
+    p = float(stats.f.sf(fs, df_lof, df_pe)) if not np.isnan(fs) else float("nan")
+    return LackOfFit(ss_lof, ss_pe, df_lof, df_pe, fs, p)
+
+
+def _point_sd(name: str, value: ArrayLike | None, size: int, unit: str) -> NDArray[np.float64]:
+    """A standard deviation per friction point (float or array), finite and > 0."""
+    if value is None:
+        raise InputError(f"{name} is required for ci='odr' (standard deviation in {unit}, a "
+                         "number or one per friction point)")
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number or a list of numbers ({unit})") from None
+    if a.ndim > 1 or (a.ndim == 1 and a.size != size):
+        raise InputError(f"{name} must be a number or one value per friction point ({size}), "
+                         f"got {a.size} values")
+    if not np.all(np.isfinite(a) & (a > 0)):
+        bad = a.ravel()[~(np.isfinite(a.ravel()) & (a.ravel() > 0))][0]
+        raise InputError(f"{name} must be finite and > 0 {unit}, got {bad:g}")
+    return np.broadcast_to(a, (size,)).astype(float)
+
+
+def _sd_text(sd: NDArray[np.float64], unit: str) -> str:
+    return f"{sd[0]:g} {unit}" if np.all(sd == sd[0]) else f"{sd.min():g}-{sd.max():g} {unit}"
+
+
+def _odr(
+    curve: SqueezeCurve, p: NDArray[np.float64], f: NDArray[np.float64],
+    sd_p: NDArray[np.float64], sd_f: NDArray[np.float64], beta0: NDArray[np.float64],
+    affine: bool, tol: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Errors-in-variables fit of F = gamma N(P) (+ F0) by odrpack: (beta, sd_beta)."""
+    from odrpack import odr_fit
+
+    lo, hi = curve.pressure_range_mpa
+    lo, hi = lo - tol, hi + tol
+
+    def clip(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.clip(x, lo, hi)        # N is flat beyond the matched range (+ edge tolerance)
+
+    def fn(x: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+        y = b[0] * curve(clip(x), edge_tol_mpa=tol)
+        return np.asarray(y + b[1] if affine else y, dtype=float)
+
+    def jac_beta(x: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+        nx = curve(clip(x), edge_tol_mpa=tol)
+        return np.vstack([nx, np.ones_like(nx)]) if affine else nx[None, :]
+
+    def jac_x(x: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+        inside = (x >= lo) & (x <= hi)
+        return np.asarray(b[0] * curve.slope(clip(x), edge_tol_mpa=tol) * inside, dtype=float)
+
+    sol = odr_fit(fn, p, f, beta0 if affine else beta0[:1], weight_x=1.0 / sd_p**2,
+                  weight_y=1.0 / sd_f**2, jac_beta=jac_beta, jac_x=jac_x)
+    if not sol.success:
+        raise ConvergenceError(f"errors-in-variables (ODR) fit of gamma did not converge: "
+                               f"{sol.stopreason}")
+    beta = np.asarray(sol.beta, dtype=float)
+    sd = np.asarray(sol.sd_beta, dtype=float)
+    if not affine:
+        beta, sd = np.append(beta, 0.0), np.append(sd, 0.0)
+    return beta, sd
+
+
 def fit_gamma(
     friction_pressure_mpa: ArrayLike,
     friction_n: ArrayLike,
@@ -309,34 +632,63 @@ def fit_gamma(
     squeeze_force_n: ArrayLike,
     *,
     model: ModelKind = "proportional",
-    ci: CiMethod = "analytic",
+    ci: CiMethod = "auto",
     n_boot: int = 2000,
     seed: int = 0,
+    groups: ArrayLike | None = None,
+    pressure_sd_mpa: ArrayLike | None = None,
+    friction_sd_n: ArrayLike | None = None,
 ) -> GammaFit:
     """Fit gamma (Eq 7) to friction points against a squeeze curve N(P).
 
     Parameters
     ----------
     friction_pressure_mpa, friction_n : array_like
-        Measured pressures (MPa) and friction forces (N); several tests may be pooled.
+        Measured pressures (MPa) and friction forces (N); several tests may be pooled and
+        pressures may repeat (replicate pulls).
     squeeze_pressure_mpa, squeeze_force_n : array_like
         Squeeze curve N(P) (MPa, N), e.g. from ``exofric squeeze``.
     model : {"proportional", "affine"}
         F = gamma N (paper, default) or F = gamma N + F0.
-    ci : {"analytic", "ols", "bootstrap"}
-        How the 95 % CI is computed: HC3-robust t interval (default), classical OLS t
-        interval, or pairs bootstrap (see module docstring).
+    ci : {"auto", "analytic", "ols", "bootstrap", "cluster", "odr"}
+        How the 95 % CI is computed:
+
+        * ``"auto"`` (default): ``"cluster"`` when some cluster has >= 2 points (and there
+          are enough clusters, see below), else ``"analytic"``;
+        * ``"analytic"``: t (n - k dof) x HC3-robust standard error; ``"ols"``: classical;
+        * ``"bootstrap"``: pairs bootstrap over points, percentile interval;
+        * ``"cluster"``: t (G - 1 dof) x cluster-robust standard error (CR3 jackknife by
+          default, see the module docstring); needs G >= 2 clusters (proportional) or 3
+          (affine). ``"auto"`` falls back to ``"analytic"`` below that and says so in
+          ``ci_note``;
+        * ``"odr"``: errors-in-variables. The pressure is read with error: ODR (odrpack)
+          minimises sum (dP_i / sd_P,i)^2 + (F_i - gamma N(P_i + dP_i) - F0)^2 / sd_F,i^2
+          with N the PCHIP squeeze curve and dN/dP its slope in the Jacobian. Its estimate
+          replaces the least-squares one; the interval is t (n - k dof) x the parameter sd
+          that ODR reports, which is scaled by the residual variance (the weighted sum of
+          squares / (n - k)), so only the ratio of the two sds matters for the width.
     n_boot, seed : int
         Bootstrap resamples and RNG seed (bootstrap only).
+    groups : array_like, optional
+        Cluster label of each friction point (any hashable, e.g. the pressure plateau of a
+        pull). Default: points with exactly the same pressure form a cluster.
+    pressure_sd_mpa, friction_sd_n : float or array_like, optional
+        Standard deviations of the pressure reading (MPa) and of the friction (N), a number
+        or one per friction point, > 0; required for (and only used by) ``ci="odr"``.
 
     Returns
     -------
     GammaFit
+        With ``n_clusters``, ``ci_note`` and, when replicates exist, the ``lack_of_fit`` F
+        test of the least-squares fit (also for ``ci="odr"``).
 
     Raises
     ------
     InputError
-        Too few points inside the squeeze curve's range, or a degenerate squeeze curve.
+        Too few points inside the squeeze curve's range, a degenerate squeeze curve, too few
+        clusters for ``ci="cluster"``, missing or bad sds for ``ci="odr"``.
+    ConvergenceError
+        The ODR fit did not converge.
 
     Examples
     --------
@@ -345,18 +697,37 @@ def fit_gamma(
     >>> fit = fit_gamma(p, 0.7 * n, p, n)
     >>> round(fit.gamma, 12), fit.relative_error_pct < 1e-9
     (0.7, True)
+
+    Five pulls at each of five pressures: the interval is cluster-robust.
+
+    >>> pr = np.repeat(p, 5); f = 0.7 * 400 * pr**2 * (1 + 0.02 * np.tile([-2, -1, 0, 1, 2], 5))
+    >>> rep = fit_gamma(pr, f, p, n)
+    >>> rep.ci_method, rep.n_clusters, rep.lack_of_fit.df_pure_error
+    ('cluster', 5, 20)
     """
     from scipy import stats
 
     if model not in ("proportional", "affine"):
         raise InputError(f"model must be 'proportional' or 'affine', got {model!r}")
-    if ci not in ("analytic", "ols", "bootstrap"):
-        raise InputError(f"ci must be 'analytic', 'ols' or 'bootstrap', got {ci!r}")
+    methods = ("auto", "analytic", "ols", "bootstrap", "cluster", "odr")
+    if ci not in methods:
+        raise InputError(f"ci must be one of {', '.join(methods)}, got {ci!r}")
+    variant = _CLUSTER_VARIANT
+    if variant not in _VARIANT_TEXT:
+        raise InputError(f"_CLUSTER_VARIANT must be 'cr1', 'cr3' or 'cr2bm', got {variant!r}")
     seed = check_seed("seed", seed)
     pf, ff = check_series("friction_pressure_mpa", friction_pressure_mpa, "friction_n",
                           friction_n, x_unit="MPa", y_unit="N", increasing=False,
                           min_points=1)
-    n_all, inside = match_squeeze(squeeze_pressure_mpa, squeeze_force_n, pf)
+    labels = None if groups is None else _labels(groups, pf.size)
+    if ci == "odr":
+        sd_p_all = _point_sd("pressure_sd_mpa", pressure_sd_mpa, pf.size, "MPa")
+        sd_f_all = _point_sd("friction_sd_n", friction_sd_n, pf.size, "N")
+    elif pressure_sd_mpa is not None or friction_sd_n is not None:
+        raise InputError("pressure_sd_mpa and friction_sd_n are only used with ci='odr', "
+                         f"got ci={ci!r}")
+    edge_tol = 0.005
+    n_all, inside = match_squeeze(squeeze_pressure_mpa, squeeze_force_n, pf, edge_tol_mpa=edge_tol)
     affine = model == "affine"
     n_min = 3 if affine else 2
     if int(inside.sum()) < n_min:
@@ -366,24 +737,64 @@ def fit_gamma(
         )
     order = np.argsort(pf[inside], kind="stable")
     p, n, f = pf[inside][order], n_all[inside][order], ff[inside][order]
+    lab = p if labels is None else labels[inside][order]
+    codes, g = _factorize(lab)
+    replicates = bool(np.bincount(codes).max() >= 2)
     if not np.any(n != 0.0) or (affine and np.ptp(n) == 0.0):
         raise InputError("squeeze force is constant at the friction pressures; gamma is undefined")
-    gamma, f0 = (float(v) for v in _solve(n, f, affine))
+    beta = _solve(n, f, affine)
+    gamma, f0 = (float(v) for v in beta)
     if gamma <= 0:
         raise InputError(f"fitted gamma = {gamma:.4g} is not positive; check the data pairing")
-    pred = gamma * n + f0
-    res = pred - f
     m, k = n.size, (2 if affine else 1)
+    lof = _lack_of_fit(f, f - (gamma * n + f0), codes, g, k) if replicates else None
+    what = "pressure clusters" if labels is None else "clusters"
+    fallback = ""
+    method: CiMethod = ci
+    if ci == "auto":
+        method = "cluster" if replicates and g >= n_min else "analytic"
+        if replicates and g < n_min:
+            fallback = (f"; only {g} {what} (a cluster-robust interval needs {n_min}), so "
+                        "replicates are treated as independent")
+    if method == "cluster" and g < n_min:
+        raise InputError(f"ci cluster needs at least {n_min} clusters for the {model} fit, "
+                         f"got {g}")
     f0_ci: tuple[float, float] | None = None
-    if ci in ("analytic", "ols"):
-        cov = _covariance(n, res, affine, robust=ci == "analytic")
-        dof = m - k
-        tq = float(stats.t.ppf(0.975, dof)) if dof > 0 else float("nan")
-        se_g = float(np.sqrt(cov[0, 0]))
-        g_ci = (gamma - tq * se_g, gamma + tq * se_g)
+    if method in ("analytic", "ols", "cluster", "odr"):
+        dof = (g - 1) if method == "cluster" else (m - k)
+        dofs = np.full(k, float(dof))
+        if method == "cluster":
+            x = np.column_stack([n, np.ones_like(n)]) if affine else n[:, None]
+            if variant == "cr2bm":
+                cov, dofs = _cr2_bm(x, f, beta[:k], codes, g)
+                se = np.sqrt(np.diag(cov))
+                dof_text = f"{dofs[0]:.1f} (Bell-McCaffrey)"
+            else:
+                se = np.sqrt(np.diag(_cluster_covariance(x, f, beta[:k], codes, g, variant)))
+                dof_text = str(dof)
+            note = (f"cluster-robust ({_VARIANT_TEXT[variant]}) over {g} {what} of {m} points; "
+                    f"t with {dof_text} dof")
+        elif method == "odr":
+            curve = SqueezeCurve(squeeze_pressure_mpa, squeeze_force_n)
+            sd_p, sd_f = sd_p_all[inside][order], sd_f_all[inside][order]
+            beta, sd = _odr(curve, p, f, sd_p, sd_f, beta, affine, edge_tol)
+            gamma, f0 = float(beta[0]), float(beta[1])
+            if gamma <= 0:
+                raise InputError(f"ODR gamma = {gamma:.4g} is not positive; check the data")
+            se = sd[:k]
+            note = (f"errors-in-variables (ODR; pressure sd {_sd_text(sd_p, 'MPa')}, friction "
+                    f"sd {_sd_text(sd_f, 'N')}), parameter sd scaled by the residual variance; "
+                    f"t with {dof} dof; {m} points treated as independent")
+        else:
+            se = np.sqrt(np.diag(_covariance(n, gamma * n + f0 - f, affine,
+                                             robust=method == "analytic")))
+            note = (("HC3 heteroscedasticity-robust" if method == "analytic" else
+                     "classical OLS (equal variances)")
+                    + f"; t with {dof} dof; {m} points treated as independent" + fallback)
+        tq = [float(stats.t.ppf(0.975, d)) if d > 0 else float("nan") for d in dofs]
+        g_ci = (gamma - tq[0] * float(se[0]), gamma + tq[0] * float(se[0]))
         if affine:
-            se_f0 = float(np.sqrt(cov[1, 1]))
-            f0_ci = (f0 - tq * se_f0, f0 + tq * se_f0)
+            f0_ci = (f0 - tq[1] * float(se[1]), f0 + tq[1] * float(se[1]))
     else:
         rng = np.random.default_rng(seed)
         idx = rng.integers(0, m, size=(int(n_boot), m))
@@ -393,6 +804,10 @@ def fit_gamma(
         lo, hi = np.percentile(est, [2.5, 97.5], axis=0)
         g_ci = (float(lo[0]), float(hi[0]))
         f0_ci = (float(lo[1]), float(hi[1])) if affine else None
+        note = (f"pairs bootstrap over {m} points ({int(n_boot)} resamples, percentile); points "
+                "treated as independent")
+    pred = gamma * n + f0
+    res = pred - f
     rel = relative_errors(pred, f)
     ok = np.isfinite(rel)
     mean_rel = float(np.mean(np.abs(rel[ok]))) if np.any(ok) else float("nan")
@@ -402,7 +817,7 @@ def fit_gamma(
         kind=model,
         gamma_ci95=g_ci,
         f0_ci95_n=f0_ci,
-        ci_method=ci,
+        ci_method=method,
         pressure_mpa=tuple(p.tolist()),
         squeeze_force_n=tuple(n.tolist()),
         friction_n=tuple(f.tolist()),
@@ -411,5 +826,8 @@ def fit_gamma(
         max_relative_error_pct=_signed_max(rel),
         rms_relative_error_pct=rms_rel,
         n_dropped=int(pf.size - m),
+        n_clusters=g,
+        lack_of_fit=lof,
+        ci_note=note,
+        group=tuple(np.asarray(lab).tolist()) if labels is None else tuple(lab.tolist()),
     )
-

@@ -144,10 +144,30 @@ def read_squeeze_curve(path: str | Path) -> pd.DataFrame:
     return _named(pd.DataFrame({"pressure_mpa": pr, "squeeze_force_n": n}), p)
 
 
-def read_friction_table(path: str | Path) -> pd.DataFrame:
-    """Friction CSV: ``pressure_mpa,friction_n`` (MPa, N) and an optional ``test`` label.
+def _header(path: str | Path) -> tuple[list[str], list[str]]:
+    """(lower-cased column names of the header row, ``#`` comment lines); empty if unreadable."""
+    try:
+        lines = Path(path).read_text(encoding="utf-8-sig").splitlines()
+    except (OSError, UnicodeDecodeError):
+        return [], []
+    comments = [ln for ln in lines if ln.lstrip().startswith("#")]
+    head = next((ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")), "")
+    return [c.strip().strip('"').lower() for c in head.split(",")], comments
 
-    Several tests may share one file; pressures may repeat across tests, not within one.
+
+def read_friction_table(path: str | Path) -> pd.DataFrame:
+    """Friction CSV: friction points or the per-pull table of ``exofric reduce`` (MPa, N).
+
+    Two layouts are read (columns in any order, extra columns ignored, ``#`` comments allowed):
+
+    * points: ``pressure_mpa,friction_n`` and an optional ``test`` label;
+    * pulls (what ``exofric reduce`` writes): ``pressure_mpa``, ``kinetic_n`` and optionally
+      ``static_n``, ``direction``, ``branch``, ``plateau`` (int), ``pull`` (int), ``test``;
+      when there is no ``friction_n`` column, the kinetic friction ``kinetic_n`` is the
+      friction.
+
+    Pressures may repeat, also within one test: repeated pulls at one pressure are
+    replicates, which :func:`exofric.friction.fit_gamma` treats as clusters.
 
     Parameters
     ----------
@@ -157,38 +177,68 @@ def read_friction_table(path: str | Path) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Columns ``pressure_mpa``, ``friction_n`` and ``test`` (text; ``""`` when the file
-        has no test column), in file order. ``attrs["source"]`` is the file name and
-        ``attrs["synthetic"]`` is True when a ``#`` comment line says SYNTHETIC (files written
-        by ``exofric rig``).
+        In file order: ``pressure_mpa`` (MPa), ``friction_n`` (N), ``test`` (text; ``""``
+        without a test column), ``group`` (the replicate cluster label: ``"plateau <k>"`` from
+        a ``plateau`` column, prefixed ``"<test>|"`` when the test is not empty, else
+        ``"<test>|<pressure:g>"``) and ``branch`` (text; ``""`` without a branch column).
+        ``attrs["source"]`` is the file name, ``attrs["synthetic"]`` is True when a ``#``
+        comment line says SYNTHETIC (files written by ``exofric rig``) and ``attrs["kind"]``
+        is ``"pulls"`` (a ``kinetic_n`` or ``pull`` column) or ``"points"``.
 
     Raises
     ------
     InputError
-        Missing file or column, a bad cell (naming the row), a pressure repeated within a
-        test, fewer than two points per test.
+        Missing file or column (``friction_n``, or ``kinetic_n`` for a pull table), a bad cell
+        (naming the row), fewer than two points per test.
 
     Examples
     --------
     >>> import tempfile
     >>> from pathlib import Path
     >>> f = Path(tempfile.mkdtemp()) / "f.csv"
-    >>> _ = f.write_text("# SYNTHETIC\\npressure_mpa,friction_n\\n0.3,20\\n0.4,40\\n")
+    >>> _ = f.write_text("# SYNTHETIC\\npressure_mpa,friction_n\\n0.3,20\\n0.4,40\\n0.4,41\\n")
     >>> df = read_friction_table(f)
     >>> df["friction_n"].tolist(), df["test"].tolist(), df.attrs["synthetic"]
-    ([20.0, 40.0], ['', ''], True)
+    ([20.0, 40.0, 41.0], ['', '', ''], True)
+    >>> df["group"].tolist(), df.attrs["kind"]
+    (['|0.3', '|0.4', '|0.4'], 'points')
     """
-    df = read_table(path, ["pressure_mpa", "friction_n"], optional=["test"],
-                    text_columns=["test"], unique_within=("pressure_mpa", "test"))
-    if "test" not in df.columns:
-        df["test"] = ""
+    cols, comments = _header(path)
+    force = "friction_n" if "friction_n" in cols or "kinetic_n" not in cols else "kinetic_n"
+    text = ["test", "branch"]
     try:
-        head = [ln for ln in Path(path).read_text(encoding="utf-8-sig").splitlines()
-                if ln.lstrip().startswith("#")]
-    except OSError:
-        head = []
+        df = read_table(path, ["pressure_mpa", force], optional=["test", "branch", "plateau"],
+                        text_columns=text, min_rows=2)
+    except InputError as exc:
+        if "missing column 'friction_n'" not in str(exc):
+            raise
+        raise InputError(f"{exc}; a per-pull table (exofric reduce) has kinetic_n "
+                         "instead") from None
+    name = Path(path).name
+    if force != "friction_n":
+        df = df.rename(columns={force: "friction_n"})
+    for col in text:
+        if col not in df.columns:
+            df[col] = ""
+    sizes = df.groupby("test", sort=False).size()
+    if (sizes < 2).any():
+        t = sizes.index[int((sizes < 2).to_numpy().argmax())]
+        raise InputError(f"{name}: needs at least 2 data rows in test {t!r}, got 1")
+    prefix = df["test"] + "|"
+    if "plateau" in df.columns:
+        k = df["plateau"].to_numpy(float)
+        if not np.all(k == np.round(k)):
+            row = int(np.flatnonzero(k != np.round(k))[0]) + 1
+            raise InputError(f"{name}: data row {row}, column 'plateau' must be an integer, "
+                             f"got {k[row - 1]:g}")
+        lab = [f"plateau {int(v)}" for v in k]
+        df["group"] = [f"{t}|{g}" if t else g for t, g in zip(df["test"], lab, strict=True)]
+    else:
+        df["group"] = prefix + [f"{v:g}" for v in df["pressure_mpa"].to_numpy(float)]
+    df = df[["pressure_mpa", "friction_n", "test", "group", "branch"]]
     _named(df, path)
-    df.attrs["synthetic"] = any("SYNTHETIC" in ln.upper() for ln in head)
+    df.attrs["synthetic"] = any("SYNTHETIC" in ln.upper() for ln in comments)
+    df.attrs["kind"] = "pulls" if ("kinetic_n" in cols or "pull" in cols) else "points"
     return df
 
 

@@ -13,6 +13,7 @@ methods delegate here.
 * Calibration: :func:`plot_calibration` (Fig 5b), :func:`plot_table1`.
 * Friction: :func:`plot_gamma_fit` (Fig 4), :func:`plot_predictions` (Figs 8-10),
   :func:`plot_cubic_fit` (Fig 11), :func:`plot_torque`.
+* Raw rig logs: :func:`plot_reduction` (plateaus, pulls and averaging windows).
 * Control: :func:`plot_simulation`, :func:`plot_control_cases` (Fig 12).
 * Design: :func:`plot_design_map`, :func:`map_axes`.
 
@@ -55,6 +56,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         plot_predictions,
         plot_torque,
     )
+    from exofric.plots._rig import plot_reduction
 
 # Lazy facade (PEP 562): ``save`` or one figure does not load every plotting module; each name is
 # loaded from its module on first use (exofric/__init__.py does the same one level up).
@@ -68,13 +70,14 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "plot_squeeze_curves", "plot_squeeze_force", "section_polygons",
     ),
     "_friction": ("plot_cubic_fit", "plot_gamma_fit", "plot_predictions", "plot_torque"),
+    "_rig": ("plot_reduction",),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "draw_section", "map_axes", "plot_calibration", "plot_control_cases", "plot_cubic_fit",
     "plot_design_map", "plot_gamma_fit", "plot_inflation", "plot_inflation_curve",
-    "plot_predictions", "plot_simulation", "plot_squeeze", "plot_squeeze_curves",
+    "plot_predictions", "plot_reduction", "plot_simulation", "plot_squeeze", "plot_squeeze_curves",
     "plot_squeeze_force", "plot_table1", "plot_torque", "save", "section_polygons",
 ]
 
