@@ -43,6 +43,13 @@ def _base(tmp: Path) -> dict[str, list[str]]:
     step = tmp / "step.csv"
     step.write_text("time_s,pressure_mpa\n" + "".join(
         f"{a:.3f},{0.5 * (1 - np.exp(-max(a - 0.1, 0.0) / 0.4)):.5f}\n" for a in t))
+    from exofric.friction import RawRigConfig, simulate_raw_log
+    from exofric.io import write_raw_log
+
+    raw = tmp / "raw.csv"
+    cfg = RawRigConfig(sample_rate_hz=50.0, replicates=1, pull_mm=4.0)
+    log = simulate_raw_log([0.2, 0.4], [80.0, 160.0], 0.7, config=cfg, seed=1)
+    write_raw_log(raw, log.to_frame())
     one = tmp / "one.toml"
     one.write_text('[[structure]]\nname = "a"\nhole_mm = 10.0\ntube_od_mm = 8.3\n'
                    "wire_mm = 1.6\n")
@@ -64,6 +71,7 @@ def _base(tmp: Path) -> dict[str, list[str]]:
         "control": ["--duration", "2"],
         "control compare": ["--duration", "2"],
         "control identify": [str(step)],
+        "reduce": [str(raw)],
     }
 
 

@@ -48,7 +48,7 @@ Examples
 >>> log = simulate_raw_log([0.2, 0.4, 0.6], [80.0, 160.0, 240.0], 0.7, seed=1)
 >>> red = reduce_log(log.to_frame())
 >>> len(red.pulls), [round(k, 1) for k in red.curve["kinetic_n"]]
-(30, [56.1, 110.4, 168.0])
+(30, [56.3, 112.9, 167.8])
 """
 
 from __future__ import annotations
@@ -61,7 +61,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from exofric import defaults as D
-from exofric.errors import InputError, check_positive, check_range, warn_implausible
+from exofric.errors import InputError, check_range, warn_implausible
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -81,13 +81,13 @@ class ReduceSettings:
     Parameters
     ----------
     plateau_tol_mpa : float
-        Absolute pressure band of a plateau in MPa (> 0).
+        Absolute pressure band of a plateau in MPa (1e-6-10).
     plateau_tol_rel : float
         Relative band of a plateau (unitless, 0-0.5; x the pressure level).
     min_plateau_s : float
-        Shortest plateau in s (> 0).
+        Shortest plateau in s (1e-3-1e4).
     smooth_s : float
-        Moving-median window for pressure and displacement in s (> 0).
+        Moving-median window for pressure and displacement in s (1e-4-100).
     skip_mm : float
         Travel in mm excluded at the start of each pull before the kinetic window (>= 0; used
         when the log has displacement).
@@ -96,16 +96,16 @@ class ReduceSettings:
     end_trim_s : float
         Time in s excluded at the end of each pull (>= 0).
     min_pull_s : float
-        Shortest pull in s (> 0).
+        Shortest pull in s (1e-3-1e4).
     tare_s, tare_gap_s : float
-        Length of the tare windows and their distance from a pull, in s (> 0, >= 0).
+        Length of the tare windows and their distance from a pull, in s (1e-3-1e3, 0-1e3).
     static_window_s : float
         Moving-average window of the breakaway peak in s (>= 0; 0 for the raw maximum).
     speed_fraction : float
         Pull threshold: share of the typical displacement speed (unitless, 0.01-0.99).
     force_sigmas : float
         Pull threshold without displacement, in rest-noise standard deviations (unitless,
-        > 0).
+        0.1-1e3).
 
     Raises
     ------
@@ -133,19 +133,19 @@ class ReduceSettings:
     force_sigmas: float = D.REDUCE_FORCE_SIGMAS
 
     def __post_init__(self) -> None:
-        check_positive("plateau_tol_mpa", self.plateau_tol_mpa, "MPa")
+        check_range("plateau_tol_mpa", self.plateau_tol_mpa, 1e-6, 10.0, unit="MPa")
         check_range("plateau_tol_rel", self.plateau_tol_rel, 0.0, 0.5)
-        check_positive("min_plateau_s", self.min_plateau_s, "s")
-        check_positive("smooth_s", self.smooth_s, "s")
+        check_range("min_plateau_s", self.min_plateau_s, 1e-3, 1e4, unit="s")
+        check_range("smooth_s", self.smooth_s, 1e-4, 100.0, unit="s")
         check_range("skip_mm", self.skip_mm, 0.0, 1e4, unit="mm")
         check_range("skip_s", self.skip_s, 0.0, 1e4, unit="s")
         check_range("end_trim_s", self.end_trim_s, 0.0, 1e4, unit="s")
-        check_positive("min_pull_s", self.min_pull_s, "s")
-        check_positive("tare_s", self.tare_s, "s")
-        check_range("tare_gap_s", self.tare_gap_s, 0.0, 1e4, unit="s")
+        check_range("min_pull_s", self.min_pull_s, 1e-3, 1e4, unit="s")
+        check_range("tare_s", self.tare_s, 1e-3, 1e3, unit="s")
+        check_range("tare_gap_s", self.tare_gap_s, 0.0, 1e3, unit="s")
         check_range("static_window_s", self.static_window_s, 0.0, 10.0, unit="s")
         check_range("speed_fraction", self.speed_fraction, 0.01, 0.99)
-        check_positive("force_sigmas", self.force_sigmas)
+        check_range("force_sigmas", self.force_sigmas, 0.1, 1e3)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready settings (unit-suffixed keys)."""
@@ -435,6 +435,21 @@ def _pulls_from_displacement(x: NDArray[np.float64], fs: float, w: int, s: Reduc
     return sorted(out)
 
 
+def _first(mask: Any, start: int, n: int, chunk: int) -> int:
+    """First index >= start where ``mask(lo, hi)`` (a boolean array for [lo, hi)) is True, or
+    -1: windows from ``chunk`` samples, doubling, so a search near ``start`` is cheap."""
+    lo = start
+    size = chunk
+    while lo < n:
+        hi = min(n, lo + size)
+        m = mask(lo, hi)
+        if m.size and np.any(m):
+            return lo + int(np.argmax(m))
+        lo = hi
+        size *= 2
+    return -1
+
+
 def _pulls_from_force(f: NDArray[np.float64], fs: float, s: ReduceSettings,
                       t: NDArray[np.float64], source: str) -> list[tuple[int, int, int]]:
     n = f.size
@@ -448,14 +463,19 @@ def _pulls_from_force(f: NDArray[np.float64], fs: float, s: ReduceSettings,
     base = float(np.median(head))
     out: list[tuple[int, int, int]] = []
     k = n0
+    chunk = max(4 * q, int(10.0 * fs))        # search windows (doubling): O(n), not O(n pulls)
     while k < n:
-        active = np.abs(f[k:] - base) > thr
-        if not np.any(active):
+        a = _first(lambda lo, hi, base=base: np.abs(f[lo:hi] - base) > thr, k, n, chunk)
+        if a < 0:
             break
-        a = k + int(np.argmax(active))
-        quiet = np.abs(f[a:] - base) <= thr
-        run = np.convolve(quiet.astype(float), np.ones(q), mode="valid") >= q - 0.5
-        b = a + int(np.argmax(run)) if np.any(run) else n
+
+        def quiet_run(lo: int, hi: int, base: float = base) -> NDArray[np.bool_]:
+            quiet = (np.abs(f[lo:min(hi + q - 1, n)] - base) <= thr).astype(float)
+            run = np.convolve(quiet, np.ones(q), mode="valid") >= q - 0.5
+            return np.asarray(run[: hi - lo], dtype=bool)
+
+        found = _first(quiet_run, a, n, chunk)
+        b = found if found >= 0 else n
         sign = 1 if float(np.mean(f[a:b])) >= base else -1
         # the pull ends where the force falls below half its median level, not where the
         # relaxing wire reaches the rest band (that tail is not sliding)
@@ -816,7 +836,7 @@ def friction_curve(
     ...          "force_kinetic_n": -18.0, "direction": "backward", "branch": "up"}]
     >>> curve, _ = friction_curve(rows)
     >>> curve["kinetic_n"], curve["bias_n"]
-    ([19.5, 1.5], [1.5])
+    ([19.5], [1.5])
     """
     s = settings or ReduceSettings()
     rows = pulls.to_dict("records") if hasattr(pulls, "to_dict") else [dict(r) for r in pulls]

@@ -66,6 +66,7 @@ def plot_reduction(red: RigReduction, title: str = "", *, fig: Any | None = None
                    alpha=0.6, lw=0)
     ap.set_ylabel("pressure (MPa)")
     af.plot(t, red.force_n, color="k", lw=lw)
+    ms = 4.0 if len(red.pulls) <= 60 else 2.5
     for r in red.pulls:
         af.axvspan(r["t_start_s"], r["t_end_s"], color=_FWD if r["direction"] == "forward"
                    else _BWD, lw=0)
@@ -76,7 +77,7 @@ def plot_reduction(red: RigReduction, title: str = "", *, fig: Any | None = None
                 lw=1.6, solid_capstyle="butt")
         sign = 1.0 if r["direction"] == "forward" else -1.0
         peak = sign * r["static_n"] + r["bias_n"] + r["tare_n"]
-        af.plot([r["t_static_s"]], [peak], marker="v" if sign > 0 else "^", ms=4,
+        af.plot([r["t_static_s"]], [peak], marker="v" if sign > 0 else "^", ms=ms,
                 color="tab:red", ls="none")
     for sk in red.skipped:
         af.axvspan(sk["t_start_s"], sk["t_end_s"], facecolor="none", edgecolor="tab:red",
