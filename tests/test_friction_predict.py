@@ -151,8 +151,28 @@ def test_predict_input_errors() -> None:
 
     with pytest.raises(InputError, match="squeeze returned"):
         predict([s], 0.7, None, [0.2, 0.3], squeeze_fn=short)
-    with pytest.raises(InputError, match="repeated pressure"):
-        MeasuredCurve.of([0.2, 0.2], [1.0, 2.0])
+
+
+def test_replicate_measurements_each_enter_the_anova() -> None:
+    """Replicate pulls (a repeated pressure) are kept: each is one error in the ANOVA (issue 14);
+    the frame shows the replicates' mean and count per pressure. Hand numbers as above:
+    base F = 20, 80 N at 0.2, 0.4 MPa; wide F = 24.2 N at 0.2 MPa."""
+    base = Structure(10.0, 8.3, 4.97, 1.6, name="base")
+    wide = Structure(10.5, 8.3, 4.97, 1.6, name="wide")
+    meas = {"base": MeasuredCurve.of([0.2, 0.2, 0.4, 0.4], [25.0, 20.0, 64.0, 80.0]),
+            "wide": MeasuredCurve.of([0.2, 0.2, 0.2], [22.0, 21.0, 20.0])}
+    res = predict([base, wide], 0.5, None, [0.2, 0.4], squeeze_fn=fake_squeeze, measured=meas)
+    b, w = res.predictions
+    e_b = [100 * (20 - 25) / 25, 0.0, 100 * (80 - 64) / 64, 0.0]
+    f_w = 0.5 * 100 * 10.5 * 0.2**2
+    e_w = [100 * (f_w - m) / m for m in (22.0, 21.0, 20.0)]
+    np.testing.assert_allclose(b.relative_error_pct, e_b, rtol=1e-12, atol=1e-12)
+    ref = stats.f_oneway(e_b, e_w)
+    assert res.anova[0].df_within == 5
+    assert res.anova[0].p_value == pytest.approx(ref.pvalue, rel=1e-9)
+    frame = b.to_frame()
+    assert frame["n_measured"].tolist() == [2, 2]
+    np.testing.assert_allclose(frame["measured_friction_n"], [22.5, 72.0], rtol=1e-12)
 
 
 def test_structures_from_dict() -> None:

@@ -314,7 +314,8 @@ class MeasuredCurve:
     Attributes
     ----------
     pressure_mpa : tuple of float
-        Pressures in MPa, >= 0, strictly increasing.
+        Pressures in MPa, >= 0, non-decreasing (a pressure repeats for replicate pulls; each
+        replicate is one error in the ANOVA).
     friction_n : tuple of float
         Measured friction forces in N, one per pressure.
 
@@ -329,12 +330,12 @@ class MeasuredCurve:
 
     @classmethod
     def of(cls, pressure_mpa: ArrayLike, friction_n: ArrayLike) -> MeasuredCurve:
-        """Validated curve (finite, equal lengths, distinct pressures), sorted by pressure.
+        """Validated curve (finite, equal lengths; replicates allowed), sorted by pressure.
 
         Parameters
         ----------
         pressure_mpa : array_like
-            Pressures in MPa, >= 0, distinct (any order).
+            Pressures in MPa, >= 0, any order; a repeated pressure is a replicate.
         friction_n : array_like
             Friction forces in N, one per pressure.
 
@@ -345,7 +346,7 @@ class MeasuredCurve:
         Raises
         ------
         InputError
-            NaN/inf, negative pressures, unequal lengths or a repeated pressure.
+            NaN/inf, negative pressures or unequal lengths.
 
         Examples
         --------
@@ -356,8 +357,6 @@ class MeasuredCurve:
                             x_unit="MPa", y_unit="N", increasing=False, min_points=1,
                             x_min=0.0, where="measured curve")
         o = np.argsort(p, kind="stable")
-        if np.any(np.diff(p[o]) == 0):
-            raise InputError("measured curve has a repeated pressure")
         return cls(tuple(p[o].tolist()), tuple(f[o].tolist()))
 
 
@@ -450,8 +449,8 @@ class Prediction:
 
         Columns: ``structure`` (name), ``pressure_mpa``, ``squeeze_force_n``,
         ``predicted_friction_n``, and with a measured curve ``measured_friction_n`` and
-        ``relative_error_pct`` (NaN at pressures without a measurement; the measured
-        pressures are among the predicted ones).
+        ``relative_error_pct`` (means over replicates; NaN at pressures without a
+        measurement; the measured pressures are among the predicted ones) and ``n_measured``.
 
         Returns
         -------
@@ -476,12 +475,13 @@ class Prediction:
         }
         if self.measured is not None:
             at = np.searchsorted(p, np.asarray(self.measured.pressure_mpa, dtype=float))
-            meas = np.full(p.size, np.nan)
-            err = np.full(p.size, np.nan)
-            meas[at] = self.measured.friction_n
-            err[at] = self.relative_error_pct
-            cols["measured_friction_n"] = meas
-            cols["relative_error_pct"] = err
+            count = np.bincount(at, minlength=p.size).astype(float)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                meas = np.bincount(at, weights=self.measured.friction_n, minlength=p.size) / count
+                err = np.bincount(at, weights=self.relative_error_pct, minlength=p.size) / count
+            cols["measured_friction_n"] = np.where(count > 0, meas, np.nan)
+            cols["relative_error_pct"] = np.where(count > 0, err, np.nan)
+            cols["n_measured"] = count.astype(int)
         return pd.DataFrame(cols)
 
 
