@@ -53,8 +53,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric.errors import InputError, check_finite, check_positive, check_range, check_seed
-from exofric.errors import check_series as _check_series
-from exofric.friction._fit import match_squeeze
+from exofric.friction._rig import rig_set_points
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -368,17 +367,7 @@ def simulate_raw_log(
     cfg = config or RawRigConfig()
     g = check_positive("gamma_true", gamma_true)
     seed = check_seed("seed", seed)
-    ps, ns = _check_series("squeeze_pressure_mpa", squeeze_pressure_mpa, "squeeze_force_n",
-                           squeeze_force_n, x_unit="MPa", y_unit="N")
-    sp = ps[ns > 0.0] if pressures_mpa is None else np.asarray(pressures_mpa, float).ravel()
-    if sp.size == 0:
-        raise InputError("rig needs at least one pressure set point with squeeze force > 0")
-    sp, _ = _check_series("pressures_mpa", sp, x_unit="MPa", min_points=1,
-                          where="rig set points")
-    n_set, inside = match_squeeze(ps, ns, sp, edge_tol_mpa=0.0)
-    if not np.all(inside):
-        raise InputError(f"rig set point {sp[~inside][0]:g} MPa is outside the squeeze curve's "
-                         f"range [{ps.min():g}, {ps.max():g}] MPa")
+    _, _, sp, n_set = rig_set_points(squeeze_pressure_mpa, squeeze_force_n, pressures_mpa)
     rng = np.random.default_rng(seed)
     fs = cfg.sample_rate_hz
     order = list(range(sp.size))

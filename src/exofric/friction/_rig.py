@@ -224,6 +224,29 @@ class RigRun:
         return "\n".join(lines) + "\n"
 
 
+def rig_set_points(
+    squeeze_pressure_mpa: ArrayLike, squeeze_force_n: ArrayLike, pressures_mpa: ArrayLike | None,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
+           NDArray[np.float64]]:
+    """The checked squeeze curve (MPa, N), the rig's set points (MPa) and N at them (N).
+
+    Set points default to the curve's pressures with N > 0; they must be strictly increasing
+    and inside the curve's range (InputError otherwise). Shared by both virtual rigs.
+    """
+    ps, ns = check_series("squeeze_pressure_mpa", squeeze_pressure_mpa, "squeeze_force_n",
+                          squeeze_force_n, x_unit="MPa", y_unit="N")
+    sp = ps[ns > 0.0] if pressures_mpa is None else np.asarray(pressures_mpa, float).ravel()
+    if sp.size == 0:
+        raise InputError("rig needs at least one pressure set point with squeeze force > 0")
+    sp, _ = check_series("pressures_mpa", sp, x_unit="MPa", min_points=1,
+                         where="rig set points")
+    n_set, inside = match_squeeze(ps, ns, sp, edge_tol_mpa=0.0)
+    if not np.all(inside):
+        raise InputError(f"rig set point {sp[~inside][0]:g} MPa is outside the squeeze curve's "
+                         f"range [{ps.min():g}, {ps.max():g}] MPa")
+    return ps, ns, sp, n_set
+
+
 def simulate_rig(
     squeeze_pressure_mpa: ArrayLike,
     squeeze_force_n: ArrayLike,
@@ -277,21 +300,7 @@ def simulate_rig(
     seed = check_seed("seed", seed)
     if not isinstance(repeats, int) or not 1 <= repeats <= 100:
         raise InputError(f"repeats must be an integer in [1, 100], got {repeats!r}")
-    ps, ns = check_series("squeeze_pressure_mpa", squeeze_pressure_mpa, "squeeze_force_n",
-                          squeeze_force_n, x_unit="MPa", y_unit="N")
-    if pressures_mpa is None:
-        sp = ps[ns > 0.0]
-    else:
-        sp = np.asarray(pressures_mpa, dtype=float).ravel()
-    if sp.size == 0:
-        raise InputError("rig needs at least one pressure set point with squeeze force > 0")
-    sp, _ = check_series("pressures_mpa", sp, x_unit="MPa", min_points=1,
-                         where="rig set points")
-    n_set, inside = match_squeeze(ps, ns, sp, edge_tol_mpa=0.0)
-    if not np.all(inside):
-        bad = sp[~inside][0]
-        raise InputError(f"rig set point {bad:g} MPa is outside the squeeze curve's range "
-                         f"[{ps.min():g}, {ps.max():g}] MPa")
+    ps, ns, sp, n_set = rig_set_points(squeeze_pressure_mpa, squeeze_force_n, pressures_mpa)
     rng = np.random.default_rng(seed)
     fs = cfg.sample_rate_hz
     n_settle = int(round(cfg.settle_s * fs))
