@@ -1,21 +1,34 @@
 # exofric: two commands on a fresh machine.
-#   make demo   set up .venv (if missing) with everything, run the main job
-#   make test   same set-up, then the whole test suite
+#   make demo   set up .venv (if missing) with the runtime dependencies, run the main job
+#   make test   add the test and development extras, then the whole test suite
+SHELL  := /bin/bash
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.stamp-install
+STAMP_RT := $(VENV)/.stamp-runtime
 export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 export MKL_NUM_THREADS ?= 1
 
 .PHONY: demo test setup browser calculix lint bench clean
 
-$(STAMP): pyproject.toml
+# Two stamps: `make demo` needs only the runtime dependencies; `make test` adds the extras
+# (Dask, Parquet, TDMS, Modbus/serial, the report's browser test, FElupe, the dev tools).
+$(STAMP_RT): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q -e ".[dask,report,bench,dev,tdms]"
-	@touch $(STAMP)
+	@echo "exofric: installing the runtime dependencies into $(VENV) (first time: about 30 s)"
+	@$(BIN)/python -m pip install -q --disable-pip-version-check --upgrade pip
+	set -o pipefail; $(BIN)/python -m pip install --disable-pip-version-check -e . \
+	  | { grep -E --line-buffered '^(Collecting|Successfully|ERROR)' || true; }
+	@touch $@
+
+$(STAMP): $(STAMP_RT)
+	@echo "exofric: installing the test and development extras (first time: about 60 s)"
+	set -o pipefail; $(BIN)/python -m pip install --disable-pip-version-check \
+	  -e ".[dask,report,bench,dev,tdms,hardware]" \
+	  | { grep -E --line-buffered '^(Collecting|Successfully|ERROR)' || true; }
+	@touch $@
 
 setup: $(STAMP)
 
@@ -35,7 +48,7 @@ calculix:
 	      || echo "warning: could not install calculix-ccx; the CalculiX benchmark rows will be skipped"; \
 	  else echo "warning: ccx not installed and cannot apt-get; the CalculiX benchmark rows will be skipped"; fi; }
 
-demo: setup
+demo: $(STAMP_RT)
 	$(BIN)/exofric reproduce --out exofric-report
 	@echo "report: $(CURDIR)/exofric-report/report.html"
 

@@ -75,3 +75,10 @@ def test_paper_json(cli):
     assert d["scalars"]["gamma"] == 0.7168 and d["table2"]["c10_mpa"] == 0.6639
     r = cli(["paper"])
     assert r.code == 0 and "0.7168" in r.out
+
+
+def test_bare_exofric_prints_help_without_an_empty_error_line(cli) -> None:
+    r = cli([])
+    assert r.code == 0, r.err
+    assert "Usage" in r.out and "reduce" in r.out
+    assert "error" not in r.err

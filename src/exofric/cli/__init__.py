@@ -151,6 +151,8 @@ def run(argv: Sequence[str] | None = None) -> int:
         return 130
     except _USAGE as exc:
         msg = " ".join(str(exc.format_message()).split())  # type: ignore[attr-defined]
+        if not msg:  # bare `exofric` (or a bare command group): the help was the answer
+            return 0
         print(f"exofric: error: {msg}", file=sys.stderr)
         return 2
     except OSError as exc:  # files the user named: missing, unwritable, not a directory...
