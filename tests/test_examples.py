@@ -285,6 +285,16 @@ def test_friction_example_files(cli):
     assert d["gamma_ci95"][0] <= 0.7168 <= d["gamma_ci95"][1]
 
 
+def test_step_example_identifies_its_planted_lag_and_delay(cli):
+    # examples/step.csv: SYNTHETIC first-order lag 0.35 s, dead time 0.08 s, gain 0.97 (its header)
+    r = cli(["control", "identify", str(EX / "step.csv"), "--json"])
+    assert r.code == 0, r.err
+    d = r.json()["plant"]
+    assert d["time_constant_s"] == pytest.approx(0.35, rel=0.02)
+    assert d["delay_s"] == pytest.approx(0.08, rel=0.03)
+    assert d["gain"] == pytest.approx(0.97, rel=0.01)
+
+
 def test_structures_example_equals_paper_option(cli):
     # examples/structures-paper.toml is documented as equivalent to --paper
     args = ["predict", "--gamma", "0.7168", "--pressures", "0.3,0.6", "--json"]
