@@ -248,3 +248,25 @@ def test_validated_region_needs_small_deviation_and_the_base_hardness(tmp_path):
                                                   "soft base": False}
     # a softer tube squeezes harder at the same pressure (lower shear modulus, Eqs 3-6)
     assert f.loc["soft base", "squeeze_force_n"] > f.loc["base", "squeeze_force_n"]
+
+
+def test_progress_bar_on_a_terminal_even_with_json_but_not_with_quiet(monkeypatch) -> None:
+    """Progress goes to stderr (stdout stays one JSON object): shown on a terminal with --json,
+    left out with --quiet or when stderr is not a terminal (issue 20)."""
+    import io
+    import sys
+
+    from exofric.cli import sweep as sweep_cli
+
+    class Tty(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    monkeypatch.setattr(sys, "stderr", Tty())
+    with sweep_cli._progress(False) as bar:
+        assert callable(bar)
+    with sweep_cli._progress(True) as bar:
+        assert bar is None
+    monkeypatch.setattr(sys, "stderr", io.StringIO())
+    with sweep_cli._progress(False) as bar:
+        assert bar is None

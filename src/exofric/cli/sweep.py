@@ -8,6 +8,7 @@ Dask and rich's progress bar are imported inside the commands, so ``--help`` sta
 from __future__ import annotations
 
 import contextlib
+import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -27,13 +28,17 @@ EXECUTOR = typer.Option("auto", "--executor",
 TIMEOUT = typer.Option(60.0, "--timeout",
                        help="Seconds to wait for --scheduler and its first worker (finite, > 0).")
 RETRY = typer.Option(False, "--retry-failed", help="Solve designs recorded as failed again.")
+QUIET = typer.Option(False, "--quiet", help="No progress bar on stderr (it is also left out "
+                     "when stderr is not a terminal; --json keeps it).")
 
 
 @contextlib.contextmanager
 def _progress(quiet: bool) -> Iterator[Callable[[int, int, str], None] | None]:
-    """A rich progress bar on stderr (None when ``quiet``), started at its first update: the
+    """A rich progress bar on stderr (None when ``quiet`` or stderr is not a terminal: a log
+    file gets no bar; ``--json`` keeps it, stdout stays one JSON object), started at its first
+    update: the
     sweep starts its worker processes before that, while this process runs no other thread."""
-    if quiet:
+    if quiet or not sys.stderr.isatty():
         yield None
         return
     from rich.console import Console
@@ -124,6 +129,7 @@ def register(app: typer.Typer) -> None:
         executor: str = EXECUTOR,
         retry_failed: bool = RETRY,
         timeout: float = TIMEOUT,
+        quiet: bool = QUIET,
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Solve N(P) for every design of a sweep; rows go to Parquet (mm, MPa, N, Nm).
@@ -145,7 +151,7 @@ def register(app: typer.Typer) -> None:
         if config is None or out is None:
             raise InputError("sweep needs CONFIG and --out OUT (or --verify OUT)",
                              param="config")
-        run = _run(config, out, workers, scheduler, serial, retry_failed, as_json, timeout,
+        run = _run(config, out, workers, scheduler, serial, retry_failed, quiet, timeout,
                    executor)
         d = run.to_dict()
 
@@ -192,6 +198,7 @@ def register(app: typer.Typer) -> None:
         serial: bool = SERIAL,
         executor: str = EXECUTOR,
         timeout: float = TIMEOUT,
+        quiet: bool = QUIET,
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Find swept designs reaching a target torque with the least pressure (Nm, MPa, mm)."""
@@ -218,7 +225,7 @@ def register(app: typer.Typer) -> None:
         if pmax > p_top + 1e-12:
             raise InputError(f"--pmax {pmax:g} MPa is above the sweep's largest pressure "
                              f"{p_top:g} MPa; allowed range (0, {p_top:g}] MPa")
-        run = _run(config, out, workers, scheduler, serial, False, as_json, timeout, executor,
+        run = _run(config, out, workers, scheduler, serial, False, quiet, timeout, executor,
                    spec=spec)
         frame = run.frame
         search = search_designs(frame, target_torque, arm if arm is not None else
