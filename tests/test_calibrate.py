@@ -307,3 +307,20 @@ def test_failed_trials_count_as_too_soft_and_total_failure_is_reraised() -> None
     far = InflationData(np.array([0.5, 0.6]), np.array([9.8, 10.0]))
     with pytest.raises(InputError, match="pressures must be in"):
         calibrate(far, 8.3, tube_id_mm=5.0, model="paper-table1")
+
+
+def test_calibrate_accepts_a_mapping_and_refuses_other_types() -> None:
+    """calibrate({...}) used to raise AttributeError (issue 20): a mapping of lists is the data;
+    anything else is one InputError naming `data`."""
+    from exofric.calibration import InflationData, calibrate
+    from exofric.errors import InputError
+
+    d = InflationData.paper_test()
+    as_map = {"pressure_mpa": list(d.pressure_mpa), "outer_diameter_mm": list(d.outer_diameter_mm)}
+    a = calibrate(as_map, 8.3, tube_id_mm=4.97, model="paper-table1")
+    b = calibrate(d, 8.3, tube_id_mm=4.97, model="paper-table1")
+    assert a.shore == b.shore
+    with pytest.raises(InputError, match="data must be InflationData"):
+        calibrate([1, 2, 3], 8.3, tube_id_mm=4.97)  # type: ignore[arg-type]
+    with pytest.raises(InputError, match="outer_diameter_mm"):
+        calibrate({"pressure_mpa": [0.1, 0.2]}, 8.3, tube_id_mm=4.97)

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import time
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -33,8 +35,27 @@ def _check_bracket(bracket: tuple[float, float]) -> tuple[float, float]:
     return lo, hi
 
 
+def _as_data(data: object) -> InflationData:
+    """``data`` as InflationData: itself, a mapping with ``pressure_mpa`` and
+    ``outer_diameter_mm`` (and ``shore``) lists, or a DataFrame with those columns."""
+    if isinstance(data, InflationData):
+        return data
+    if hasattr(data, "columns") and hasattr(data, "attrs"):
+        return InflationData.from_frame(data)  # type: ignore[arg-type]
+    if isinstance(data, Mapping):
+        extra = sorted(set(data) - {"pressure_mpa", "outer_diameter_mm", "shore"})
+        if extra or not {"pressure_mpa", "outer_diameter_mm"} <= set(data):
+            raise InputError("data as a mapping needs the keys pressure_mpa (MPa) and "
+                             "outer_diameter_mm (mm), optionally shore; got "
+                             f"{', '.join(sorted(map(str, data))) or 'none'}", param="data")
+        return InflationData(**{k: data[k] for k in data})
+    raise InputError("data must be InflationData (e.g. InflationData.paper_test(), "
+                     "InflationData.from_frame(read_inflation_table(path))), a DataFrame or a "
+                     f"mapping of lists, got {type(data).__name__}", param="data")
+
+
 def calibrate(
-    data: InflationData,
+    data: InflationData | Mapping[str, Any] | Any,
     tube_od_mm: float,
     *,
     tube_id_mm: float | None = None,
@@ -53,9 +74,11 @@ def calibrate(
 
     Parameters
     ----------
-    data : InflationData
+    data : InflationData, DataFrame or mapping
         Measured pressures (MPa) and outer diameters (mm); with a ``shore`` column
-        the hardness is known and only the tube ID is fitted (``known-hardness``).
+        the hardness is known and only the tube ID is fitted (``known-hardness``). A
+        DataFrame or a mapping of lists with keys ``pressure_mpa``, ``outer_diameter_mm``
+        (and ``shore``) is converted; anything else is an InputError.
     tube_od_mm : float
         Undeformed tube outer diameter (mm), e.g. 8.3.
     tube_id_mm : float, optional
@@ -90,6 +113,7 @@ def calibrate(
     True
     """
     t0 = time.perf_counter()
+    data = _as_data(data)
     od = check_positive("tube_od_mm", tube_od_mm, "mm")
     tol = check_positive("tol_pct", tol_pct, "%")
     lo, hi = _check_bracket(tuple(bracket))  # type: ignore[arg-type]
