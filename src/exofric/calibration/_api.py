@@ -41,7 +41,7 @@ def _as_data(data: object) -> InflationData:
     if isinstance(data, InflationData):
         return data
     if hasattr(data, "columns") and hasattr(data, "attrs"):
-        return InflationData.from_frame(data)  # type: ignore[arg-type]
+        return InflationData.from_frame(data)
     if isinstance(data, Mapping):
         extra = sorted(set(data) - {"pressure_mpa", "outer_diameter_mm", "shore"})
         if extra or not {"pressure_mpa", "outer_diameter_mm"} <= set(data):

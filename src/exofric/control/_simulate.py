@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,7 +26,43 @@ from exofric.errors import InputError, check_range, check_series
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["SimulationResult", "simulate", "setpoint_profile"]
+__all__ = ["PlantLike", "SimulationResult", "simulate", "setpoint_profile"]
+
+
+@runtime_checkable
+class PlantLike(Protocol):
+    """Any pressure plant :func:`simulate` can drive (duck-typed).
+
+    It has the tube pressure ``pressure_mpa`` (MPa) as an attribute and ``advance(command_mpa,
+    dt)`` holding a pressure command (MPa) for ``dt`` s and returning the new pressure (MPa).
+    :class:`~exofric.control.PressurePlant` (lag + dead time) satisfies it, as does any
+    physical plant model with the same two members.
+
+    Examples
+    --------
+    >>> from exofric.control import PlantParams, PressurePlant
+    >>> isinstance(PressurePlant(PlantParams()), PlantLike)
+    True
+    """
+
+    pressure_mpa: float
+
+    def advance(self, command_mpa: float, dt: float) -> float:
+        """Hold ``command_mpa`` (MPa) for ``dt`` s; return the tube pressure (MPa).
+
+        Parameters
+        ----------
+        command_mpa : float
+            Pressure command in MPa (zero-order hold over the step).
+        dt : float
+            Step length in s (> 0).
+
+        Returns
+        -------
+        float
+            Tube pressure in MPa at the end of the step.
+        """
+        ...
 
 
 @dataclass(frozen=True)
@@ -176,31 +212,45 @@ def setpoint_profile(
 
 def simulate(
     controller: Controller,
-    plant: PlantParams,
+    plant: PlantParams | PlantLike,
     true_friction: FrictionFn,
     setpoint_n: float | Callable[[NDArray[np.float64]], NDArray[np.float64]],
     *,
     duration_s: float = 15.0,
     dt: float = 0.01,
-    p0_mpa: float = 0.0,
+    p0_mpa: float | None = None,
+    noise_n: float | None = None,
+    seed: int | None = None,
 ) -> SimulationResult:
     """Run the closed loop for ``duration_s`` s at sample time ``dt`` s.
 
     Parameters
     ----------
     controller : Controller
-        Used as is (call ``controller.reset()`` first to start from rest).
-    plant : PlantParams
-        Supply and sensor parameters; ``plant.noise_n`` and ``plant.seed`` set the noise.
+        Used as is (call ``controller.reset()`` first to start from rest). A controller with
+        a true ``uses_pressure`` attribute (e.g. :class:`~exofric.control.ScheduledController`
+        scheduled on the measured pressure) also gets the tube pressure (MPa) of each sample:
+        ``step(setpoint, measurement, dt, pressure_mpa=p)``.
+    plant : PlantParams or PlantLike
+        Supply and sensor parameters (a :class:`~exofric.control.PressurePlant` is built from
+        them; ``plant.noise_n`` and ``plant.seed`` set the noise), or any plant object with
+        ``pressure_mpa`` (MPa) and ``advance(command_mpa, dt)`` (:class:`PlantLike`), used as
+        is from its current pressure (no noise unless ``noise_n`` is given).
         ``plant.mismatch`` is *not* applied here: pass the true map in ``true_friction``.
     true_friction : callable
-        The true friction map F(P): MPa -> N (scalar).
+        The true friction map F(P): MPa -> N (scalar). It is called once per sample, in time
+        order, so a stateful (hysteretic) map such as
+        :class:`~exofric.control.HystereticFrictionMap` works.
     setpoint_n : float or callable
         Constant target in N, or a vectorised function of time (s) -> N.
     duration_s, dt : float
         Simulated time and sample time in s (dt also the PWM period when PWM is on).
-    p0_mpa : float
-        Initial tube pressure in MPa.
+    p0_mpa : float or None
+        Initial tube pressure in MPa for a ``PlantParams`` plant (default 0 MPa); a plant
+        object starts from its own ``pressure_mpa`` (giving ``p0_mpa`` then is an error).
+    noise_n, seed : float or None, int or None
+        Friction-sensor noise standard deviation in N and its seed; None takes them from a
+        ``PlantParams`` plant (0 N and seed 0 for a plant object).
 
     Returns
     -------
@@ -216,10 +266,27 @@ def simulate(
     """
     check_range("duration_s", duration_s, 0.0, 1e5, lo_open=True, unit="s")
     check_range("dt (sample time)", dt, 1e-6, 10.0, unit="s")
-    if plant.pwm_period_s > 0.0 and not math.isclose(plant.pwm_period_s, dt, rel_tol=1e-9):
-        raise InputError(
-            f"pwm_period_s ({plant.pwm_period_s:g} s) must equal the sample time dt ({dt:g} s)"
-        )
+    supply: PlantLike
+    if isinstance(plant, PlantParams):
+        if plant.pwm_period_s > 0.0 and not math.isclose(plant.pwm_period_s, dt, rel_tol=1e-9):
+            raise InputError(
+                f"pwm_period_s ({plant.pwm_period_s:g} s) must equal the sample time dt "
+                f"({dt:g} s)"
+            )
+        supply = PressurePlant(plant, 0.0 if p0_mpa is None else p0_mpa)
+        sigma = plant.noise_n if noise_n is None else noise_n
+        rng_seed = plant.seed if seed is None else seed
+    elif callable(getattr(plant, "advance", None)) and hasattr(plant, "pressure_mpa"):
+        if p0_mpa is not None:
+            raise InputError("p0_mpa applies to PlantParams only: a plant object starts from "
+                             "its own pressure_mpa")
+        supply = plant
+        sigma = 0.0 if noise_n is None else noise_n
+        rng_seed = 0 if seed is None else seed
+    else:
+        raise InputError("plant must be PlantParams or an object with pressure_mpa (MPa) and "
+                         f"advance(command_mpa, dt), got {type(plant).__name__}")
+    check_range("noise_n", sigma, 0.0, 1e4, unit="N")
     n = int(round(duration_s / dt))
     if n < 1:
         raise InputError(f"duration_s must be at least one sample time ({dt:g} s)")
@@ -233,20 +300,26 @@ def simulate(
         if not math.isfinite(sp):
             raise InputError(f"setpoint_n must be a finite number in N, got {setpoint_n!r}")
         r = np.full(n + 1, sp)
-    noise = (np.random.default_rng(plant.seed).normal(0.0, plant.noise_n, n + 1)
-             if plant.noise_n > 0 else np.zeros(n + 1))
-    supply = PressurePlant(plant, p0_mpa)
+    noise = (np.random.default_rng(rng_seed).normal(0.0, sigma, n + 1)
+             if sigma > 0 else np.zeros(n + 1))
     p = np.empty(n + 1)
     f = np.empty(n + 1)
     u = np.empty(n + 1)
-    p[0] = supply.pressure_mpa
+    p[0] = float(supply.pressure_mpa)
     rl, nl = r.tolist(), noise.tolist()
     step, advance = controller.step, supply.advance
-    for k in range(n):
-        fk = float(true_friction(p[k]))
-        f[k] = fk
-        u[k] = step(rl[k], fk + nl[k], dt)
-        p[k + 1] = advance(u[k], dt)
+    if getattr(controller, "uses_pressure", False):
+        for k in range(n):
+            fk = float(true_friction(p[k]))
+            f[k] = fk
+            u[k] = step(rl[k], fk + nl[k], dt, pressure_mpa=float(p[k]))  # type: ignore[call-arg]
+            p[k + 1] = advance(u[k], dt)
+    else:
+        for k in range(n):
+            fk = float(true_friction(p[k]))
+            f[k] = fk
+            u[k] = step(rl[k], fk + nl[k], dt)
+            p[k + 1] = advance(u[k], dt)
     f[n] = float(true_friction(p[n]))
     u[n] = u[n - 1]
     return SimulationResult(t, r, f, f + noise, u, p, float(dt))
