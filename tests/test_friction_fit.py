@@ -169,7 +169,7 @@ def test_error_measures_by_hand() -> None:
     assert fit.gamma == pytest.approx(0.68, rel=1e-14)
     assert fit.relative_error_pct == pytest.approx((15 + 600 / 130) / 2, rel=1e-12)
     assert fit.max_relative_error_pct == pytest.approx(-15.0, rel=1e-12)
-    assert fit.rms_relative_error_pct == pytest.approx(100 * np.sqrt(180 / 23300), rel=1e-12)
+    assert fit.relative_rms_residual_pct == pytest.approx(100 * np.sqrt(180 / 23300), rel=1e-12)
     np.testing.assert_allclose(fit.residual_n, [-12.0, 6.0], atol=1e-12)
 
 

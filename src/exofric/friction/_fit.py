@@ -14,7 +14,9 @@ Relative error measures (the paper's "relative error of 10.68 %" in Sec. 3.5 is 
   relative error, in line with the "average error" of Table 1 and Sec. 6;
 * ``max_relative_error_pct`` = the signed relative error (F^_i - F_i) / F_i of largest
   magnitude (the measure of Sec. 4, Figs 8-10);
-* ``rms_relative_error_pct`` = sqrt(sum e_i^2 / sum F_i^2) x 100 (relative RMS residual).
+* ``relative_rms_residual_pct`` = sqrt(sum e_i^2 / sum F_i^2) x 100: the RMS residual as a
+  percentage of the RMS friction (not a mean of the relative errors: large forces dominate it,
+  so it is usually smaller than ``relative_error_pct``).
 
 Points with F_i = 0 are left out of the relative measures (undefined there).
 
@@ -241,7 +243,7 @@ class GammaFit:
         The matched points used (MPa, N), sorted by pressure.
     relative_error_pct : float
         Mean absolute relative error in % (primary measure; see module docstring).
-    max_relative_error_pct, rms_relative_error_pct : float
+    max_relative_error_pct, relative_rms_residual_pct : float
         Signed largest relative error and relative RMS residual, in %.
     n_dropped : int
         Friction points outside the squeeze curve's pressure range (not used).
@@ -277,7 +279,7 @@ class GammaFit:
     predicted_friction_n: tuple[float, ...]
     relative_error_pct: float
     max_relative_error_pct: float
-    rms_relative_error_pct: float
+    relative_rms_residual_pct: float
     n_dropped: int
     n_clusters: int = 0
     lack_of_fit: LackOfFit | None = None
@@ -314,7 +316,7 @@ class GammaFit:
             "ci_note": self.ci_note,
             "relative_error_pct": self.relative_error_pct,
             "max_relative_error_pct": self.max_relative_error_pct,
-            "rms_relative_error_pct": self.rms_relative_error_pct,
+            "relative_rms_residual_pct": self.relative_rms_residual_pct,
             "n_points": self.n_points,
             "n_dropped": self.n_dropped,
             "n_clusters": self.n_clusters,
@@ -824,7 +826,7 @@ def fit_gamma(
         predicted_friction_n=tuple(pred.tolist()),
         relative_error_pct=mean_rel,
         max_relative_error_pct=_signed_max(rel),
-        rms_relative_error_pct=rms_rel,
+        relative_rms_residual_pct=rms_rel,
         n_dropped=int(pf.size - m),
         n_clusters=g,
         lack_of_fit=lof,

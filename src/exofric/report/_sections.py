@@ -140,7 +140,7 @@ def _s_gamma(d: dict[str, Any]) -> str:
         f"<p>Fitted gamma = <b>{fmt(f['gamma'])}</b> (95% CI {fmt(f['gamma_ci95'][0])} to "
         f"{fmt(f['gamma_ci95'][1])}, {f['ci_method']}), mean |relative error| "
         f"{fmt(f['relative_error_pct'], 3)}%, max {fmt(f['max_relative_error_pct'], 3)}%, "
-        f"relative RMS {fmt(f['rms_relative_error_pct'], 3)}%, {f['n_points']} points.</p>"
+        f"relative RMS {fmt(f['relative_rms_residual_pct'], 3)}%, {f['n_points']} points.</p>"
         f"<p>The one gamma that rests on a measured number of the paper: its base friction "
         f"180.49 N at 0.6 MPa divided by our N(0.6 MPa) gives <b>"
         f"{fmt(g['gamma_published_point'], 4)}</b>; divided by its own 268.55 N it gives "
