@@ -157,3 +157,12 @@ def test_itae_tuning_and_pwm_plant_in_process(tmp_path, capsys):
     code = run(["control", "--plant", str(pwm), "--dt", "0.01"])
     out, err = capsys.readouterr()
     assert code == 2 and out == "" and "pwm_period_s" in err and len(err.strip().splitlines()) == 1
+
+
+def test_pd_without_the_model_says_why_it_ends_at_zero_friction(cli) -> None:
+    """`control --controller pd` never reaches contact onset (issue 20): the output says so."""
+    r = cli(["control", "--controller", "pd", "--duration", "6", "--json"])
+    assert r.code == 0, r.err
+    d = r.json()
+    assert d["final_friction_n"] < 0.5
+    assert any("below contact onset" in n for n in d["notes"])

@@ -67,6 +67,18 @@ def parse_floats(name: str, text: str) -> list[float]:
     return out
 
 
+def narrow_table(title: str, columns: list[str]) -> Table:
+    """A table that reads at 80 columns: light rules, no outer padding, right-aligned numbers
+    (the first column left), headers that wrap (units in them) instead of being cut."""
+    from rich import box
+
+    t = Table(title=title, box=box.SIMPLE_HEAD, pad_edge=False, header_style="bold",
+              title_justify="left")
+    for i, c in enumerate(columns):
+        t.add_column(c, justify="left" if i == 0 else "right", overflow="fold")
+    return t
+
+
 def kv_table(title: str, rows: list[tuple[str, str, str]]) -> Table:
     """A two/three-column rich table: quantity, value, unit."""
     t = Table(title=title, show_header=True, header_style="bold")

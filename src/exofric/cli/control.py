@@ -14,12 +14,32 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table, plot_path, save_figure
+from exofric.cli._common import (
+    JSON_OPTION,
+    console,
+    emit,
+    kv_table,
+    narrow_table,
+    plot_path,
+    save_figure,
+)
 
 if TYPE_CHECKING:
     from exofric.reproduction import CaseResult, CompareResult, ControlSetup
 
 _COMMON_HELP = "Units: N, MPa, s."
+
+
+def _stuck_note(case: dict[str, Any], target_n: float) -> str:
+    """Why a case ends far from its target at zero friction (e.g. PD without the model)."""
+    f, p = case.get("final_friction_n"), case.get("final_pressure_mpa")
+    if f is None or p is None or abs(f) > 0.01 * abs(target_n):
+        return ""
+    name = f"{case.get('controller', '').upper()}{' + model' if case.get('feedforward') else ''}"
+    return (f"{name}: the pressure settles at {p:.3f} MPa, where the friction map gives "
+            f"{f:.2f} N: below contact onset the friction does not respond to pressure, and "
+            "without integral action the loop never reaches contact. Add the model "
+            "(--feedforward) or use PI/PID.")
 
 
 def _opt(default: Any, help_: str) -> Any:
@@ -208,6 +228,9 @@ def register(app: typer.Typer) -> None:
         d = res.to_dict()
         if written:
             d["plot"] = written
+        note = _stuck_note(d, setup.target_n)
+        if note:
+            d["notes"] = [note]
 
         def render() -> None:
             gd = d["gains"]
@@ -225,6 +248,8 @@ def register(app: typer.Typer) -> None:
                  ("ki", f"{gd['ki_mpa_per_n_s']:.5g}", "MPa/(N s)"),
                  ("kd", f"{gd['kd_mpa_s_per_n']:.5g}", "MPa s/N"),
                  ("paper settling time", _fmt(d["paper_settling_time_s"], ".2f"), "s")]))
+            if note:
+                console.print(note)
 
         emit(d, as_json, render)
 
@@ -250,15 +275,15 @@ def register(app: typer.Typer) -> None:
         if written:
             d["plot"] = written
 
-        def render() -> None:
-            from rich.table import Table
+        notes = [n for c in d["cases"] if (n := _stuck_note(c, setup.target_n))]
+        if notes:
+            d["notes"] = notes
 
-            t = Table(title=f"Fig 12: target {setup.target_n:g} N, mismatch "
-                      f"{setup.plant.mismatch:g}, feedforward {setup.ff_mode}")
-            for col in ("case", "settling s", "paper s", "overshoot %", "ss error N",
-                        "final F N", "final P MPa"):
-                t.add_column(col, justify="right" if col != "case" else "left",
-                             no_wrap=col == "case")
+        def render() -> None:
+            t = narrow_table(f"Fig 12: target {setup.target_n:g} N, mismatch "
+                             f"{setup.plant.mismatch:g}, feedforward {setup.ff_mode}",
+                             ["case", "settle s", "paper s", "OS %", "ss err N", "F N",
+                              "P MPa"])
             for c in d["cases"]:
                 t.add_row(f"{c['controller'].upper()} {'+ model' if c['feedforward'] else ''}",
                           _fmt(c["settling_time_s"], ".2f"),
@@ -270,6 +295,10 @@ def register(app: typer.Typer) -> None:
             for k in ("pi", "pid"):
                 console.print(f"{k.upper()}: settling reduced by {_fmt(red[k], '.1f')} % with "
                               f"the model (paper: {pred[k]:g} %)")
+            console.print("settle: 2 % settling time; paper: Fig 12 as printed; OS: overshoot; "
+                          "ss err: steady-state error; F, P: final friction and pressure.")
+            for n in notes:
+                console.print(n)
 
         emit(d, as_json, render)
 

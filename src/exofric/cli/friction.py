@@ -18,6 +18,7 @@ from exofric.cli._common import (
     console,
     emit,
     kv_table,
+    narrow_table,
     out_file,
     parse_floats,
     plot_path,
@@ -236,6 +237,7 @@ def _register_predict(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Predict friction F = gamma N(P) for other structures via the FE (Sec. 4). MPa, N."""
+        from exofric import paper
         from exofric.errors import InputError
         from exofric.friction import FrictionModel, paper_structures, predict, structures_from_dict
         from exofric.geometry import BASE
@@ -269,23 +271,44 @@ def _register_predict(app: typer.Typer) -> None:
 
             d["plot"] = str(save_figure(plot_predictions(res.predictions), plot))
 
-        def render() -> None:
-            from rich.table import Table
+        printed = {f"test {r['test']}": r for r in paper.table3()} if use_paper else {}
+        p4 = paper.table4() if use_paper else {}
 
-            t = Table(title=f"Friction prediction, gamma = {gamma:g} (N, MPa, %, Nm)")
-            for c in ("structure", "D/d1/ID/d2 (mm)", "F at max P (N)", "torque (Nm)",
-                      "deviation %", "paper dev %", "validated", "max rel. err %"):
-                t.add_column(c, justify="right")
+        def render() -> None:
+            measured_any = any(p.max_relative_error_pct is not None for p in res.predictions)
+            cols = ["name", "D/d1/d2 mm", "F N", "T Nm", "dev %", "rec. %", "T3 %", "ok"]
+            if measured_any:
+                cols.append("err %")
+            if use_paper:
+                cols.append("T4 p")
+            t = narrow_table(f"Friction at {grid[-1]:g} MPa, gamma = {gamma:g}; base: "
+                             f"{base.name or 'the base group'}", cols)
             for p in res.predictions:
                 s = p.structure
                 m = p.max_relative_error_pct
-                t.add_row(s.name, f"{s.hole_mm:g}/{s.tube_od_mm:g}/{s.tube_id_mm:.3g}/"
-                          f"{s.wire_mm:g}", f"{p.predicted_friction_n[-1]:.2f}",
-                          f"{p.torque.torque_nm:.2f}", f"{p.deviation.deviation_pct:.1f}",
-                          f"{p.deviation.paper_deviation_pct:.1f}",
-                          "yes" if p.deviation.in_validated_region else "NO",
-                          "-" if m is None else f"{m:.2f}")
+                row_p = printed.get(s.name, {})
+                pr = row_p.get("max_relative_deviation_pct")
+                cells = [s.name, f"{s.hole_mm:g}/{s.tube_od_mm:g}/{s.wire_mm:g}",
+                         f"{p.predicted_friction_n[-1]:.1f}", f"{p.torque.torque_nm:.1f}",
+                         f"{p.deviation.deviation_pct:.1f}",
+                         f"{p.deviation.paper_deviation_pct:.1f}",
+                         "-" if pr is None else f"{pr:.1f}",
+                         "yes" if p.deviation.in_validated_region else "NO"]
+                if measured_any:
+                    cells.append("-" if m is None else f"{m:.2f}")
+                if use_paper:
+                    k = row_p.get("test")
+                    cells.append(f"{p4[k]:.4g}" if k in p4 else "-")
+                t.add_row(*cells)
             console.print(t)
+            console.print(
+                "F, T: friction and torque at the highest pressure; dev %: exofric's deviation "
+                "max(s)/min(s) - 1 of the scale factors; rec. %: the paper's max|s - 1| "
+                "recomputed by exofric; T3 %: Table 3 as printed (tests 2-3 used another "
+                "formula: docs/paper-notes.md); ok: inside the validated 20 %"
+                + ("; err %: largest relative error against the measured curve" if measured_any
+                   else "")
+                + ("; T4 p: the paper's ANOVA p-value (Table 4)" if use_paper else "") + ".")
             for a in res.anova:
                 console.print(f"ANOVA {a.name}: F = {a.f_stat:.3f}, {a.verdict}")
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import typer
 
@@ -19,6 +20,23 @@ from exofric.cli._common import (
 from exofric.cli.inflate import material_from_options
 
 DEFAULT_P = ",".join(f"{0.05 * i:.2f}" for i in range(1, 13))
+
+
+def _paper_beside(st: Any, p: list[float], n: Any) -> str:
+    """The paper's N(0.6 MPa) beside ours when this is its base geometry (else "")."""
+    from exofric import paper
+    from exofric.geometry import BASE
+
+    same = all(abs(getattr(st, k) - getattr(BASE, k)) < 1e-9 for k in
+               ("hole_mm", "tube_od_mm", "wire_mm", "length_mm")) and \
+        abs(st.tube_id_mm - BASE.tube_id_mm) < 0.01
+    if not same or not any(abs(x - 0.6) < 1e-9 for x in p):
+        return ""
+    ours = float(n[[abs(x - 0.6) < 1e-9 for x in p].index(True)])
+    theirs = paper.scalar("base_squeeze_force_at_0_6_mpa_n")
+    return (f"paper (Sec 3.4, Fig 7): N = {theirs:g} N at 0.6 MPa for this base group; "
+            f"exofric {ours:.2f} N ({100 * (ours / theirs - 1):+.1f} %; why: "
+            "docs/paper-notes.md)")
 
 
 def register(app: typer.Typer) -> None:
@@ -71,6 +89,11 @@ def register(app: typer.Typer) -> None:
         res = squeeze(st, mat, p, accuracy=accuracy, mesh=mesh, gravity=gravity,
                       penalty=penalty)
         out = res.to_dict()
+        if _paper_beside(st, p, res.squeeze_force_n):
+            from exofric import paper
+
+            out["paper_squeeze_force_at_0_6_mpa_n"] = paper.scalar(
+                "base_squeeze_force_at_0_6_mpa_n")
         from exofric.plots import plot_squeeze
 
         out.update(write_outputs(res, plot, vtu, plot_squeeze))
@@ -109,6 +132,9 @@ def register(app: typer.Typer) -> None:
                 if onset is not None
                 else "the tube does not reach the wire in this pressure range"
             )
+            paper_n = _paper_beside(st, p, res.squeeze_force_n)
+            if paper_n:
+                console.print(paper_n)
             if est is not None:
                 cm = res.estimate_mesh
                 assert cm is not None
