@@ -27,8 +27,11 @@ def test_material_json_acceptance(cli):
         "c01_mpa",
         "d_per_mpa",
         "k_mpa",
+        "paper_table2",
         "warnings",
     }
+    # the printed Table 2 beside ours at the paper's inputs (issue 20)
+    assert d["paper_table2"]["c10_mpa"] == 0.6639 and d["paper_table2"]["d_per_mpa"] == 0.00575
     assert d["warnings"] == []  # every --json lists the warnings printed (none here)
     for k, v in [
         ("e0_mpa", 4.00333),
