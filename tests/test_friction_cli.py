@@ -239,3 +239,12 @@ def test_predict_error_handling(capsys: pytest.CaptureFixture[str], tmp_path: Pa
     _one_line_error(*_run(capsys, "predict", "--gamma", "0.7168",
                           "--structures", str(EXAMPLES / "structures-paper.toml"),
                           "--measured", str(meas))[::2], "matches no structure")
+
+
+def test_invert_at_the_papers_inputs_prints_the_papers_pressure(capsys) -> None:
+    """Sec 5's 0.26 MPa beside our root of Eq 9 (issue 20; docs/paper-notes.md F1)."""
+    code, out, err = _run(capsys, "invert", "--gamma", "0.7168", "--cubic",
+                          "-1957.4,2412.8,-251.95,-7.9531", "--target-friction", "54.4", "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    assert d["paper_pressure_mpa"] == 0.26 and abs(d["pressure_mpa"] - 0.2926) < 1e-3

@@ -358,6 +358,15 @@ def _register_invert(app: typer.Typer) -> None:
                 d["cubic_pressure_mpa"] = None
         d["cubic"] = fit.to_dict()
         d["p_min_mpa"], d["p_max_mpa"] = fit.p_min_mpa, fit.p_max_mpa
+        from exofric import paper
+
+        is_paper = (cubic is not None and all(
+            abs(a - b) <= 1e-6 * max(1.0, abs(b)) for a, b in zip(fit.coefficients, paper.eq8(),
+                                                                  strict=True))
+            and abs(target_friction - paper.scalar("target_friction_n")) < 1e-9
+            and abs(gamma - paper.scalar("gamma")) < 1e-9 and f0 == 0.0)
+        if is_paper:
+            d["paper_pressure_mpa"] = paper.scalar("target_pressure_mpa")
 
         def render() -> None:
             rows = [("target friction F", f"{target_friction:g}", "N"),
@@ -367,6 +376,10 @@ def _register_invert(app: typer.Typer) -> None:
             if d.get("cubic_pressure_mpa") is not None:
                 rows.append(("pressure (fitted cubic)", f"{d['cubic_pressure_mpa']:.4f}", "MPa"))
             console.print(kv_table("Inverse of Eq 9", rows))
+            if "paper_pressure_mpa" in d:
+                console.print(f"paper (Sec 5): {d['paper_pressure_mpa']:g} MPa for this target; "
+                              f"Eq 9 as printed has its root at {d['pressure_mpa']:.4f} MPa "
+                              "(docs/paper-notes.md)")
 
         emit(d, as_json, render)
 
