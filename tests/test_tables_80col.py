@@ -40,3 +40,14 @@ def test_table_fits_80_columns(name: str) -> None:
     assert not too_long, too_long[:3]
     cut = [ln for ln in lines if "\u2026" in ln]
     assert not cut, cut[:3]
+
+
+def test_paper_text_output_has_table1_and_the_per_test_errors() -> None:
+    """`exofric paper` prints Table 1 and the per-test maximum errors, not only in --json."""
+    proc = subprocess.run([sys.executable, "-m", "exofric", "paper"], capture_output=True,
+                          text=True, env={**os.environ, "COLUMNS": "80"}, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    out = proc.stdout
+    assert "Table 1" in out and "ANSYS Shore 62.5" in out and "9.44" in out
+    assert "188.64" in out and "-92.36" in out        # Figs 8-10 maximum errors, tests 6-7
+    assert all(len(ln) <= 80 and "\u2026" not in ln for ln in out.splitlines())

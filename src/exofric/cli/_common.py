@@ -73,7 +73,7 @@ def narrow_table(title: str, columns: list[str]) -> Table:
     from rich import box
 
     t = Table(title=title, box=box.SIMPLE_HEAD, pad_edge=False, header_style="bold",
-              title_justify="left")
+              title_justify="left", min_width=min(len(title), 78))
     for i, c in enumerate(columns):
         t.add_column(c, justify="left" if i == 0 else "right", overflow="fold")
     return t
