@@ -35,6 +35,30 @@ def _check_bracket(bracket: tuple[float, float]) -> tuple[float, float]:
     return lo, hi
 
 
+def _joint_identifiable(shore: float | None, tube_id_mm: float, od: float,
+                        corr: float | None, notes: list[str]) -> bool:
+    """False (with a note saying what data would fix it) when the joint fit ends on a bound of
+    its search (Shore 20-80, ID 2-98 % of the OD): the optimum is not in the data's reach.
+    A correlation above 0.99 inside the bounds is weak identification (wide but valid standard
+    errors; ``joint`` adds its note), not a failure."""
+    from exofric.calibration._methods import JOINT_SHORE_BOUNDS
+
+    at = []
+    if shore is not None and min(abs(shore - b) for b in JOINT_SHORE_BOUNDS) < 0.05:
+        at.append(f"Shore {shore:.3g} is at the search bound {JOINT_SHORE_BOUNDS}")
+    if min(abs(tube_id_mm - f * od) for f in (0.02, 0.98)) < 1e-3 * od:
+        at.append(f"the tube ID {tube_id_mm:.3g} mm is at its bound")
+    if not at:
+        return True
+    high = f"; hardness and ID correlate at {corr:.4f}" if corr is not None and abs(corr) > 0.99 \
+        else ""
+    notes.append(f"not identifiable ({'; '.join(at)}{high}): inflation data alone cannot tell "
+                 "a softer tube from a thinner wall. What fixes it: a measured tube ID "
+                 "(--tube-id, then only the hardness is fitted) or a durometer reading (a shore "
+                 "column: only the ID is fitted).")
+    return False
+
+
 def _as_data(data: object) -> InflationData:
     """``data`` as InflationData: itself, a mapping with ``pressure_mpa`` and
     ``outer_diameter_mm`` (and ``shore``) lists, or a DataFrame with those columns."""
@@ -148,6 +172,7 @@ def calibrate(
     ev = Evaluator(cm, data)
     id0 = 0.6 * od if tube_id_mm is None else float(tube_id_mm)
     stderr_s = stderr_id = corr = None
+    identifiable = True
     if method == "bisection":
         best, ok, notes = bisection(ev, id0, (lo, hi), tol, xtol=xtol)
     elif method == "bounded":
@@ -156,6 +181,8 @@ def calibrate(
         fit = joint(ev, 0.5 * (lo + hi), id0, od)
         best, ok, notes = fit.trial, fit.converged, fit.notes
         stderr_s, stderr_id, corr = float(fit.stderr[0]), float(fit.stderr[1]), fit.corr
+        identifiable = _joint_identifiable(best.shore, best.tube_id_mm, od, corr, notes)
+        ok = ok and identifiable
     else:
         fit = known_hardness(ev, id0, od)
         best, ok, notes = fit.trial, fit.converged, fit.notes
@@ -182,6 +209,7 @@ def calibrate(
         shore_stderr=stderr_s,
         tube_id_stderr_mm=stderr_id,
         correlation=corr,
+        identifiable=identifiable,
         n_model_calls=cm.calls - calls0,
         elapsed_s=time.perf_counter() - t0,
     )

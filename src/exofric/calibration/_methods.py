@@ -429,13 +429,17 @@ def _least_squares(
     return Fit(t, res.x, stderr, corr, res.status > 0, notes)
 
 
+#: Hardness range (Shore A) the joint fit searches: the Shore A scale's useful part for rubber.
+JOINT_SHORE_BOUNDS: tuple[float, float] = (20.0, 80.0)
+
+
 def joint(
     ev: Evaluator,
     shore0: float,
     tube_id0_mm: float,
     tube_od_mm: float,
     *,
-    shore_bounds: tuple[float, float] = (20.0, 80.0),
+    shore_bounds: tuple[float, float] = JOINT_SHORE_BOUNDS,
     steps: tuple[float, float] = (0.01, 0.001),
     max_nfev: int = 60,
 ) -> Fit:

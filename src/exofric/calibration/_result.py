@@ -284,6 +284,9 @@ class CalibrationResult:
         Caveats (e.g. hardness and wall thickness not separable).
     shore_stderr, tube_id_stderr_mm, correlation : float or None
         Least-squares standard errors (Shore A, mm) and their correlation.
+    identifiable : bool
+        False when the joint fit ends on a bound of its search: the data cannot determine
+        both hardness and ID (a note says what data would).
     tol_pct : float or None
         Stopping tolerance on the average error (%), for the bracketing methods.
     bracket : tuple of float or None
@@ -317,8 +320,25 @@ class CalibrationResult:
     shore_stderr: float | None = None
     tube_id_stderr_mm: float | None = None
     correlation: float | None = None
+    identifiable: bool = True
     n_model_calls: int = 0
     elapsed_s: float = field(default=float("nan"), compare=False)
+
+    @property
+    def status(self) -> str:
+        """The outcome in words: ``converged``, ``weakly identified`` (converged, but hardness
+        and ID correlate above 0.99: wide standard errors), ``not identifiable`` (the joint fit
+        ended on a bound), ``tolerance not met`` (a bracketing method whose best average error
+        stays above ``tol_pct``) or ``not converged``."""
+        if not self.identifiable:
+            return "not identifiable"
+        if self.converged:
+            weak = self.correlation is not None and abs(self.correlation) > 0.99
+            return "weakly identified" if weak else "converged"
+        if self.tol_pct is not None and self.method in ("bisection", "bounded") \
+                and self.average_error_pct > self.tol_pct:
+            return "tolerance not met"
+        return "not converged"
 
     @property
     def residuals_pct(self) -> np.ndarray:
@@ -357,6 +377,8 @@ class CalibrationResult:
             "average_error_pct": self.average_error_pct,
             "max_error_pct": self.max_error_pct,
             "converged": self.converged,
+            "status": self.status,
+            "identifiable": self.identifiable,
             "tol_pct": self.tol_pct,
             "bracket": None if self.bracket is None else list(self.bracket),
             "material": None if self.material is None else self.material.to_dict(),

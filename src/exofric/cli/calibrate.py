@@ -11,6 +11,7 @@ from exofric.cli._common import (
     console,
     emit,
     kv_table,
+    narrow_table,
     parse_floats,
     plot_path,
     save_figure,
@@ -63,6 +64,8 @@ def register(app: typer.Typer) -> None:
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Identify Shore A hardness (and tube ID, mm) from inflation data. MPa, mm, %."""
+        import numpy as np
+
         from exofric.calibration import InflationData, calibrate
         from exofric.errors import InputError
         from exofric.io import read_inflation_table
@@ -74,13 +77,24 @@ def register(app: typer.Typer) -> None:
             raise InputError(f"--bracket must be two Shore A values lo,hi, got {bracket!r}")
         if c10_convention not in ("eq4", "paper-slip"):
             raise InputError(f"--c10-convention must be eq4 or paper-slip, got {c10_convention!r}")
-        d = InflationData.from_frame(read_inflation_table(data))
+        frame = read_inflation_table(data)
+        d = InflationData.from_frame(frame)
+        from exofric import paper
+
+        paper_data = bool(np.array_equal(
+            frame["outer_diameter_mm"].to_numpy(float),
+            np.asarray(paper.table1()["test_outer_diameter_mm"], float)))
         res = calibrate(
             d, tube_od, tube_id_mm=tube_id, method=method, fit_tube_id=fit_tube_id,
             bracket=(lohi[0], lohi[1]), tol_pct=tol_pct, model=model, correlation=correlation,
             c10_convention=c10_convention,  # type: ignore[arg-type]
         )
         out = res.to_dict()
+        if paper_data:
+            t1 = paper.table1()
+            out["paper_table1_average_error_pct"] = dict(
+                zip((f"{x:g}" for x in t1["simulated_shore"]), t1["average_error_pct"],
+                    strict=True))
         if plot is not None:
             out["plot_path"] = str(save_figure(res.plot(), plot))
 
@@ -96,7 +110,7 @@ def register(app: typer.Typer) -> None:
                 ("tube inner diameter", pm(res.tube_id_mm, res.tube_id_stderr_mm, ".4f"), "mm"),
                 ("average error", f"{res.average_error_pct:.3f}", "%"),
                 ("max error", f"{res.max_error_pct:.3f}", "%"),
-                ("converged", str(res.converged), ""),
+                ("status", res.status, ""),
                 ("model evaluations", str(res.n_model_calls), f"in {res.elapsed_s:.2f} s"),
             ]
             if res.correlation is not None:
@@ -106,10 +120,21 @@ def register(app: typer.Typer) -> None:
                 rows.append(("C10 / C01 / d", f"{m.c10:.5f} / {m.c01:.6f} / {m.d:.6f}",
                              "MPa / MPa / 1/MPa"))
             console.print(kv_table("Calibration from inflation test", rows))
-            hist = [(f"{i + 1}", f"Shore {'-' if t.shore is None else format(t.shore, '.4g')}, "
-                     f"ID {t.tube_id_mm:.4f} mm", f"{t.average_error_pct:.3f} %")
-                    for i, t in enumerate(res.history)]
-            console.print(kv_table("History (trial, average error)", hist))
+            t1 = paper.table1()
+            printed = dict(zip(t1["simulated_shore"], t1["average_error_pct"], strict=True))
+            beside = paper_data and abs(res.tube_od_mm - t1["tube_od_mm"]) < 1e-9
+            cols = ["trial", "Shore A", "ID mm", "avg err %"] + (["Table 1 %"] if beside else [])
+            h = narrow_table("History: every trial, in order", cols)
+            for i, tr in enumerate(res.history):
+                row = [str(i + 1), "-" if tr.shore is None else f"{tr.shore:.4g}",
+                       f"{tr.tube_id_mm:.4f}", f"{tr.average_error_pct:.3f}"]
+                if beside:
+                    row.append(f"{printed[tr.shore]:g}" if tr.shore in printed else "")
+                h.add_row(*row)
+            console.print(h)
+            if beside:
+                console.print("Table 1 %: the paper's ANSYS average error at that Shore value "
+                              "(its ID is not printed: docs/paper-notes.md)")
             for note in res.notes:
                 console.print(f"note: {note}")
             if plot is not None:
