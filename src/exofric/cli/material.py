@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import typer
 
 from exofric.cli._common import JSON_OPTION, console, emit, kv_table, narrow_table
@@ -24,7 +26,7 @@ def register(app: typer.Typer) -> None:
         from exofric.material import MooneyRivlin
 
         m = MooneyRivlin.from_shore(shore, correlation, c01_ratio=c01_ratio, poisson=poisson)
-        d = m.to_dict()
+        d: dict[str, Any] = dict(m.to_dict())
         t2 = _paper_table2(shore, correlation, c01_ratio, poisson)
         if t2:
             d["paper_table2"] = t2
