@@ -52,6 +52,7 @@ MODULES = [
     "exofric.calibration",
     "exofric.friction",
     "exofric.control",
+    "exofric.hardware",
     "exofric.design",
     "exofric.reproduction",
     "exofric.io",

@@ -22,7 +22,7 @@ import exofric
 
 SRC = Path(exofric.__file__).resolve().parent
 STAGES = ("paper", "material", "fe", "simulate", "calibration", "friction", "control", "design",
-          "reproduction", "io", "plots", "report")
+          "reproduction", "hardware", "io", "plots", "report")
 #: single-module homes at the top level (no stage prefix, no split)
 TOP_MODULES = ("errors", "defaults", "geometry")
 

@@ -297,3 +297,62 @@ __all__ += ["REDUCE_DRIFT_WARN_PCT", "REDUCE_END_TRIM_S", "REDUCE_FORCE_SIGMAS",
             "REDUCE_PLATEAU_TOL_REL", "REDUCE_SATURATION_SAMPLES", "REDUCE_SKIP_MM",
             "REDUCE_SKIP_S", "REDUCE_SMOOTH_S", "REDUCE_SPEED_FRACTION", "REDUCE_STATIC_WINDOW_S",
             "REDUCE_TARE_GAP_S", "REDUCE_TARE_S"]
+
+# --- Control that meets hardware (exofric.control pneumatic plant, scheduling; exofric.hardware;
+#     issue 17). Valve and volume values are typical of a 1/8" proportional regulator and 1 m of
+#     4 mm hose: assumptions for the simulated plant, not measurements. -------------------------
+
+#: Default supply pressure (gauge) in MPa: the top of the paper's tested range.
+PNEU_SUPPLY_MPA: Final = 0.6
+#: Default sonic conductance C of the fill and vent ports in dm^3/(s bar) (a small 1/8"
+#: valve; an assumption, not a measurement).
+PNEU_C_DM3_PER_S_BAR: Final = 0.05
+#: Default critical pressure ratio b (unitless; typical of small valves).
+PNEU_CRITICAL_RATIO: Final = 0.3
+#: Pressure ratio above which the ISO 6358 subsonic law is replaced by a linear (laminar)
+#: law to zero flow at ratio 1, continuous at the ratio (unitless; removes the infinite
+#: slope dm/dp at equal pressures, as ISO 6358-3's laminar range; Simscape uses 0.999).
+PNEU_LAMINAR_RATIO: Final = 0.999
+#: Default line (hose + fittings + regulator outlet) volume in mm^3 (1 m of 4 mm ID hose).
+PNEU_LINE_VOLUME_MM3: Final = 12566.0
+#: Default tube cavity volume in mm^3: pi 4.97^2 / 4 x 116 mm (the base-group tube at P = 0).
+PNEU_TUBE_VOLUME_MM3: Final = 2250.4
+#: Default proportional band of the regulator in MPa (pressure error for a full opening).
+PNEU_PROPORTIONAL_BAND_MPA: Final = 0.02
+#: Relative tolerance (unitless) of the plant's ODE integrator.
+PNEU_RTOL: Final = 1e-7
+#: Absolute tolerance (MPa) of the plant's ODE integrator.
+PNEU_ATOL_MPA: Final = 1e-8
+#: Default slope floor as a fraction of the reference slope (unitless): scheduled gains are at
+#: most 1/0.1 = 10 x the nominal gains (below contact onset, where dF/dP = 0).
+SCHEDULE_FLOOR_RATIO: Final = 0.1
+#: Default backlash half-width of the hysteretic plant in the comparison, MPa (10 kPa: the
+#: up/down branches differ by about 2 x 0.01 x 471 = 9.4 N at the paper's 54.4 N target).
+SCHEDULE_COMPARE_HYSTERESIS_MPA: Final = 0.01
+#: Connect timeout in s for Modbus TCP (an unreachable host fails after this).
+DEVICE_CONNECT_TIMEOUT_S: Final = 2.0
+#: Per-request read/write timeout in s (Modbus and serial; ``?timeout=`` in the URL).
+DEVICE_IO_TIMEOUT_S: Final = 0.25
+#: Default serial and Modbus RTU baud rate in bit/s.
+DEVICE_BAUD: Final = 115200
+#: Device-side watchdog the host sets at open, in ms: the firmware vents when no command
+#: arrives for this long (host crashed or unplugged).
+DEVICE_WATCHDOG_MS: Final = 1000
+#: Default pressure limit in MPa: commands are clipped to it.
+LOOP_MAX_PRESSURE_MPA: Final = 0.6
+#: Default trip pressure as a multiple (unitless) of the pressure limit (measured above it: vent,
+#: stop).
+LOOP_TRIP_PRESSURE_FACTOR: Final = 1.1
+#: Default force limit in N (set-points above it are refused; measured above it trips).
+LOOP_MAX_FORCE_N: Final = 250.0
+#: Watchdog in s: a sensor that repeats its value (or fails to answer) this long vents the
+#: tube and stops the loop (exit 4).
+LOOP_WATCHDOG_S: Final = 0.5
+
+__all__ += ["DEVICE_BAUD", "DEVICE_CONNECT_TIMEOUT_S", "DEVICE_IO_TIMEOUT_S",
+            "DEVICE_WATCHDOG_MS", "LOOP_MAX_FORCE_N", "LOOP_MAX_PRESSURE_MPA",
+            "LOOP_TRIP_PRESSURE_FACTOR", "LOOP_WATCHDOG_S", "PNEU_ATOL_MPA",
+            "PNEU_CRITICAL_RATIO", "PNEU_C_DM3_PER_S_BAR", "PNEU_LAMINAR_RATIO",
+            "PNEU_LINE_VOLUME_MM3", "PNEU_PROPORTIONAL_BAND_MPA", "PNEU_RTOL",
+            "PNEU_SUPPLY_MPA", "PNEU_TUBE_VOLUME_MM3",
+            "SCHEDULE_COMPARE_HYSTERESIS_MPA", "SCHEDULE_FLOOR_RATIO"]

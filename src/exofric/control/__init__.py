@@ -6,7 +6,14 @@
 * :class:`Controller` (discrete PID/PI/PD, filtered derivative, limits, anti-windup, bumpless
   start) and :class:`ModelFeedforward` (static or 2-DOF).
 * :func:`identify_step` -- lag/delay/gain from a recorded step response.
-* :func:`simulate` -- the closed loop at a fixed sample time.
+* :class:`PneumaticPlant` (:class:`PneumaticParams`, :class:`Orifice`) -- the physical plant:
+  ISO 6358 valve ports, regulator, line and tube volume (:func:`tube_volume_table` from the FE),
+  gas law; :func:`simulate_charge` and :func:`identify_charge` (:class:`ChargeFit`) -- sonic
+  conductance and volume from charge/discharge transients.
+* :func:`simulate` -- the closed loop at a fixed sample time (any :class:`PlantLike` plant).
+* :class:`ScheduledController` (gains scheduled on dF/dP), :class:`HysteresisInverse`
+  (branch-aware feedforward), :class:`HystereticFrictionMap` (two-branch friction for a
+  simulated plant), :func:`compare_strategies` -- controllers beyond fixed PID compared.
 * :func:`step_metrics` -- rise/settling time, overshoot, steady-state error, ITAE.
 * :func:`rule_gains`, :func:`itae_gains` -- IMC/SIMC rule and ITAE optimisation under saturation.
 
@@ -40,7 +47,25 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         PressurePlant,
         local_slope,
     )
-    from exofric.control._simulate import SimulationResult, setpoint_profile, simulate
+    from exofric.control._pneumatic import (
+        ChargeFit,
+        Orifice,
+        PneumaticParams,
+        PneumaticPlant,
+        identify_charge,
+        simulate_charge,
+        tube_volume_table,
+    )
+    from exofric.control._schedule import (
+        HysteresisInverse,
+        HystereticFrictionMap,
+        ScheduledController,
+        StrategyRow,
+        StrategyTable,
+        compare_strategies,
+        friction_inverse,
+    )
+    from exofric.control._simulate import PlantLike, SimulationResult, setpoint_profile, simulate
     from exofric.control._tuning import CONTROLLERS, TuningResult, itae_gains, rule_gains
 
 # Lazy facade (PEP 562): importing one name does not load the whole stage; each name is loaded
@@ -52,7 +77,15 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "_plant": (
         "CubicFrictionMap", "CurveFrictionMap", "PlantParams", "PressurePlant", "local_slope",
     ),
-    "_simulate": ("SimulationResult", "setpoint_profile", "simulate"),
+    "_pneumatic": (
+        "ChargeFit", "Orifice", "PneumaticParams", "PneumaticPlant", "identify_charge",
+        "simulate_charge", "tube_volume_table",
+    ),
+    "_schedule": (
+        "HysteresisInverse", "HystereticFrictionMap", "ScheduledController", "StrategyRow",
+        "StrategyTable", "compare_strategies", "friction_inverse",
+    ),
+    "_simulate": ("PlantLike", "SimulationResult", "setpoint_profile", "simulate"),
     "_tuning": ("CONTROLLERS", "TuningResult", "itae_gains", "rule_gains"),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
@@ -63,6 +96,12 @@ __all__ = [
     "ModelFeedforward", "PIDGains", "PlantParams", "PressurePlant", "rule_gains",
     "setpoint_profile", "simulate", "SimulationResult", "step_metrics", "StepMetrics",
     "TuningResult",
+    # gain scheduling, hysteresis-aware feedforward, strategy comparison (_schedule)
+    "compare_strategies", "friction_inverse", "HysteresisInverse", "HystereticFrictionMap",
+    "PlantLike", "ScheduledController", "StrategyRow", "StrategyTable",
+    # the physical pneumatic plant and its identification (_pneumatic)
+    "ChargeFit", "identify_charge", "Orifice", "PneumaticParams", "PneumaticPlant",
+    "simulate_charge", "tube_volume_table",
 ]
 
 __getattr__, __dir__ = facade(__name__, _HOME, __all__)

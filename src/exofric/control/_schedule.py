@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
+from exofric import defaults as D
 from exofric.control._metrics import step_metrics
 from exofric.control._pid import Controller, ModelFeedforward, PIDGains
 from exofric.control._plant import CurveFrictionMap, FrictionFn, PlantParams, local_slope
@@ -64,7 +65,7 @@ __all__ = [
 # Module constants (candidates for exofric.defaults).
 #: Default slope floor as a fraction of the reference slope (unitless): scheduled gains are at
 #: most 1/0.1 = 10 x the nominal gains (below contact onset, where dF/dP = 0).
-SCHEDULE_FLOOR_RATIO = 0.1
+SCHEDULE_FLOOR_RATIO = D.SCHEDULE_FLOOR_RATIO
 #: Central-difference step for the local slope dF/dP in MPa.
 SCHEDULE_SLOPE_STEP_MPA = 1e-4
 #: Relative gain change below which the gains are left as they are (unitless): keeps a
@@ -74,7 +75,7 @@ SCHEDULE_GAIN_RTOL = 1e-9
 INVERSE_TOL_MPA = 1e-12
 #: Default backlash half-width of the hysteretic plant in the comparison, MPa (10 kPa: the
 #: up/down branches differ by about 2 x 0.01 x 471 = 9.4 N at the paper's 54.4 N target).
-COMPARE_HYSTERESIS_MPA = 0.01
+COMPARE_HYSTERESIS_MPA = D.SCHEDULE_COMPARE_HYSTERESIS_MPA
 #: Feedforward variants of :func:`compare_strategies`.
 FEEDFORWARDS = ("none", "model", "hysteresis")
 

@@ -1,0 +1,468 @@
+"""The real-time control loop: fixed rate, deadline scheduling, safety, rig-log output.
+
+Scheduling: sample k is due at ``start + k dt`` (dt = 1/rate); the loop sleeps until then,
+records the jitter (actual - scheduled wake-up time), reads the device, steps the controller
+with the *measured* elapsed time and writes the set-point. When a sample's work ends after the
+next deadline the loop counts an *overrun* and moves to the next future grid point (skipped
+samples are counted), so lateness never accumulates into drift.
+
+Safety, in this order every sample:
+
+* watchdog -- a read that fails (:class:`SensorStale`) or a sensor that does not change for
+  ``watchdog_s`` (its sample counter where the device has one, else pressure and force both
+  exactly unchanged) -> vent, stop, :class:`LoopFault` ``'watchdog'``;
+* limits -- measured pressure above ``trip_pressure_mpa`` or force above ``max_force_n`` ->
+  vent, stop, :class:`LoopFault`; commands are clipped to ``max_pressure_mpa``; a set-point
+  above ``max_force_n`` (or needing a model pressure above ``max_pressure_mpa``) is refused
+  before start (:class:`~exofric.errors.InputError`);
+* Ctrl-C (KeyboardInterrupt) and any exception -> vent, write the log, re-raise.
+
+The log (CSV, the rig-log schema of :func:`exofric.io.read_raw_log`): ``time_s``,
+``pressure_mpa``, ``force_n``, ``setpoint_n``, ``command_mpa``, ``p_term_mpa``, ``i_term_mpa``,
+``d_term_mpa``, ``ff_mpa``, ``jitter_ms``, with ``#`` provenance lines (device URL, controller,
+gains, rate, limits, how the run ended). Rows are appended to ``<stem>.partial.csv`` as the
+run goes (flushed about twice a second); at the end the complete log is written atomically
+to the final path and the partial file removed -- after a hard crash the partial file remains.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from exofric import defaults as D
+from exofric.errors import InputError, check_range
+from exofric.hardware._clock import RealClock
+from exofric.hardware._device import LoopFault, SensorStale
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = ["LOG_COLUMNS", "LoopResult", "SafetyLimits", "run_loop"]
+
+#: Columns of the loop's rig log, in order (units in the suffix).
+LOG_COLUMNS = ("time_s", "pressure_mpa", "force_n", "setpoint_n", "command_mpa", "p_term_mpa",
+               "i_term_mpa", "d_term_mpa", "ff_mpa", "jitter_ms")
+#: Default pressure limit in MPa: commands are clipped to it.
+LOOP_MAX_PRESSURE_MPA = D.LOOP_MAX_PRESSURE_MPA
+#: Default trip pressure as a multiple of the pressure limit (measured above it: vent, stop).
+LOOP_TRIP_PRESSURE_FACTOR = D.LOOP_TRIP_PRESSURE_FACTOR
+#: Default force limit in N (set-points above it are refused; measured above it trips).
+LOOP_MAX_FORCE_N = D.LOOP_MAX_FORCE_N
+#: Default watchdog in s.
+LOOP_WATCHDOG_S = D.LOOP_WATCHDOG_S
+#: Partial-log flush interval in samples.
+_FLUSH_EVERY = 50
+
+
+@dataclass(frozen=True)
+class SafetyLimits:
+    """Pressure and force limits of a control run.
+
+    Parameters
+    ----------
+    max_pressure_mpa : float
+        Commands are clipped to this pressure in MPa (and a set-point whose model pressure
+        exceeds it is refused).
+    max_force_n : float
+        Set-points above this force in N are refused; a measured force above it trips.
+    trip_pressure_mpa : float or None
+        A measured pressure above this (MPa) trips; default 1.1 x ``max_pressure_mpa``.
+
+    Examples
+    --------
+    >>> SafetyLimits(0.5).trip_mpa
+    0.55
+    """
+
+    max_pressure_mpa: float = LOOP_MAX_PRESSURE_MPA
+    max_force_n: float = LOOP_MAX_FORCE_N
+    trip_pressure_mpa: float | None = None
+
+    def __post_init__(self) -> None:
+        check_range("max_pressure_mpa", self.max_pressure_mpa, 0.0, 100.0, lo_open=True,
+                    unit="MPa")
+        check_range("max_force_n", self.max_force_n, 0.0, 1e6, lo_open=True, unit="N")
+        if self.trip_pressure_mpa is not None:
+            check_range("trip_pressure_mpa", self.trip_pressure_mpa, self.max_pressure_mpa,
+                        100.0, unit="MPa")
+
+    @property
+    def trip_mpa(self) -> float:
+        """The measured pressure (MPa) that trips the loop."""
+        t = self.trip_pressure_mpa
+        return round(LOOP_TRIP_PRESSURE_FACTOR * self.max_pressure_mpa, 12) if t is None else t
+
+
+@dataclass(frozen=True)
+class LoopResult:
+    """What a control run did: timing, how it stopped, step metrics, the samples.
+
+    Attributes
+    ----------
+    device : str
+        The device URL.
+    rate_hz : float
+        Loop rate in Hz.
+    duration_s : float
+        Time in s from the first sample to the last.
+    n_samples : int
+        Samples logged.
+    jitter_p50_ms, jitter_p99_ms, jitter_max_ms : float
+        Wake-up lateness (actual - scheduled) in ms: median, 99th percentile, maximum.
+    overruns : int
+        Samples whose work ended after the next deadline.
+    skipped : int
+        Grid points skipped to catch up after overruns.
+    stopped_reason : str
+        ``'completed'``, ``'watchdog'``, ``'pressure limit'``, ``'force limit'``,
+        ``'interrupted'`` or ``'error'``.
+    stopped_at_s : float
+        Time in s of the stop (since the first sample).
+    vented : bool
+        Whether the device was vented at the end.
+    dry_run : bool
+        No set-points were written.
+    metrics : StepMetrics or None
+        Settling time (2 %), overshoot, steady-state error (N) of the force against the final
+        set-point; None when not measurable.
+    log_path : str or None
+        The log written.
+    samples : dict of str to ndarray
+        The log's columns (see ``LOG_COLUMNS``; s, MPa, N, ms).
+
+    Examples
+    --------
+    >>> from exofric.hardware import open_device, run_loop
+    >>> from exofric.control import Controller, PIDGains
+    >>> with open_device("sim://?speed=0") as dev:
+    ...     res = run_loop(dev, Controller(PIDGains(0.002, 0.004)), 54.4, duration_s=1.0)
+    >>> res.n_samples, res.stopped_reason, res.overruns
+    (101, 'completed', 0)
+    """
+
+    device: str
+    rate_hz: float
+    duration_s: float
+    n_samples: int
+    jitter_p50_ms: float
+    jitter_p99_ms: float
+    jitter_max_ms: float
+    overruns: int
+    skipped: int
+    stopped_reason: str
+    stopped_at_s: float
+    vented: bool
+    dry_run: bool
+    metrics: Any
+    log_path: str | None
+    samples: dict[str, np.ndarray] = field(repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (the CLI's ``--json``): metrics, jitter (ms), overruns, vented."""
+        m = self.metrics.to_dict() if self.metrics is not None else {}
+        return {
+            "device": self.device, "rate_hz": self.rate_hz, "duration_s": self.duration_s,
+            "n_samples": self.n_samples,
+            "settling_time_s": m.get("settling_time_s"),
+            "overshoot_pct": m.get("overshoot_pct"),
+            "steady_state_error_n": m.get("steady_state_error_n"),
+            "final_friction_n": m.get("final_friction_n"),
+            "target_friction_n": m.get("target_friction_n"),
+            "jitter_p50_ms": self.jitter_p50_ms, "jitter_p99_ms": self.jitter_p99_ms,
+            "jitter_max_ms": self.jitter_max_ms, "overruns": self.overruns,
+            "skipped": self.skipped, "stopped_reason": self.stopped_reason,
+            "stopped_at_s": self.stopped_at_s, "vented": self.vented, "dry_run": self.dry_run,
+            "log_path": self.log_path,
+        }
+
+    def to_frame(self) -> pd.DataFrame:
+        """The samples as a DataFrame (columns ``LOG_COLUMNS``: s, MPa, N, ms)."""
+        import pandas as pd
+
+        return pd.DataFrame({c: self.samples[c] for c in LOG_COLUMNS})
+
+
+def _partial_path(path: Path) -> Path:
+    return path.with_name(f"{path.stem}.partial{path.suffix}")
+
+
+def _fmt(v: float) -> str:
+    return "" if v != v else repr(float(v))
+
+
+def _safe_vent(device: Any) -> bool:
+    try:
+        device.vent()
+        return True
+    except Exception:  # noqa: BLE001 - report it as not vented; the caller raises or faults
+        return False
+
+
+def _terms(controller: Any, u: float) -> tuple[float, float, float, float]:
+    """(p, i, d, ff) terms in MPa from the controller's state, NaN where not available."""
+    st = controller.state() if hasattr(controller, "state") else {}
+    i = float(st.get("integral_mpa", math.nan))
+    d = float(st.get("derivative_mpa", math.nan))
+    ff = float(st.get("feedforward_mpa", math.nan))
+    p = st.get("proportional_mpa")
+    if p is None:
+        gains, e = getattr(controller, "gains", None), getattr(controller, "_e_prev", None)
+        p = gains.kp * e if gains is not None and e is not None else math.nan
+    return float(p), i, d, ff
+
+
+def _describe(controller: Any) -> list[str]:
+    lines = [f"controller: {type(controller).__name__}"]
+    gains = getattr(controller, "gains", None)
+    if gains is not None and hasattr(gains, "to_dict"):
+        lines.append("gains: " + ", ".join(f"{k}={v:g}" for k, v in gains.to_dict().items()))
+    ff = getattr(controller, "feedforward", None)
+    if ff is not None:
+        lines.append(f"feedforward: {'2-DOF' if getattr(ff, 'two_dof', False) else 'static'}")
+    return lines
+
+
+def run_loop(
+    device: Any,
+    controller: Any,
+    setpoint: float | Callable[[float], float],
+    *,
+    duration_s: float,
+    rate_hz: float = 100.0,
+    limits: SafetyLimits | None = None,
+    watchdog_s: float = LOOP_WATCHDOG_S,
+    log_path: str | Path | None = None,
+    dry_run: bool = False,
+    clock: Any | None = None,
+    metadata: Sequence[str] = (),
+    vent_at_end: bool = True,
+) -> LoopResult:
+    """Run the control loop on a device at a fixed rate (see the module docstring).
+
+    Parameters
+    ----------
+    device : Device
+        An open device (:func:`open_device`); vented at the start.
+    controller : object
+        ``step(setpoint_n, measurement_n, dt_s) -> command_mpa`` (e.g.
+        :class:`exofric.control.Controller`); ``reset()`` is called at the start, ``state()``
+        gives the logged terms when it has it.
+    setpoint : float or callable
+        Friction set-point in N, or a function of the time since the start (s) -> N.
+    duration_s : float
+        Run length in s (> 0).
+    rate_hz : float
+        Sample rate in Hz.
+    limits : SafetyLimits or None
+        Pressure and force limits (default ``SafetyLimits()``).
+    watchdog_s : float
+        Sensor silence/staleness in s that vents and stops.
+    log_path : str, Path or None
+        CSV log to write (``.csv`` or ``.txt``); None for no log.
+    dry_run : bool
+        Read and run the controller but never write set-points (the device stays vented).
+    clock : Clock or None
+        Time source; default the device's own ``clock`` (``sim://``) or real time.
+    metadata : sequence of str
+        Extra provenance lines for the log.
+    vent_at_end : bool
+        Vent when the run completes (faults and interrupts always vent).
+
+    Returns
+    -------
+    LoopResult
+
+    Raises
+    ------
+    InputError
+        Bad arguments, or a set-point above the limits (refused before start).
+    LoopFault
+        Watchdog or limit trip (device vented, log written; ``.result`` holds the run).
+    KeyboardInterrupt
+        Ctrl-C, after venting and writing the log.
+
+    Examples
+    --------
+    >>> from exofric.control import Controller, PIDGains
+    >>> from exofric.hardware import open_device
+    >>> with open_device("sim://?speed=0") as dev:
+    ...     r = run_loop(dev, Controller(PIDGains(0.002, 0.004)), 54.4, duration_s=0.5)
+    >>> r.to_dict()["vented"], r.jitter_max_ms
+    (True, 0.0)
+    """
+    lim = limits if limits is not None else SafetyLimits()
+    check_range("duration_s", duration_s, 0.0, 1e6, lo_open=True, unit="s")
+    check_range("rate_hz", rate_hz, 0.0, 1e4, lo_open=True, unit="Hz")
+    dt = 1.0 / float(rate_hz)
+    check_range("watchdog_s", watchdog_s, dt, 1e4, unit="s")
+    n_last = int(round(float(duration_s) * rate_hz))
+    if callable(setpoint):
+        sp: Callable[[float], float] = setpoint
+    else:
+        value = float(setpoint)
+
+        def sp(_t: float) -> float:
+            return value
+
+    targets = np.array([float(sp(k * dt)) for k in range(n_last + 1)])
+    if not np.all(np.isfinite(targets)) or targets.min() < 0.0:
+        raise InputError("setpoint_n must be finite and >= 0 N")
+    if targets.max() > lim.max_force_n:
+        raise InputError(f"setpoint_n {targets.max():g} N is above the force limit max_force_n "
+                         f"{lim.max_force_n:g} N: refused before start")
+    ff = getattr(controller, "feedforward", None)
+    if ff is not None and hasattr(ff, "pressure_for_friction"):
+        p_ff = float(ff.pressure_for_friction(float(targets.max())))
+        if p_ff > lim.max_pressure_mpa:
+            raise InputError(f"setpoint_n {targets.max():g} N needs {p_ff:.4g} MPa by the model, "
+                             f"above the pressure limit max_pressure_mpa "
+                             f"{lim.max_pressure_mpa:g} MPa: refused before start")
+    log = Path(log_path) if log_path is not None else None
+    if log is not None and log.suffix.lower() not in (".csv", ".txt"):
+        raise InputError(f"log_path must end in .csv or .txt, got {log.name!r}")
+    clk = clock if clock is not None else getattr(device, "clock", None) or RealClock()
+
+    started = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
+    head = ["exofric control run (rig log)", f"started: {started}",
+            f"device: {getattr(device, 'url', type(device).__name__)}", *_describe(controller),
+            f"rate_hz: {rate_hz:g}", f"duration_s: {duration_s:g}",
+            f"limits: max_pressure_mpa={lim.max_pressure_mpa:g}, trip_pressure_mpa="
+            f"{lim.trip_mpa:g}, max_force_n={lim.max_force_n:g}", f"watchdog_s: {watchdog_s:g}",
+            f"dry_run: {str(bool(dry_run)).lower()}", *[str(m) for m in metadata]]
+    partial = None
+    fh = None
+    if log is not None:
+        log.parent.mkdir(parents=True, exist_ok=True)
+        partial = _partial_path(log)
+        fh = partial.open("w", encoding="utf-8")
+        fh.write("".join(f"# {h}\n" for h in head) + ",".join(LOG_COLUMNS) + "\n")
+        fh.flush()
+
+    rows: list[tuple[float, ...]] = []
+    state: dict[str, Any] = {"reason": "completed", "t_stop": 0.0, "overruns": 0, "skipped": 0}
+    fault: tuple[str, float, str] | None = None
+    failure: BaseException | None = None
+    start = 0.0
+    try:
+        device.vent()
+        if hasattr(controller, "reset"):
+            controller.reset()
+        start = clk.now()
+        last_fresh = start
+        last_sig: Any = None
+        last_err = ""
+        t_prev: float | None = None
+        k = 0
+        while k <= n_last:
+            t_sched = start + k * dt
+            clk.sleep_until(t_sched)
+            t_now = clk.now()
+            t_rel = t_now - start
+            state["t_stop"] = t_rel
+            try:
+                r = device.read()
+            except SensorStale as exc:
+                r, last_err = None, str(exc)
+            if r is not None:
+                sig = r.sample_id if r.sample_id is not None else (r.pressure_mpa, r.force_n)
+                if sig != last_sig:
+                    last_fresh, last_sig = t_now, sig
+            if t_now - last_fresh >= watchdog_s:
+                why = (f"no valid reading for {t_now - last_fresh:.3g} s ({last_err})"
+                       if r is None else f"sensor unchanged for {t_now - last_fresh:.3g} s")
+                fault = ("watchdog", t_rel, why)
+                break
+            if r is not None:
+                if r.pressure_mpa > lim.trip_mpa:
+                    fault = ("pressure limit", t_rel, f"pressure {r.pressure_mpa:.4g} MPa above "
+                             f"the trip pressure {lim.trip_mpa:g} MPa")
+                    break
+                if r.force_n > lim.max_force_n:
+                    fault = ("force limit", t_rel, f"force {r.force_n:.4g} N above the force "
+                             f"limit {lim.max_force_n:g} N")
+                    break
+                target = float(sp(t_rel))
+                u = float(controller.step(target, r.force_n, dt if t_prev is None
+                                          else max(t_now - t_prev, 1e-9)))
+                t_prev = t_now
+                cmd = min(max(u, 0.0), lim.max_pressure_mpa)
+                if not dry_run:
+                    device.write_setpoint_mpa(cmd)
+                row = (t_rel, r.pressure_mpa, r.force_n, target, cmd, *_terms(controller, u),
+                       1000.0 * (t_now - t_sched))
+                rows.append(row)
+                if fh is not None:
+                    fh.write(",".join(_fmt(v) for v in row) + "\n")
+                    if len(rows) % _FLUSH_EVERY == 0:
+                        fh.flush()
+            k += 1
+            t_end = clk.now()
+            if t_end > start + k * dt:
+                state["overruns"] += 1
+                k_next = int(math.floor((t_end - start) / dt)) + 1
+                state["skipped"] += k_next - k
+                k = k_next
+    except BaseException as exc:  # noqa: BLE001 - vent first, re-raised below
+        failure = exc
+        state["reason"] = "interrupted" if isinstance(exc, KeyboardInterrupt) else "error"
+        state["t_stop"] = clk.now() - start
+    if fault is not None:
+        state["reason"], state["t_stop"] = fault[0], fault[1]
+    vented = _safe_vent(device) if (failure is not None or fault is not None or vent_at_end
+                                    or dry_run) else False
+    if fh is not None:
+        fh.close()
+    result = _result(device, rows, rate_hz, state, vented, dry_run, log)
+    if log is not None and partial is not None:
+        tail = [f"stopped: {state['reason']} at {state['t_stop']:.3f} s"
+                + (f" ({fault[2]})" if fault else ""),
+                f"vented: {str(vented).lower()}", f"samples: {result.n_samples}",
+                f"jitter_ms: p50={result.jitter_p50_ms:.3f}, p99={result.jitter_p99_ms:.3f}, "
+                f"max={result.jitter_max_ms:.3f}",
+                f"overruns: {result.overruns}, skipped: {result.skipped}"]
+        try:
+            from exofric.io import write_raw_log
+
+            write_raw_log(log, result.to_frame(), [*head, *tail])
+            partial.unlink(missing_ok=True)
+        except Exception:
+            if failure is None:
+                raise
+    if failure is not None:
+        raise failure
+    if fault is not None:
+        raise LoopFault(fault[0], fault[1], fault[2], result)
+    return result
+
+
+def _result(device: Any, rows: list[tuple[float, ...]], rate_hz: float, state: dict[str, Any],
+            vented: bool, dry_run: bool, log: Path | None) -> LoopResult:
+    arr = np.array(rows, dtype=float).reshape(-1, len(LOG_COLUMNS))
+    samples = {c: arr[:, i].copy() for i, c in enumerate(LOG_COLUMNS)}
+    jit = samples["jitter_ms"]
+    pct = (np.percentile(jit, [50.0, 99.0]) if jit.size else np.array([math.nan, math.nan]))
+    metrics = None
+    t, f, r = samples["time_s"], samples["force_n"], samples["setpoint_n"]
+    if t.size >= 2 and float(r[-1]) != float(f[0]):
+        from exofric.control import step_metrics
+
+        try:
+            metrics = step_metrics(t, f, float(r[-1]))
+        except InputError:
+            metrics = None
+    return LoopResult(
+        device=str(getattr(device, "url", type(device).__name__)), rate_hz=float(rate_hz),
+        duration_s=float(t[-1] - t[0]) if t.size else 0.0, n_samples=int(t.size),
+        jitter_p50_ms=float(pct[0]), jitter_p99_ms=float(pct[1]),
+        jitter_max_ms=float(jit.max()) if jit.size else math.nan,
+        overruns=int(state["overruns"]), skipped=int(state["skipped"]),
+        stopped_reason=str(state["reason"]), stopped_at_s=float(state["t_stop"]),
+        vented=bool(vented), dry_run=bool(dry_run), metrics=metrics,
+        log_path=None if log is None else str(log), samples=samples)
