@@ -171,6 +171,10 @@ def run(argv: Sequence[str] | None = None) -> int:
         if isinstance(exc, ConvergenceError):
             print(f"exofric: did not converge: {exc}", file=sys.stderr)
             return 3
+        loop = sys.modules.get("exofric.hardware._loop")   # only if a loop ran
+        if loop is not None and isinstance(exc, loop.LoopFault):
+            print(f"exofric: stopped: {' '.join(str(exc).split())}", file=sys.stderr)
+            return 4
         if os.environ.get("EXOFRIC_DEBUG"):
             raise
         # A bug, not the user's input: one line, never a traceback (EXOFRIC_DEBUG=1 shows it).

@@ -20,6 +20,8 @@ from exofric.cli._common import (
     emit,
     kv_table,
     narrow_table,
+    out_file,
+    parse_floats,
     plot_path,
     save_figure,
 )
@@ -304,15 +306,41 @@ def register(app: typer.Typer) -> None:
 
     @ctl.command("identify")
     def identify_cmd(
-        csv: str = typer.Argument(..., help="Step response CSV: time_s, pressure_mpa"
-                                  "[, command_mpa] (step at t = 0 without command_mpa)."),
+        csv: str | None = typer.Argument(None, help="Step response CSV: time_s, pressure_mpa"
+                                         "[, command_mpa] (step at t = 0 without "
+                                         "command_mpa)."),
+        charge: list[str] = typer.Option([], "--charge", help="Charge/discharge log(s) of the "
+                                         "on/off valve: time_s, pressure_mpa, command_mpa "
+                                         "(> 0 fills). Fits the valve's sonic conductance C "
+                                         "and the volume (repeat for several runs)."),
+        supply: float = typer.Option(0.6, "--supply", help="--charge: supply pressure (gauge) "
+                                     "in MPa."),
+        volume: float | None = typer.Option(None, "--volume", help="--charge: known total "
+                                            "volume in mm^3 (then C is fitted)."),
+        conductance: float | None = typer.Option(None, "--conductance", help="--charge: known "
+                                                 "sonic conductance C of the fill port in "
+                                                 "dm^3/(s bar) (then the volume is fitted)."),
+        added_volume: str | None = typer.Option(None, "--added-volume", help="--charge: known "
+                                                "volume added in each run, mm^3, comma-"
+                                                "separated (two different values identify C "
+                                                "and the volume together)."),
         target_friction: float = TARGET, structure: str = STRUCTURE,
         gamma: float | None = GAMMA, tau_c: float | None = TAU_C, as_json: bool = JSON_OPTION,
     ) -> None:
-        """Fit gain, lag and dead time to a pressure step response; print the rule's gains."""
+        """Identify the pressure supply: lag + dead time from a step (CSV), or the valve's
+        sonic conductance and the volume from charge/discharge logs (--charge)."""
         from exofric import paper
         from exofric.control import CONTROLLERS, local_slope, rule_gains
+        from exofric.errors import InputError
 
+        if charge:
+            if csv is not None:
+                raise InputError("give a step CSV or --charge logs, not both", param="charge")
+            _identify_charge(charge, supply, volume, conductance, added_volume, as_json)
+            return
+        if csv is None:
+            raise InputError("control identify needs a step-response CSV or --charge LOG",
+                             param="csv")
         ident = _identify_csv(csv)
         fmap = _structure_map(structure, paper.scalar("gamma") if gamma is None else gamma)
         slope = local_slope(fmap, fmap.inverse(target_friction)) * ident.gain
@@ -337,4 +365,142 @@ def register(app: typer.Typer) -> None:
 
         emit(d, as_json, render)
 
+    _register_run(ctl)
     app.add_typer(ctl, name="control")
+
+
+def _identify_charge(logs: list[str], supply: float, volume: float | None,
+                     conductance: float | None, added: str | None, as_json: bool) -> None:
+    """``control identify --charge``: C and the volume from charge/discharge logs."""
+    from exofric.control import identify_charge
+    from exofric.errors import InputError
+    from exofric.io import read_table
+
+    # gauge pressure: a vented log reads slightly below zero with sensor noise
+    frames = [read_table(p, ["time_s", "pressure_mpa", "command_mpa"], nonnegative=[],
+                         unique_within=("time_s", None), min_rows=10) for p in logs]
+    adds = parse_floats("--added-volume", added) if added else [0.0] * len(frames)
+    if len(adds) != len(frames):
+        raise InputError(f"--added-volume needs one value per --charge log ({len(frames)}), "
+                         f"got {len(adds)}", param="added_volume")
+    fit = identify_charge([f["time_s"].to_numpy(float) for f in frames],
+                          [f["pressure_mpa"].to_numpy(float) for f in frames],
+                          command_mpa=[f["command_mpa"].to_numpy(float) for f in frames],
+                          supply_mpa=supply, volume_mm3=volume, c_dm3_per_s_bar=conductance,
+                          added_volume_mm3=adds)
+    d = fit.to_dict()
+    d["logs"] = [str(p) for p in logs]
+
+    def render() -> None:
+        rows = [("fill port C", f"{fit.c_fill_dm3_per_s_bar:.4g} +/- {fit.stderr_c_fill:.2g}",
+                 "dm^3/(s bar)"),
+                ("vent port C", f"{fit.c_vent_dm3_per_s_bar:.4g} +/- {fit.stderr_c_vent:.2g}",
+                 "dm^3/(s bar)"),
+                ("volume", f"{fit.volume_mm3:.5g} +/- {fit.stderr_volume_mm3:.2g}", "mm^3"),
+                ("critical ratio b", f"{fit.critical_ratio:.3g}"
+                 + ("" if fit.b_fitted else " (fixed)"), ""),
+                ("valve dead time", f"{fit.delay_s:.3g} +/- {fit.stderr_delay_s:.2g}", "s"),
+                ("R^2 / RMSE", f"{fit.r2:.5f} / {fit.rmse_mpa:.3g}", "- / MPa")]
+        if fit.fixed:
+            rows.append(("given, not fitted", ", ".join(fit.fixed), ""))
+        if fit.fopdt is not None:
+            rows.append(("beside: lag + dead time fit", f"tau {fit.fopdt.time_constant_s:.3g} s,"
+                         f" theta {fit.fopdt.delay_s:.3g} s, R^2 {fit.fopdt.r2:.3f}", ""))
+        console.print(kv_table("ISO 6358 valve and volume from charge logs", rows))
+
+    emit(d, as_json, render)
+
+
+def _register_run(ctl: typer.Typer) -> None:
+    @ctl.command("run")
+    def run_cmd(
+        device: str = typer.Option(..., "--device", help="sim://?speed=1, modbus-tcp://HOST:PORT"
+                                   "?unit=1, modbus-rtu:///dev/ttyX?baud=115200 or "
+                                   "serial:///dev/ttyX?baud=115200."),
+        map_path: str | None = typer.Option(None, "--map", help="Modbus register map TOML "
+                                            "(default: the shipped map; see `exofric.hardware"
+                                            ".DEFAULT_MAP_PATH`)."),
+        controller: str = _opt("pi", "Controller: pd, pi or pid (gains: IMC/SIMC rule)."),
+        feedforward: bool = typer.Option(False, "--feedforward", help="Add the model's inverse "
+                                         "as feedforward."),
+        schedule: bool = typer.Option(False, "--schedule", help="Schedule the gains on the "
+                                      "local slope dF/dP of the friction map."),
+        target: float = typer.Option(54.40, "--target", help="Friction set-point in N."),
+        duration: float = typer.Option(10.0, "--duration", help="Run length in s."),
+        rate: float = typer.Option(100.0, "--rate", help="Loop rate in Hz."),
+        log: str | None = typer.Option(None, "--log", help="Write the run log (rig-log schema "
+                                       "CSV; `exofric reduce` and `control identify` read it)."),
+        max_pressure: float = typer.Option(0.6, "--max-pressure", help="Pressure limit in MPa "
+                                           "(commands clipped; 10 % above it trips)."),
+        max_force: float = typer.Option(250.0, "--max-force", help="Force limit in N."),
+        watchdog: float = typer.Option(0.5, "--watchdog", help="Vent when a sensor is stale "
+                                       "this long, s."),
+        dry_run: bool = typer.Option(False, "--dry-run", help="Read sensors and run the "
+                                     "controller, never actuate."),
+        baseline: float = typer.Option(1.0, "--baseline", help="Seconds logged vented before "
+                                       "the step (the rest window `exofric reduce` tares with)."),
+        structure: str = STRUCTURE, gamma: float | None = GAMMA, tau_c: float | None = TAU_C,
+        step_csv: str | None = STEP_CSV, ff_mode: str = FF_MODE,
+        as_json: bool = JSON_OPTION,
+    ) -> None:
+        """Run the friction loop on a device at a fixed rate, safely (vents on faults). N, MPa.
+
+        Gains come from the IMC/SIMC rule on the paper's supply (lag 0.8 s, dead time 0.2 s)
+        unless --step-csv gives an identified step of your supply (`control identify`).
+        """
+        from exofric.control import Controller, ScheduledController, local_slope
+        from exofric.errors import InputError, check_range
+        from exofric.hardware import SafetyLimits, open_device, run_loop
+
+        kind = controller.lower()
+        if kind not in ("pd", "pi", "pid"):
+            raise InputError(f"--controller must be pd, pi or pid, got {controller!r}")
+        check_range("--rate (Hz)", rate, 1.0, 2000.0)
+        check_range("--duration (s)", duration, 0.0, 1e5, lo_open=True)
+        if log is not None:
+            out_file("log", log)
+        limits = SafetyLimits(max_pressure_mpa=max_pressure, max_force_n=max_force)
+        setup = _setup(target, structure, gamma, None, step_csv, None, tau_c, ff_mode,
+                       "back-calculation", 1.0 / rate, duration, 2.0)
+        gains = setup.tuning(kind).gains
+        ff = setup.make_feedforward() if feedforward else None
+        if schedule:
+            fmap = setup.model_map
+            ctrl: Controller = ScheduledController(
+                gains, fmap, slope_ref_n_per_mpa=local_slope(fmap, fmap.inverse(target)),
+                u_max=max_pressure, feedforward=ff)
+        else:
+            ctrl = Controller(gains, u_max=max_pressure, feedforward=ff)
+        meta = [f"exofric control run: device {device}, {kind.upper()}"
+                f"{' + model feedforward' if feedforward else ''}"
+                f"{' + gain scheduling' if schedule else ''}, target {target:g} N, "
+                f"{rate:g} Hz, kp {gains.kp:.4g} MPa/N, ki {gains.ki:.4g} MPa/(N s), "
+                f"kd {gains.kd:.4g} MPa s/N"]
+        with open_device(device, map_path) as dev:
+            res = run_loop(dev, ctrl, target, duration_s=duration, rate_hz=rate, limits=limits,
+                           watchdog_s=watchdog, log_path=log, dry_run=dry_run, metadata=meta,
+                           baseline_s=baseline)
+        d = res.to_dict()
+        d.update({"device": device, "controller": kind, "feedforward": feedforward,
+                  "schedule": schedule, "target_n": target})
+
+        def render() -> None:
+            rows = [("controller", f"{kind.upper()}{' + model' if feedforward else ''}"
+                     f"{' + scheduling' if schedule else ''}", ""),
+                    ("target friction", f"{target:g}", "N"),
+                    ("final friction", _fmt(d.get("final_friction_n"), ".2f"), "N"),
+                    ("settling time (2 %)", _fmt(d.get("settling_time_s"), ".2f"), "s"),
+                    ("overshoot", _fmt(d.get("overshoot_pct"), ".1f"), "%"),
+                    ("steady-state error", _fmt(d.get("steady_state_error_n"), ".3f"), "N"),
+                    ("loop rate / samples", f"{rate:g} / {d.get('n_samples')}", "Hz / -"),
+                    ("jitter p50 / p99 / max", f"{d['jitter_p50_ms']:.3f} / "
+                     f"{d['jitter_p99_ms']:.3f} / {d['jitter_max_ms']:.3f}", "ms"),
+                    ("overruns", str(d.get("overruns")), ""),
+                    ("stopped", f"{d.get('stopped_reason')} at {d.get('stopped_at_s')}", "s"),
+                    ("vented", str(d.get("vented")), ""),
+                    ("dry run", str(dry_run), "")]
+            if d.get("log_path"):
+                rows.append(("log", str(d["log_path"]), ""))
+            console.print(kv_table(f"control run on {device}", rows))
+
+        emit(d, as_json, render)

@@ -351,6 +351,8 @@ def _runs(mask: NDArray[np.bool_]) -> NDArray[np.int64]:
 def _check_saturation(t: NDArray[np.float64], f: NDArray[np.float64], source: str) -> None:
     n_min = D.REDUCE_SATURATION_SAMPLES
     for extreme, word in ((f.max(), "maximum"), (f.min(), "minimum")):
+        if extreme == 0.0:   # an exact zero is a simulated or zeroed signal, not a clipped one
+            continue
         runs = _runs(f == extreme)
         long = runs[runs[:, 1] - runs[:, 0] >= n_min]
         if long.size:

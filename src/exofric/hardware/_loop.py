@@ -243,6 +243,7 @@ def run_loop(
     clock: Any | None = None,
     metadata: Sequence[str] = (),
     vent_at_end: bool = True,
+    baseline_s: float = 0.0,
 ) -> LoopResult:
     """Run the control loop on a device at a fixed rate (see the module docstring).
 
@@ -274,6 +275,9 @@ def run_loop(
         Extra provenance lines for the log.
     vent_at_end : bool
         Vent when the run completes (faults and interrupts always vent).
+    baseline_s : float
+        Seconds logged vented before the step (controller idle, set-point 0 N): the rest
+        window ``exofric reduce`` tares with; step metrics are taken from the step on.
 
     Returns
     -------
@@ -302,7 +306,8 @@ def run_loop(
     check_range("rate_hz", rate_hz, 0.0, 1e4, lo_open=True, unit="Hz")
     dt = 1.0 / float(rate_hz)
     check_range("watchdog_s", watchdog_s, dt, 1e4, unit="s")
-    n_last = int(round(float(duration_s) * rate_hz))
+    base = check_range("baseline_s", baseline_s, 0.0, 1e4, unit="s")
+    n_last = int(round((float(duration_s) + base) * rate_hz))
     if callable(setpoint):
         sp: Callable[[float], float] = setpoint
     else:
@@ -311,7 +316,7 @@ def run_loop(
         def sp(_t: float) -> float:
             return value
 
-    targets = np.array([float(sp(k * dt)) for k in range(n_last + 1)])
+    targets = np.array([float(sp(k * dt)) for k in range(int(round(duration_s * rate_hz)) + 1)])
     if not np.all(np.isfinite(targets)) or targets.min() < 0.0:
         raise InputError("setpoint_n must be finite and >= 0 N")
     if targets.max() > lim.max_force_n:
@@ -359,6 +364,7 @@ def run_loop(
         last_sig: Any = None
         last_err = ""
         t_prev: float | None = None
+        in_base = base > 0.0
         k = 0
         while k <= n_last:
             t_sched = start + k * dt
@@ -388,14 +394,24 @@ def run_loop(
                     fault = ("force limit", t_rel, f"force {r.force_n:.4g} N above the force "
                              f"limit {lim.max_force_n:g} N")
                     break
-                target = float(sp(t_rel))
-                u = float(controller.step(target, r.force_n, dt if t_prev is None
-                                          else max(t_now - t_prev, 1e-9)))
-                t_prev = t_now
-                cmd = min(max(u, 0.0), lim.max_pressure_mpa)
-                if not dry_run:
-                    device.write_setpoint_mpa(cmd)
-                row = (t_rel, r.pressure_mpa, r.force_n, target, cmd, *_terms(controller, u),
+                if t_rel < base:
+                    # baseline: vented, controller idle; the log's rest window (tare)
+                    target, u, cmd = 0.0, 0.0, 0.0
+                    terms: tuple[float, ...] = (0.0, 0.0, 0.0, 0.0)
+                else:
+                    if in_base:
+                        in_base = False
+                        if hasattr(controller, "reset"):
+                            controller.reset()
+                    target = float(sp(t_rel - base))
+                    u = float(controller.step(target, r.force_n, dt if t_prev is None
+                                              else max(t_now - t_prev, 1e-9)))
+                    t_prev = t_now
+                    cmd = min(max(u, 0.0), lim.max_pressure_mpa)
+                    if not dry_run:
+                        device.write_setpoint_mpa(cmd)
+                    terms = tuple(_terms(controller, u))
+                row = (t_rel, r.pressure_mpa, r.force_n, target, cmd, *terms,
                        1000.0 * (t_now - t_sched))
                 rows.append(row)
                 if fh is not None:
@@ -419,7 +435,7 @@ def run_loop(
                                     or dry_run) else False
     if fh is not None:
         fh.close()
-    result = _result(device, rows, rate_hz, state, vented, dry_run, log)
+    result = _result(device, rows, rate_hz, state, vented, dry_run, log, base)
     if log is not None and partial is not None:
         tail = [f"stopped: {state['reason']} at {state['t_stop']:.3f} s"
                 + (f" ({fault[2]})" if fault else ""),
@@ -443,13 +459,16 @@ def run_loop(
 
 
 def _result(device: Any, rows: list[tuple[float, ...]], rate_hz: float, state: dict[str, Any],
-            vented: bool, dry_run: bool, log: Path | None) -> LoopResult:
+            vented: bool, dry_run: bool, log: Path | None, baseline_s: float = 0.0
+            ) -> LoopResult:
     arr = np.array(rows, dtype=float).reshape(-1, len(LOG_COLUMNS))
     samples = {c: arr[:, i].copy() for i, c in enumerate(LOG_COLUMNS)}
     jit = samples["jitter_ms"]
     pct = (np.percentile(jit, [50.0, 99.0]) if jit.size else np.array([math.nan, math.nan]))
     metrics = None
-    t, f, r = samples["time_s"], samples["force_n"], samples["setpoint_n"]
+    run = samples["time_s"] >= baseline_s          # step metrics from the step on
+    t, f, r = (samples["time_s"][run] - baseline_s, samples["force_n"][run],
+               samples["setpoint_n"][run])
     if t.size >= 2 and float(r[-1]) != float(f[0]):
         from exofric.control import step_metrics
 
@@ -459,7 +478,8 @@ def _result(device: Any, rows: list[tuple[float, ...]], rate_hz: float, state: d
             metrics = None
     return LoopResult(
         device=str(getattr(device, "url", type(device).__name__)), rate_hz=float(rate_hz),
-        duration_s=float(t[-1] - t[0]) if t.size else 0.0, n_samples=int(t.size),
+        duration_s=float(t[-1] - t[0]) if t.size else 0.0,
+        n_samples=int(samples["time_s"].size),
         jitter_p50_ms=float(pct[0]), jitter_p99_ms=float(pct[1]),
         jitter_max_ms=float(jit.max()) if jit.size else math.nan,
         overruns=int(state["overruns"]), skipped=int(state["skipped"]),

@@ -1,7 +1,7 @@
 """Simulated rigs: in process (``sim://``), a Modbus TCP server and a serial pty device.
 
 All three are backed by a :class:`SimRig`: a pressure plant (``pressure_mpa``,
-``advance(command_mpa, dt)``; default :class:`exofric.control.PressurePlant`) followed by a
+``advance(command_mpa, dt)``; default :class:`exofric.control.PneumaticPlant`) followed by a
 friction map F(P) (default: the paper's Eq 9), advanced to the current time whenever the
 sensors are read or a set-point is written. Fault injection: ``freeze_after_s`` freezes the
 sensor after that many seconds -- ``fault="stale"`` keeps answering with the last sample (same
@@ -36,7 +36,8 @@ class SimRig:
     ----------
     plant : object or None
         ``pressure_mpa`` attribute and ``advance(command_mpa, dt)``; default
-        ``PressurePlant(PlantParams())`` (lag 0.8 s, dead time 0.2 s, 0.6 MPa supply).
+        ``PneumaticPlant(PneumaticParams())`` (a proportional regulator on a 0.6 MPa supply,
+        1 m of 4 mm hose and the base tube; see :mod:`exofric.control`).
     friction : callable or None
         F(P): MPa -> N; default the paper's Eq 9 map.
     clock : Clock or None
@@ -51,16 +52,16 @@ class SimRig:
     >>> rig = SimRig(clock=SimClock())
     >>> rig.set_command(0.3); rig.clock.advance(5.0); r = rig.sample()
     >>> round(r.pressure_mpa, 3), r.sample_id
-    (0.299, 1)
+    (0.3, 1)
     """
 
     def __init__(self, plant: Any | None = None, friction: Any | None = None, *,
                  clock: Any | None = None, freeze_after_s: float | None = None,
                  fault: str = "stale") -> None:
-        if plant is None:
-            from exofric.control import PlantParams, PressurePlant
+        if plant is None:        # the physical plant: regulator, hose and tube (ISO 6358)
+            from exofric.control import PneumaticParams, PneumaticPlant
 
-            plant = PressurePlant(PlantParams())
+            plant = PneumaticPlant(PneumaticParams())
         if fault not in _FAULTS:
             raise ValueError(f"fault must be stale or silent, got {fault!r}")
         self.plant = plant
