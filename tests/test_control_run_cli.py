@@ -112,3 +112,22 @@ def test_identify_charge_recovers_planted_conductance_and_volume(cli, tmp_path: 
     r1 = cli(["control", "identify", "--charge", str(paths[0])])
     assert r1.code == 2 and ("volume" in r1.err and "conductance" in r1.err.lower()
                              or "c_dm3" in r1.err)
+
+
+def test_ctrl_c_during_a_run_vents_and_exits_130(tmp_path: Path) -> None:
+    """SIGINT to a running `control run`: one line, exit 130, the log has the vented stop."""
+    import signal
+    import subprocess
+    import sys
+
+    log = tmp_path / "int.csv"
+    p = subprocess.Popen([sys.executable, "-m", "exofric", "control", "run", "--device",
+                          "sim://?speed=1", "--duration", "20", "--log", str(log)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(3.0)
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=30)
+    assert p.returncode == 130, err
+    assert "interrupted" in err and "Traceback" not in err
+    text = log.read_text()
+    assert "stopped: interrupted" in text and "vented: true" in text

@@ -145,7 +145,10 @@ def run(argv: Sequence[str] | None = None) -> int:
             standalone_mode=False,
         )
     except _EXIT as exc:
-        return int(getattr(exc, "exit_code", 0))
+        code = int(getattr(exc, "exit_code", 0))
+        if code == 130:    # Ctrl-C (a running control loop has vented its device already)
+            print("exofric: interrupted", file=sys.stderr)
+        return code
     except _ABORT:
         print("exofric: aborted", file=sys.stderr)
         return 130
@@ -182,7 +185,10 @@ def run(argv: Sequence[str] | None = None) -> int:
         print(f"exofric: internal error: {what} (a bug in exofric: please report it with the "
               "command line; EXOFRIC_DEBUG=1 prints the traceback)", file=sys.stderr)
         return 1
-    return int(rv) if isinstance(rv, int) else 0
+    code = int(rv) if isinstance(rv, int) else 0
+    if code == 130:        # typer turns Ctrl-C into exit code 130 (a control loop vented first)
+        print("exofric: interrupted", file=sys.stderr)
+    return code
 
 
 def main() -> None:
