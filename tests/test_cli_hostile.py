@@ -72,6 +72,7 @@ def _base(tmp: Path) -> dict[str, list[str]]:
         "control compare": ["--duration", "2"],
         "control identify": [str(step)],
         "reduce": [str(raw)],
+        "control run": ["--device", "sim://?speed=0", "--duration", "1"],
     }
 
 
