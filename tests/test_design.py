@@ -86,9 +86,18 @@ def test_target_below_offset_needs_no_pressure_and_bad_inputs():
     assert none.best is None and none.to_dict()["reaching"] == 0
 
 
+def test_bare_design_reaches_the_default_40_nm(cli, tmp_path):
+    """`exofric design` without a config finds designs reaching its default 40 Nm (issue 20)."""
+    r = cli(["design", "--out", str(tmp_path / "d"), "--no-plot", "--json"])
+    assert r.code == 0, r.err
+    d = r.json()
+    assert d["reaching"] >= 1 and d["best"]["torque_at_pmax_nm"] >= 40.0
+
+
 def test_default_space_parses():
     spec = parse_sweep(DEFAULT_SPACE)
-    assert len(spec.designs) == 12 and spec.skipped   # d1 = 8.8 leaves no room for d2 >= 1.35
+    # 4 x 3 sizes x 2 lengths; d1 = 8.8 leaves no room for d2 >= 1.35
+    assert len(spec.designs) == 24 and spec.skipped
 
 
 @pytest.fixture(scope="module")

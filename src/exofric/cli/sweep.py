@@ -15,7 +15,7 @@ from typing import Any
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table, save_figure
+from exofric.cli._common import JSON_OPTION, console, emit, kv_table, narrow_table, save_figure
 
 WORKERS = typer.Option(None, "--workers",
                        help="Local worker processes (default: chosen by the work size).")
@@ -293,18 +293,20 @@ def _render_design(d: dict[str, Any]) -> None:
             ("ID mm", "tube_id_mm", ".3g"), ("d2 mm", "wire_mm", "g"),
             ("Shore", "shore", "g"), ("L mm", "length_mm", "g")]
     cols = [c for c in cols if len({x[c[1]] for x in cands}) > 1 or c[1] in
-            ("hole_mm", "tube_od_mm", "wire_mm")]
+            ("hole_mm", "tube_od_mm", "wire_mm")
+            or (c[1] == "length_mm" and any(x[c[1]] != 116.0 for x in cands))]
     cols += [("P* MPa", "required_pressure_mpa", ".3f")] if reach else []
-    cols += [("T(pmax) Nm", "torque_at_pmax_nm", ".1f"), ("dev. %", "deviation_pct", ".1f")]
-    t = Table(title=title)
-    t.add_column("design", max_width=22)
-    for label, _, _ in cols:
-        t.add_column(label, justify="right")
-    t.add_column("validated")
-    for c in cands:
-        t.add_row(c["name"], *(format(c[k], f) for _, k, f in cols),
+    cols += [("T(pmax) Nm", "torque_at_pmax_nm", ".1f"), ("dev %", "deviation_pct", ".1f")]
+    # the sizes are the design's name: a numbered row, no name column to wrap (80 columns)
+    t = narrow_table(title, ["#", *(label for label, _, _ in cols), "ok"])
+    for i, c in enumerate(cands, start=1):
+        t.add_row(str(i), *(format(c[k], f) for _, k, f in cols),
                   "yes" if c["in_validated_region"] else "[red]NO[/red]")
     console.print(t)
+    console.print("P*: least pressure reaching the target; T(pmax): torque at the highest "
+                  "allowed pressure; ok: inside the validated deviation (paper: 20 %)."
+                  if reach else "T(pmax): torque at the highest allowed pressure; ok: inside "
+                  "the validated deviation (paper: 20 %).")
     if not reach:
         console.print(f"no design reaches {d['target_torque_nm']:g} Nm by {d['pmax_mpa']:g} MPa")
     elif not d["best"]["in_validated_region"]:

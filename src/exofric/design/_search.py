@@ -36,12 +36,14 @@ __all__ = ["DesignSearch", "design_metrics", "search_designs", "DEFAULT_SPACE", 
 OBJECTIVES = ("pressure", "margin")
 
 #: Design space used by ``exofric design`` without a CONFIG: d1 and d2 around the base
-#: group (D = 10 mm, ID scaled with d1), the paper's 0.05-0.6 MPa, default mesh.
+#: group (D = 10 mm, ID scaled with d1) at the paper's 116 mm tube length and at 300 mm (the
+#: knee's default 40 Nm at R = 0.1 m needs ~400 N of friction: the 116 mm base tube gives
+#: 17 Nm at 0.6 MPa), the paper's 0.05-0.6 MPa, default mesh.
 DEFAULT_SPACE: Mapping[str, Any] = {
     "name": "default-design-space",
     "pressures_mpa": [round(0.05 * i, 2) for i in range(1, 13)],
     "grid": {"hole_mm": [10.0], "tube_od_mm": [7.3, 7.8, 8.3, 8.8],
-             "wire_mm": [1.1, 1.35, 1.6]},
+             "wire_mm": [1.1, 1.35, 1.6], "length_mm": [116.0, 300.0]},
 }
 
 _CANDIDATE_COLS = (
