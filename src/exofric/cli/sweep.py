@@ -281,7 +281,6 @@ def _verify(out: Path, as_json: bool) -> None:
 
 def _render_design(d: dict[str, Any]) -> None:
     """Rich table of the ranked (or, if none reaches, the closest) designs."""
-    from rich.table import Table
 
     reach = bool(d["candidates"])
     cands = d["candidates"] or d["closest"]
