@@ -263,24 +263,30 @@ def _register_predict(app: typer.Typer) -> None:
         res = predict(structs, model, material, grid, measured=meas, base=base,
                       threshold_pct=threshold, arm_radius_m=arm_radius,
                       required_torque_nm=(0.0, torque_max), alpha=alpha)
+        printed = {f"test {r['test']}": r for r in paper.table3()} if use_paper else {}
+        p4 = paper.table4() if use_paper else {}
+        errs = paper.load()["max_relative_error"] if use_paper else {"test": [],
+                                                                     "max_relative_error_pct": []}
+        p_err = dict(zip(errs["test"], errs["max_relative_error_pct"], strict=True))
         d = res.to_dict()
         if use_paper:
             d["tube_id_note"] = "Table 3 prints no tube IDs: ID = base ID x d1 / base d1"
+            d["paper_max_relative_error_pct"] = {f"test {k}": v for k, v in p_err.items()}
+            d["paper_anova_p"] = {f"test {k}": v for k, v in p4.items()}
         if plot:
             from exofric.plots import plot_predictions
 
             d["plot"] = str(save_figure(plot_predictions(res.predictions), plot))
 
-        printed = {f"test {r['test']}": r for r in paper.table3()} if use_paper else {}
-        p4 = paper.table4() if use_paper else {}
 
         def render() -> None:
             measured_any = any(p.max_relative_error_pct is not None for p in res.predictions)
-            cols = ["name", "D/d1/d2 mm", "F N", "T Nm", "dev %", "rec. %", "T3 %", "ok"]
+            cols = ["name", "D/d1/d2 mm", "F N", *([] if use_paper else ["T Nm"]), "dev %",
+                    "rec. %", "T3 %", "ok"]
             if measured_any:
                 cols.append("err %")
             if use_paper:
-                cols.append("T4 p")
+                cols += ["F8-10 %", "T4 p"]
             t = narrow_table(f"Friction at {grid[-1]:g} MPa, gamma = {gamma:g}; base: "
                              f"{base.name or 'the base group'}", cols)
             for p in res.predictions:
@@ -289,7 +295,8 @@ def _register_predict(app: typer.Typer) -> None:
                 row_p = printed.get(s.name, {})
                 pr = row_p.get("max_relative_deviation_pct")
                 cells = [s.name, f"{s.hole_mm:g}/{s.tube_od_mm:g}/{s.wire_mm:g}",
-                         f"{p.predicted_friction_n[-1]:.1f}", f"{p.torque.torque_nm:.1f}",
+                         f"{p.predicted_friction_n[-1]:.1f}",
+                         *([] if use_paper else [f"{p.torque.torque_nm:.1f}"]),
                          f"{p.deviation.deviation_pct:.1f}",
                          f"{p.deviation.paper_deviation_pct:.1f}",
                          "-" if pr is None else f"{pr:.1f}",
@@ -298,17 +305,21 @@ def _register_predict(app: typer.Typer) -> None:
                     cells.append("-" if m is None else f"{m:.2f}")
                 if use_paper:
                     k = row_p.get("test")
+                    cells.append(f"{p_err[k]:g}" if k in p_err else "-")
                     cells.append(f"{p4[k]:.4g}" if k in p4 else "-")
                 t.add_row(*cells)
             console.print(t)
             console.print(
-                "F, T: friction and torque at the highest pressure; dev %: exofric's deviation "
+                ("F: friction at the highest pressure (torques in --json); " if use_paper else
+                 "F, T: friction and torque at the highest pressure; ")
+                + "dev %: exofric's deviation "
                 "max(s)/min(s) - 1 of the scale factors; rec. %: the paper's max|s - 1| "
                 "recomputed by exofric; T3 %: Table 3 as printed (tests 2-3 used another "
                 "formula: docs/paper-notes.md); ok: inside the validated 20 %"
                 + ("; err %: largest relative error against the measured curve" if measured_any
                    else "")
-                + ("; T4 p: the paper's ANOVA p-value (Table 4)" if use_paper else "") + ".")
+                + ("; F8-10 %: the paper's maximum relative error read from Figs 8-10; T4 p: "
+                   "its ANOVA p-value (Table 4)" if use_paper else "") + ".")
             for a in res.anova:
                 console.print(f"ANOVA {a.name}: F = {a.f_stat:.3f}, {a.verdict}")
 
