@@ -44,3 +44,13 @@ def test_bad_input_is_one_line_exit_2(args, needle, capsys):
     assert code == 2 and out == ""
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert len(lines) == 1 and needle in lines[0] and "Traceback" not in err
+
+
+def test_non_convergence_says_what_to_try(cli) -> None:
+    """A squeeze past the thin tube's limit pressure: exit 3, one line that says what to try
+    (issue 20)."""
+    r = cli(["squeeze", "--hole", "10", "--tube-od", "8.3", "--tube-id", "7.9", "--wire", "1.6",
+             "--shore", "62.5", "--pressures", "0.3,0.6,1.5"])
+    assert r.code == 3
+    lines = [ln for ln in r.err.splitlines() if ln.strip()]
+    assert len(lines) == 1 and "To try" in lines[0] and "finer mesh" in lines[0]

@@ -172,7 +172,11 @@ def run(argv: Sequence[str] | None = None) -> int:
             print(f"exofric: error: {_with_flags(exc, cmd)}", file=sys.stderr)
             return 2
         if isinstance(exc, ConvergenceError):
-            print(f"exofric: did not converge: {exc}", file=sys.stderr)
+            hint = ("" if "To try" in str(exc) else " To try: a finer mesh (--accuracy fine), "
+                    "smaller pressure steps (more --pressures points), or a thicker wall.")
+            print(f"exofric: did not converge: {' '.join(str(exc).split())}"
+                  + (hint if _is_fe(list(sys.argv[1:] if argv is None else argv)) else ""),
+                  file=sys.stderr)
             return 3
         loop = sys.modules.get("exofric.hardware._loop")   # only if a loop ran
         if loop is not None and isinstance(exc, loop.LoopFault):
@@ -189,6 +193,12 @@ def run(argv: Sequence[str] | None = None) -> int:
     if code == 130:        # typer turns Ctrl-C into exit code 130 (a control loop vented first)
         print("exofric: interrupted", file=sys.stderr)
     return code
+
+
+def _is_fe(args: list[str]) -> bool:
+    """True when the command that failed solves the FE (its hint names mesh and steps)."""
+    return bool(args) and args[0] in ("squeeze", "inflate", "calibrate", "predict", "sweep",
+                                       "design", "reproduce")
 
 
 def main() -> None:

@@ -825,7 +825,9 @@ def _follow(
     start = _newton(problem, u, lam, s)
     if start is None:
         raise ConvergenceError(
-            f"Newton failed at the starting {s.load_name} {lam:.6g} {s.load_unit}", reached=None)
+            f"Newton failed at the starting {s.load_name} {lam:.6g} {s.load_unit}. To try: a "
+            "finer mesh, or check that the geometry is feasible (tube and wire fit the hole)",
+            reached=None)
     u, iters_start = start
     for target in loads:
         iters = iters_start
@@ -852,7 +854,8 @@ def _follow(
                     raise ConvergenceError(
                         f"Newton failed at {s.load_name} {trial_lam:.6g} {s.load_unit} after "
                         f"{cut - 1} cutbacks; last converged {s.load_name} {lam:.6g} "
-                        f"{s.load_unit}",
+                        f"{s.load_unit}. To try: a finer mesh, smaller load steps (max_step), "
+                        "or a thicker wall / lower load if the tube is near its limit",
                         reached=lam,
                     )
                 continue
