@@ -188,7 +188,8 @@ def _squeeze_codes(mat: MooneyRivlin, workdir: Path, ccx: str | None,
 
         def fe_whole() -> dict[str, Any]:
             cmd = [sys.executable, str(HERE / "felupe_models.py"), "squeeze", *geo,
-                   "--c10", repr(mat.c10), "--c01", repr(mat.c01), "--d", repr(mat.d),
+                   "--c10", repr(mat.c10_mpa), "--c01", repr(mat.c01_mpa),
+                   "--d", repr(mat.d_per_mpa),
                    "--pressures", _csv(p), "--n-radial", str(setup.n_radial),
                    "--n-circ", str(setup.n_circ), "--grading", f"{setup.grading:g}",
                    "--penalty", f"{setup.penalty:g}"]
@@ -248,7 +249,8 @@ def _inflate_codes(mat: MooneyRivlin, workdir: Path, ccx: str | None,
         def fe_whole() -> dict[str, Any]:
             cmd = [sys.executable, str(HERE / "felupe_models.py"), "inflate",
                    "--tube-od", f"{OD_MM:g}", "--tube-id", f"{ID_MM:g}",
-                   "--c10", repr(mat.c10), "--c01", repr(mat.c01), "--d", repr(mat.d),
+                   "--c10", repr(mat.c10_mpa), "--c01", repr(mat.c01_mpa),
+                   "--d", repr(mat.d_per_mpa),
                    "--pressures", _csv(p), "--n-radial", str(f["n_radial"]),
                    "--n-circ", str(f["n_circ"])]
             wall, cpu, out = _run_process(cmd)
@@ -356,8 +358,8 @@ def run(runs: int = 5) -> dict[str, Any]:
         "runs": runs,
         "threads": 1,
         "ccx": ccx,
-        "material": {"shore_a": SHORE, "c10_mpa": mat.c10, "c01_mpa": mat.c01,
-                     "d_per_mpa": mat.d},
+        "material": {"shore_a": SHORE, "c10_mpa": mat.c10_mpa, "c01_mpa": mat.c01_mpa,
+                     "d_per_mpa": mat.d_per_mpa},
         "problems": {},
     }
     with tempfile.TemporaryDirectory(prefix="exofric-peers-") as tmp:

@@ -90,7 +90,7 @@ def ccx_available(ccx: str = "ccx") -> str | None:
 def _constants(material: Any) -> tuple[float, float, float]:
     """(c10, c01, d) from an object with those attributes or a 3-sequence."""
     if hasattr(material, "c10"):
-        return float(material.c10), float(material.c01), float(material.d)
+        return float(material.c10_mpa), float(material.c01_mpa), float(material.d_per_mpa)
     c10, c01, d = material
     return float(c10), float(c01), float(d)
 

@@ -68,8 +68,9 @@ def test_inflate_deck_text() -> None:
     deck = cm.inflate_deck(8.3, 4.97, MAT, P, n_radial=2, n_circ=6, controls=(1e-4, 1e-3))
     text = deck.text
     c10, c01, d1 = (float(v) for v in _block(text, "*HYPERELASTIC, MOONEY-RIVLIN")[0].split(","))
-    assert (c10, c01) == pytest.approx((MAT.c10, MAT.c01), rel=1e-10)
-    assert d1 == pytest.approx(MAT.d, rel=1e-10)  # (J-1)^2/D1 = exofric's (J-1)^2/d, K = 2/d
+    assert (c10, c01) == pytest.approx((MAT.c10_mpa, MAT.c01_mpa), rel=1e-10)
+    # (J-1)^2/D1 = exofric's (J-1)^2/d, K = 2/d
+    assert d1 == pytest.approx(MAT.d_per_mpa, rel=1e-10)
     assert "*STEP, NLGEOM" in text and "*STATIC" in text
     assert [float(v.rstrip(",")) for v in _block(text, "*TIME POINTS")] == P
     dload = _block(text, "*DLOAD")

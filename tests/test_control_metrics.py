@@ -44,7 +44,7 @@ def test_first_order_closed_forms():
     assert 0.0 <= m.settling_time_s - tau * math.log(50.0) < dt
     assert abs(m.rise_time_s - tau * math.log(9.0)) < dt
     assert m.overshoot_pct == 0.0
-    assert m.steady_state_error == pytest.approx(0.0, abs=1e-5)
+    assert m.steady_state_error_n == pytest.approx(0.0, abs=1e-5)
 
 
 def test_second_order_overshoot_closed_form_and_downward_step():
@@ -68,7 +68,7 @@ def test_never_settled_and_steady_state_error():
     y = 40.0 * (1.0 - np.exp(-t))            # ends at 40 N for a 54.4 N target
     m = step_metrics(t, y, 54.4)
     assert m.settling_time_s is None and m.rise_time_s is None
-    assert m.steady_state_error == pytest.approx(14.4, abs=0.01)
+    assert m.steady_state_error_n == pytest.approx(14.4, abs=0.01)
     with pytest.raises(InputError):
         step_metrics(t, y, 0.0)                # no step
     with pytest.raises(InputError):

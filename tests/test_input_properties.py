@@ -67,8 +67,9 @@ def test_structure_result_or_input_error(hole, od, idm, wire, length):
 def test_mooney_rivlin_result_or_input_error(c10, c01, d):
     m = _call(MooneyRivlin, c10, c01, d)
     if m is not None:
-        assert all(isinstance(v, float) and math.isfinite(v) for v in (m.c10, m.c01, m.d))
-        assert m.c10 + m.c01 > 0.0 and m.d > 0.0
+        assert all(isinstance(v, float) and math.isfinite(v)
+                   for v in (m.c10_mpa, m.c01_mpa, m.d_per_mpa))
+        assert m.c10_mpa + m.c01_mpa > 0.0 and m.d_per_mpa > 0.0
         assert math.isfinite(m.bulk_modulus) and math.isfinite(m.youngs_modulus)
 
 
@@ -80,7 +81,7 @@ def test_from_shore_result_or_input_error(shore, correlation, ratio, poisson):
         warnings.simplefilter("ignore", UserWarning)  # MaterialRangeWarning: allowed, says why
         m = _call(MooneyRivlin.from_shore, shore, correlation, ratio, poisson)
     if m is not None:
-        assert 0.0 < float(m.shore) < 100.0 and m.c10 > 0.0 and m.d > 0.0
+        assert 0.0 < float(m.shore) < 100.0 and m.c10_mpa > 0.0 and m.d_per_mpa > 0.0
 
 
 MESH_INT = st.one_of(st.integers(min_value=-(10**12), max_value=10**12),

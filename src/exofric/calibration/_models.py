@@ -145,7 +145,7 @@ def material_for(
 
     Examples
     --------
-    >>> round(material_for(62.5, c10_convention="paper-slip").c10, 4)
+    >>> round(material_for(62.5, c10_convention="paper-slip").c10_mpa, 4)
     0.6639
     """
     if c10_convention == "eq4":

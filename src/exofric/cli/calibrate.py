@@ -117,7 +117,8 @@ def register(app: typer.Typer) -> None:
                 rows.append(("correlation(Shore, ID)", f"{res.correlation:.4f}", ""))
             if res.material is not None:
                 m = res.material
-                rows.append(("C10 / C01 / d", f"{m.c10:.5f} / {m.c01:.6f} / {m.d:.6f}",
+                rows.append(("C10 / C01 / d",
+                             f"{m.c10_mpa:.5f} / {m.c01_mpa:.6f} / {m.d_per_mpa:.6f}",
                              "MPa / MPa / 1/MPa"))
             console.print(kv_table("Calibration from inflation test", rows))
             t1 = paper.table1()

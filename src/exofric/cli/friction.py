@@ -166,7 +166,9 @@ def _register_fit(app: typer.Typer) -> None:
             from exofric.plots import plot_gamma_fit
 
             title = "SYNTHETIC rig data" if synthetic else Path(friction).name
-            d["plot"] = str(save_figure(plot_gamma_fit(fit, title), plot))
+            d["plot"] = str(save_figure(plot_gamma_fit(
+                fit, title, data_label="synthetic (virtual rig)" if synthetic else "measured"),
+                plot))
 
         def render() -> None:
             rows = [

@@ -87,7 +87,16 @@ def register(app: typer.Typer) -> None:
         out = res.to_dict()
         from exofric.plots import plot_inflation
 
-        out.update(write_outputs(res, plot, vtu, plot_inflation))
+        measured = None
+        if plot is not None:  # the paper's tube: overlay Table 1's measured diameters
+            from exofric import paper
+
+            t1 = paper.table1()
+            if abs(tube_od - float(t1["tube_od_mm"])) < 1e-9:
+                measured = (t1["pressure_mpa"], t1["test_outer_diameter_mm"],
+                            "test, paper Table 1")
+        out.update(write_outputs(res, plot, vtu,
+                                 lambda r: plot_inflation(r, measured=measured)))
 
         def render() -> None:
             from rich.table import Table

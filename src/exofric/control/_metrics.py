@@ -43,12 +43,15 @@ class StepMetrics:
         Time in s from the first sample to entering the band for good; None if never.
     overshoot_pct : float
         Largest excursion beyond the reference, in % of the step (0 if none).
-    steady_state_error : float
-        reference - final value, in the response's unit (N for friction).
-    final_value : float
-        Mean of the response over the final window, in the response's unit (N).
-    reference : float
-        The target, in the response's unit (N).
+    steady_state_error_n : float
+        target - final value, in the response's unit (N for friction; ``steady_state_error``
+        is a read-only alias).
+    final_friction_n : float
+        Mean of the response over the final window, in the response's unit (N; alias
+        ``final_value``).
+    target_friction_n : float
+        The target, in the response's unit (N; alias ``reference``). The names are the
+        ``to_dict()`` keys.
     band : float
         Settling band as a fraction of the step (0.02 = 2 %).
 
@@ -57,17 +60,32 @@ class StepMetrics:
     >>> import numpy as np
     >>> t = np.linspace(0.0, 10.0, 1001)
     >>> m = step_metrics(t, 50.0 * (1.0 - np.exp(-t)), 50.0)
-    >>> round(m.steady_state_error, 2), m.overshoot_pct, m.to_dict()["settling_band_pct"]
+    >>> round(m.steady_state_error_n, 2), m.overshoot_pct, m.to_dict()["settling_band_pct"]
     (0.0, 0.0, 2.0)
     """
 
     rise_time_s: float | None
     settling_time_s: float | None
     overshoot_pct: float
-    steady_state_error: float
-    final_value: float
-    reference: float
+    steady_state_error_n: float
+    final_friction_n: float
+    target_friction_n: float
     band: float
+
+    @property
+    def steady_state_error(self) -> float:
+        """Alias of ``steady_state_error_n`` (N)."""
+        return self.steady_state_error_n
+
+    @property
+    def final_value(self) -> float:
+        """Alias of ``final_friction_n`` (N)."""
+        return self.final_friction_n
+
+    @property
+    def reference(self) -> float:
+        """Alias of ``target_friction_n`` (N)."""
+        return self.target_friction_n
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict; friction responses: ``steady_state_error_n``, ``final_friction_n``."""
@@ -75,9 +93,9 @@ class StepMetrics:
             "rise_time_s": self.rise_time_s,
             "settling_time_s": self.settling_time_s,
             "overshoot_pct": self.overshoot_pct,
-            "steady_state_error_n": self.steady_state_error,
-            "final_friction_n": self.final_value,
-            "target_friction_n": self.reference,
+            "steady_state_error_n": self.steady_state_error_n,
+            "final_friction_n": self.final_friction_n,
+            "target_friction_n": self.target_friction_n,
             "settling_band_pct": 100.0 * self.band,
         }
 

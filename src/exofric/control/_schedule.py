@@ -939,7 +939,7 @@ def compare_strategies(
                     rows.append(StrategyRow(
                         _label(start, target), start, target, kind, ff_name, bool(sched),
                         float(factor), met.settling_time_s, met.overshoot_pct,
-                        met.steady_state_error))
+                        met.steady_state_error_n))
     label = plant_label or (f"FOPDT tau {plant.time_constant_s:g} s, delay {plant.delay_s:g} s"
                             if plant_factory is None else "plant object")
     return StrategyTable(tuple(rows), label, float(tune_target_n), float(slope_ref),

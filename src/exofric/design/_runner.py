@@ -261,7 +261,7 @@ def solve_design(
 
             solve_fn = squeeze
         mat = material.material(design.shore)
-        out.update(c10_mpa=mat.c10, c01_mpa=mat.c01, d_per_mpa=mat.d)
+        out.update(c10_mpa=mat.c10_mpa, c01_mpa=mat.c01_mpa, d_per_mpa=mat.d_per_mpa)
         res = solve_fn(design.structure(), mat, list(pressures_mpa), mesh=solver.mesh(),
                        penalty=solver.penalty_n_per_mm3, density=solver.density_t_per_mm3,
                        gravity=solver.gravity,

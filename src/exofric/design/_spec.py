@@ -125,7 +125,7 @@ class MaterialSpec:
     Examples
     --------
     >>> m = MaterialSpec().material(62.5)                    # Table 2's hardness
-    >>> round(m.c10, 4), round(m.c01 / m.c10, 2)            # MPa, unitless
+    >>> round(m.c10_mpa, 4), round(m.c01_mpa / m.c10_mpa, 2)            # MPa, unitless
     (0.6354, 0.05)
     """
 

@@ -216,7 +216,7 @@ class HyperelasticBody:
         if np.any(J <= 1e-8) or not np.all(np.isfinite(J)):
             return ElementState(np.inf, np.empty(0), None, False)
         m = self.material
-        W, P, A = mooney_rivlin_plane_strain(F, m.c10, m.c01, tangent)
+        W, P, A = mooney_rivlin_plane_strain(F, m.c10_mpa, m.c01_mpa, tangent)
         cof = _cof(F)
         ne = len(self.edofs)
         ke = None
@@ -302,14 +302,14 @@ class HyperelasticBody:
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
         s = np.einsum("...ij,...ij->...", F, F)
         m = self.material
-        _, P, _ = mooney_rivlin_plane_strain(F, m.c10, m.c01, tangent=False)
+        _, P, _ = mooney_rivlin_plane_strain(F, m.c10_mpa, m.c01_mpa, tangent=False)
         p = self.element_pressure(u)
         P = P + p[..., None, None] * _cof(F)
         sig = np.einsum("...ij,...kj->...ik", P, F) / J[..., None, None]
         j23, j43 = J ** (-2.0 / 3.0), J ** (-4.0 / 3.0)
         szz = (
-            m.c10 * j23 * (2.0 - 2.0 / 3.0 * (s + 1.0))
-            + m.c01 * j43 * (2.0 * s - 4.0 / 3.0 * (s + J**2))
+            m.c10_mpa * j23 * (2.0 - 2.0 / 3.0 * (s + 1.0))
+            + m.c01_mpa * j43 * (2.0 * s - 4.0 / 3.0 * (s + J**2))
         ) / J + p
         return np.stack([sig[..., 0, 0], sig[..., 1, 1], sig[..., 0, 1], szz], axis=-1)
 

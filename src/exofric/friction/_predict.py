@@ -572,8 +572,8 @@ class PredictionSet:
         >>> from types import SimpleNamespace
         >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
         >>> r = predict(paper_structures()[:2], 0.5, None, [0.3, 0.6], squeeze_fn=fake)
-        >>> len(r.plot().axes)
-        4
+        >>> len(r.plot().axes)          # no measured curves: one panel of all predictions
+        1
         """
         from exofric.plots import plot_predictions
 

@@ -10,7 +10,7 @@ Units: moduli and C10, C01 in MPa; d in 1/MPa; hardness in Shore A.
 Examples
 --------
 >>> from exofric.material import MooneyRivlin
->>> round(MooneyRivlin.from_shore(62.5).c10, 4)
+>>> round(MooneyRivlin.from_shore(62.5).c10_mpa, 4)
 0.6354
 """
 

@@ -212,10 +212,12 @@ class MooneyRivlin:
 
     Attributes
     ----------
-    c10, c01 : float
-        Material constants in MPa (``c10 + c01 > 0``).
-    d : float
-        Incompressibility parameter in 1/MPa (``d > 0``; bulk modulus ``2/d``). The implied
+    c10_mpa, c01_mpa : float
+        Material constants C10, C01 in MPa (``c10_mpa + c01_mpa > 0``); the same names as the
+        ``to_dict()`` keys (``.c10`` and ``.c01`` remain as read-only aliases).
+    d_per_mpa : float
+        Incompressibility parameter d in 1/MPa (``d > 0``; bulk modulus ``2/d``; ``.d`` is a
+        read-only alias). The implied
         small-strain Poisson ratio must be > 0 (``d < 3 / (2 (c10 + c01))``, else
         :class:`~exofric.errors.InputError`); below ``defaults.PLAUSIBLE_POISSON_MIN`` (0.45)
         a :class:`~exofric.errors.PlausibilityWarning` says the rubber is not nearly
@@ -228,48 +230,65 @@ class MooneyRivlin:
     Examples
     --------
     >>> m = MooneyRivlin.from_shore(62.5)
-    >>> round(m.c10, 5), round(m.d, 6)
+    >>> round(m.c10_mpa, 5), round(m.d_per_mpa, 6)
     (0.63545, 0.005995)
     """
 
-    c10: float
-    c01: float
-    d: float
+    c10_mpa: float
+    c01_mpa: float
+    d_per_mpa: float
     shore: float | None = None
     correlation: str | None = None
+
+    @property
+    def c10(self) -> float:
+        """C10 in MPa (alias of ``c10_mpa``)."""
+        return self.c10_mpa
+
+    @property
+    def c01(self) -> float:
+        """C01 in MPa (alias of ``c01_mpa``)."""
+        return self.c01_mpa
+
+    @property
+    def d(self) -> float:
+        """d in 1/MPa (alias of ``d_per_mpa``)."""
+        return self.d_per_mpa
 
     def __post_init__(self) -> None:
         # Bounds far outside any rubber (silicones: C10 ~ 0.01-10 MPa, d ~ 1e-4-1e-1 1/MPa) but
         # inside what the FE solver can take: C10, C01 within +-1e4 MPa, 1e-12 <= d <= 1e4 1/MPa
         # (bulk/shear modulus ratio up to ~1e12; 1e300 reaches the solver as inf/NaN).
-        for name, v in (("c10", self.c10), ("c01", self.c01)):
+        for name, v in (("c10", self.c10_mpa), ("c01", self.c01_mpa)):
             if isinstance(v, (str, bytes, bool)) or v is None:
                 raise InputError(f"{name} must be a number in MPa, got {v!r}")
-            object.__setattr__(self, name, check_range(name, v, -1e4, 1e4, unit="MPa"))
-        if isinstance(self.d, (str, bytes, bool)) or self.d is None:
-            raise InputError(f"d must be a number in 1/MPa, got {self.d!r}")
-        check_positive("d", self.d, "1/MPa")
-        object.__setattr__(self, "d", check_range("d", self.d, 1e-12, 1e4, unit="1/MPa"))
+            object.__setattr__(self, f"{name}_mpa", check_range(name, v, -1e4, 1e4, unit="MPa"))
+        if isinstance(self.d_per_mpa, (str, bytes, bool)) or self.d_per_mpa is None:
+            raise InputError(f"d must be a number in 1/MPa, got {self.d_per_mpa!r}")
+        check_positive("d", self.d_per_mpa, "1/MPa")
+        object.__setattr__(self, "d_per_mpa", check_range("d", self.d_per_mpa, 1e-12, 1e4,
+                                                          unit="1/MPa"))
         if self.shore is not None:
             if isinstance(self.shore, (str, bytes, bool)):
                 raise InputError(f"shore must be a number or None, got {self.shore!r}")
             object.__setattr__(self, "shore", check_finite("shore", self.shore))
         if self.correlation is not None and not isinstance(self.correlation, str):
             raise InputError(f"correlation must be a string or None, got {self.correlation!r}")
-        if self.c10 + self.c01 <= 0.0:
+        if self.c10_mpa + self.c01_mpa <= 0.0:
             raise InputError(
-                f"c10 + c01 must be > 0 MPa (shear modulus 2(c10+c01)), got {self.c10 + self.c01:g}"
+                "c10 + c01 must be > 0 MPa (shear modulus 2(c10+c01)), got "
+                f"{self.c10_mpa + self.c01_mpa:g}"
             )
         # the implied small-strain Poisson ratio: <= 0 is refused (as from_shore refuses it),
         # below defaults.PLAUSIBLE_POISSON_MIN warns (a rubber is nearly incompressible)
-        mu = 2.0 * (self.c10 + self.c01)
+        mu = 2.0 * (self.c10_mpa + self.c01_mpa)
         nu = self.poisson
         if nu <= 0.0:
             raise InputError(f"d must be < 3 / (2 (c10 + c01)) = {3.0 / mu:.4g} 1/MPa (implied "
-                             f"Poisson ratio > 0), got {self.d:g} (Poisson ratio {nu:.3f})",
+                             f"Poisson ratio > 0), got {self.d_per_mpa:g} (Poisson ratio {nu:.3f})",
                              param="d")
         if nu < defaults.PLAUSIBLE_POISSON_MIN:
-            warn_implausible(f"d = {self.d:g} 1/MPa implies a Poisson ratio of {nu:.3f}; a "
+            warn_implausible(f"d = {self.d_per_mpa:g} 1/MPa implies a Poisson ratio of {nu:.3f}; a "
                              f"silicone is nearly incompressible (0.49-0.4999, the paper 0.498):"
                              f" is d in 1/MPa?")
 
@@ -311,17 +330,18 @@ class MooneyRivlin:
         c10 = g / 2.0 / div
         c01 = ratio * c10
         d = (1.0 - 2.0 * nu) / (c10 + c01)
-        return cls(c10=c10, c01=c01, d=d, shore=float(shore), correlation=correlation)
+        return cls(c10_mpa=c10, c01_mpa=c01, d_per_mpa=d, shore=float(shore),
+                   correlation=correlation)
 
     @property
     def shear_modulus(self) -> float:
         """Small-strain shear modulus ``mu = 2 (C10 + C01)`` in MPa."""
-        return 2.0 * (self.c10 + self.c01)
+        return 2.0 * (self.c10_mpa + self.c01_mpa)
 
     @property
     def bulk_modulus(self) -> float:
         """Bulk modulus ``K = 2 / d`` in MPa."""
-        return 2.0 / self.d
+        return 2.0 / self.d_per_mpa
 
     @property
     def youngs_modulus(self) -> float:
@@ -348,7 +368,8 @@ class MooneyRivlin:
         MooneyRivlin
         """
         f = check_positive("bulk factor", factor)
-        return MooneyRivlin(self.c10, self.c01, self.d / f, self.shore, self.correlation)
+        return MooneyRivlin(self.c10_mpa, self.c01_mpa, self.d_per_mpa / f, self.shore,
+                            self.correlation)
 
     def to_dict(self) -> dict[str, float | str | None]:
         """JSON-ready dict with unit-suffixed keys (MPa, 1/MPa)."""
@@ -357,8 +378,8 @@ class MooneyRivlin:
             "correlation": self.correlation,
             "e0_mpa": 3.0 * self.shear_modulus,  # Eq 4: E0 = 3 G
             "g_mpa": self.shear_modulus,
-            "c10_mpa": self.c10,
-            "c01_mpa": self.c01,
-            "d_per_mpa": self.d,
+            "c10_mpa": self.c10_mpa,
+            "c01_mpa": self.c01_mpa,
+            "d_per_mpa": self.d_per_mpa,
             "k_mpa": self.bulk_modulus,
         }

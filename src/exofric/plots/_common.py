@@ -9,7 +9,16 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-__all__ = ["new_axes", "new_figure", "finish", "save"]
+__all__ = ["new_axes", "new_figure", "finish", "save", "SMALL", "is_synthetic"]
+
+# Smallest text (pt) in a figure: the report shows figures in a ~1100 px column, at most ~20 %
+# below their natural size (130 dpi, <= ~1400 px wide), so 9 pt stays >= ~12 CSS px there.
+SMALL = 9.0
+
+
+def is_synthetic(title: str) -> bool:
+    """Whether a figure title says its data are SYNTHETIC (virtual rig), for default labels."""
+    return "synthetic" in title.lower()
 
 
 def new_axes(ax: Any | None, figsize: tuple[float, float]) -> tuple[Any, bool]:

@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
-from exofric.plots._common import finish, new_axes, new_figure
+from exofric.plots._common import SMALL, finish, new_axes, new_figure
 
 if TYPE_CHECKING:
     from exofric.control import SimulationResult
@@ -50,7 +50,7 @@ def plot_simulation(sim: SimulationResult, ax: Any | None = None) -> Any:
     ax.set_xlabel("time (s)")
     ax.set_ylabel("friction F (N)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=SMALL)
     finish(ax.figure, created)
     return ax
 
@@ -59,19 +59,25 @@ def _fmt(v: float | None) -> str:
     return "-" if v is None else f"{v:.2f} s"
 
 
+def _settle(v: float | None) -> str:
+    return "not settled" if v is None else f"{v:.2f} s"
+
+
 def plot_control_cases(
     cases: Sequence[CaseResult],
     fig: Any | None = None,
     *,
-    title: str = "",
+    title: str | None = None,
     pressure: bool = True,
 ) -> Any:
     """Step responses of control cases, one column per controller (paper Fig 12c-e).
 
-    Top row: friction (N) against time (s), red without and blue with the model feedforward,
-    the target (black) and its settling band (grey); the legend gives each settling time and
-    the title the paper's. Bottom row (``pressure=True``): tube pressure (MPa) and the
-    controller's command (dotted).
+    The one Fig 12 design (``exofric control compare --plot``, the report, ``.plot()``):
+    top row, friction (N) against time (s), red without and blue with the model feedforward,
+    the target (black) and its settling band (grey); each column's title gives exofric's
+    settling times and, below, the paper's ("paper: without 5.73 s, with 4.20 s"). Bottom row
+    (``pressure=True``): tube pressure (MPa) and the controller's command (dotted). One legend
+    for the whole figure sits above the Axes, so it never covers a curve.
 
     Parameters
     ----------
@@ -79,8 +85,9 @@ def plot_control_cases(
         From :func:`exofric.reproduction.run_case` or ``compare(...).cases``.
     fig : matplotlib Figure, optional
         Empty figure to draw on (default a new one).
-    title : str
-        Figure title.
+    title : str, optional
+        Figure title (above the legend); default ``"target <reference> N"``, as the CLI's;
+        ``""`` for none.
     pressure : bool
         Add the pressure row.
 
@@ -97,35 +104,44 @@ def plot_control_cases(
     >>> fig = plot_control_cases(cases, Figure())
     >>> len(fig.axes), len(fig.axes[0].lines)     # friction and pressure rows; 2 runs + target
     (2, 3)
+    >>> print(fig.axes[0].get_title())
+    PI: exofric without 6.06 s, with 4.08 s
+    paper: without 5.73 s, with 4.20 s
     """
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
     kinds = list(dict.fromkeys(c.controller for c in cases)) or ["pid"]
     n = len(kinds)
-    fig, created = new_figure(fig, (4.2 * n, 6.0) if pressure else (4.0 * n, 3.8))
+    width = max(4.6, 3.5 * n)
+    fig, created = new_figure(fig, (width, 6.4) if pressure else (width, 4.2))
     axes = fig.subplots(2 if pressure else 1, n, squeeze=False, sharex=True, sharey="row")
+    band_pct = None
     for j, kind in enumerate(kinds):
         ax = axes[0][j]
         mine = [c for c in cases if c.controller == kind]
         for c in mine:
             s = c.simulation
-            lab = "with model" if c.feedforward else "without model"
             col = "tab:blue" if c.feedforward else "tab:red"
-            ts = c.metrics.settling_time_s
-            ax.plot(s.time_s, s.friction_n, color=col,
-                    label=f"{lab}: " + ("not settled" if ts is None else f"{ts:.2f} s"))
+            ax.plot(s.time_s, s.friction_n, color=col, lw=1.6)
             if pressure:
                 axp = axes[1][j]
-                axp.plot(s.time_s, s.pressure_mpa, color=col)
-                axp.plot(s.time_s, s.command_mpa, color=col, ls=":", lw=0.8)
+                axp.plot(s.time_s, s.pressure_mpa, color=col, lw=1.6)
+                axp.plot(s.time_s, s.command_mpa, color=col, ls=":", lw=1.0)
         if mine:
             tgt, band = mine[0].metrics.reference, mine[0].metrics.band
+            band_pct = 100.0 * band
             ax.axhline(tgt, color="k", lw=1)
-            ax.axhspan(tgt * (1 - band), tgt * (1 + band), color="0.88")
+            ax.axhspan(tgt * (1 - band), tgt * (1 + band), color="0.85")
+        ours = {c.feedforward: c.metrics.settling_time_s for c in mine}
         ref = {c.feedforward: c.paper_settling_time_s for c in mine}
+        otxt = ", ".join(f"{'with' if ff else 'without'} {_settle(v)}"
+                         for ff, v in sorted(ours.items()))
         ptxt = ", ".join(f"{'with' if ff else 'without'} {_fmt(v)}"
-                         for ff, v in sorted(ref.items()))
-        ax.set_title(f"{kind.upper()}" + (f" (paper: {ptxt})" if ptxt else ""), fontsize=10)
+                         for ff, v in sorted(ref.items()) if v is not None)
+        head = f"{kind.upper()}: exofric {otxt}" if otxt else kind.upper()
+        ax.set_title(head + (f"\npaper: {ptxt}" if ptxt else ""), fontsize=SMALL)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="lower right")
         if pressure:
             axes[1][j].set_xlabel("time (s)")
             axes[1][j].grid(alpha=0.3)
@@ -133,8 +149,27 @@ def plot_control_cases(
             ax.set_xlabel("time (s)")
     axes[0][0].set_ylabel("friction F (N)")
     if pressure:
-        axes[1][0].set_ylabel("pressure (MPa); command dotted")
-    if title:
-        fig.suptitle(title)
-    finish(fig, created)
+        axes[1][0].set_ylabel("pressure (MPa)")
+    ffs = {c.feedforward for c in cases}
+    handles: list[Any] = []
+    if False in ffs:
+        handles += [Line2D([], [], color="tab:red", lw=1.6, label="without model")]
+    if True in ffs:
+        handles += [Line2D([], [], color="tab:blue", lw=1.6, label="with model")]
+    handles += [Line2D([], [], color="k", lw=1, label="target")]
+    if band_pct is not None:
+        handles += [Patch(color="0.85", label=f"settling band \u00b1{band_pct:g} %")]
+    if pressure:
+        handles += [Line2D([], [], color="0.3", ls=":", lw=1.0, label="command (pressure row)")]
+    if title is None:
+        title = f"target {cases[0].metrics.reference:g} N" if cases else ""
+    ncol = min(len(handles), 3)
+    leg: dict[str, Any] = {"handles": handles, "ncol": ncol, "fontsize": SMALL, "frameon": False,
+                           "title": title or None, "title_fontsize": SMALL + 3}
+    if created:
+        fig.set_layout_engine("constrained")
+        fig.legend(loc="outside upper center", **leg)
+    else:  # a caller's figure: make room above the Axes, in figure coordinates
+        fig.subplots_adjust(top=0.74 if pressure else 0.62, hspace=0.25)
+        fig.legend(loc="upper center", bbox_to_anchor=(0.5, 0.995), **leg)
     return fig

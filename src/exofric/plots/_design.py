@@ -1,16 +1,16 @@
 """The design map: torque reachable at the pressure limit over two design dimensions.
 
-Units on the axes: mm (or Shore A); colour: torque T(pmax) in Nm. Where other dimensions
-vary too, each cell shows the design of largest torque over them (a red edge when that
-design is outside the validated region); grey crosses mark cells with only impossible
-designs; the star is the best-ranked design.
+Units on the axes: mm (or Shore A); colour: torque T(pmax) in Nm. Every design is drawn: where
+other dimensions vary too (e.g. the hole D), one panel per combination of them. Squares reach
+the target, circles do not; a black edge is inside the validated region, a red edge outside;
+grey crosses are impossible designs; the star is the best-ranked design. A legend says so.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from exofric.plots._common import new_axes
+from exofric.plots._common import SMALL
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -23,6 +23,8 @@ _AXIS_ORDER = ("tube_od_mm", "wire_mm", "hole_mm", "tube_id_mm", "shore", "lengt
 _LABELS = {"tube_od_mm": "tube OD d1 (mm)", "wire_mm": "wire d2 (mm)",
            "hole_mm": "hole D (mm)", "tube_id_mm": "tube ID (mm)",
            "shore": "hardness (Shore A)", "length_mm": "tube length L (mm)"}
+_SHORT = {"tube_od_mm": "d1 (mm)", "wire_mm": "d2 (mm)", "hole_mm": "D (mm)",
+          "tube_id_mm": "ID (mm)", "shore": "Shore A", "length_mm": "L (mm)"}
 
 
 def map_axes(table: pd.DataFrame) -> tuple[str, str]:
@@ -63,14 +65,20 @@ def plot_design_map(
     x: str | None = None,
     y: str | None = None,
 ) -> Any:
-    """Draw the design map on ``ax`` (default a new figure) and return the Axes.
+    """Draw the design map on ``ax`` (default a new figure) and return its (first) Axes.
+
+    Every design of ``search.table`` is one marker, coloured by its torque at pmax (Nm, the
+    number inside): a square when it reaches the target, a circle when not; black edge inside
+    the validated region, red outside. When dimensions other than ``x`` and ``y`` vary, one
+    panel per combination of them (a given ``ax`` is split into those panels); a legend
+    explains the markers.
 
     Parameters
     ----------
     search : DesignSearch
         Ranked designs (torques in Nm at ``search.pmax_mpa`` MPa).
     ax : matplotlib Axes, optional
-        Where to draw (a colour bar is added beside it).
+        Where to draw (a colour bar is added beside it; split into panels if needed).
     skipped : DataFrame, optional
         Impossible designs (rows with the design columns), drawn as grey crosses.
     x, y : str, optional
@@ -79,6 +87,7 @@ def plot_design_map(
     Returns
     -------
     matplotlib Axes
+        The first panel (all panels are in its figure).
 
     Examples
     --------
@@ -90,46 +99,116 @@ def plot_design_map(
     >>> save(plot_design_map(s), tmp_dir / "design-map.png").name
     'design-map.png'
     """
-    import pandas as pd  # lazy: importing exofric.plots must not load pandas
+    import numpy as np
+    from matplotlib.lines import Line2D
 
-    ax, created = new_axes(ax, (6.4, 5.2))
-    fig = ax.figure
-    if created:
-        fig.set_layout_engine("constrained")
     t = search.table
     dx, dy = map_axes(t)
     x, y = x or dx, y or dy
-    # one cell per (x, y): the design of largest torque there (and its validity)
-    top = t.loc[t.groupby([x, y])["torque_at_pmax_nm"].idxmax()]
-    cell = pd.DataFrame({x: top[x].to_numpy(), y: top[y].to_numpy(),
-                         "torque": top["torque_at_pmax_nm"].to_numpy(),
-                         "valid": top["in_validated_region"].to_numpy(bool)})
-    sc = ax.scatter(cell[x], cell[y], c=cell["torque"], cmap="viridis", s=260, marker="s",
-                    edgecolors=["black" if v else "red" for v in cell["valid"]], linewidths=1.5)
-    fig.colorbar(sc, ax=ax, label=f"max torque at {search.pmax_mpa:g} MPa (Nm)")
-    for _, r in cell.iterrows():
-        ax.annotate(f"{r['torque']:.0f}", (r[x], r[y]), ha="center", va="center", fontsize=7,
-                    color="white" if r["torque"] < cell["torque"].median() else "black")
-    out_valid = cell[~cell["valid"]]
-    if len(out_valid):
-        ax.scatter([], [], marker="s", facecolors="none", edgecolors="red",
-                   label="outside validated region (> 20 % deviation or other hardness)")
-    if skipped is not None and len(skipped):
-        taken = set(zip(cell[x], cell[y], strict=True))
-        sk = skipped[[(a, b) not in taken for a, b in zip(skipped[x], skipped[y], strict=True)]]
-        if len(sk):
-            ax.scatter(sk[x], sk[y], marker="x", color="0.5", label="impossible design")
+    # every design is drawn: one panel per combination of the other varying dimensions
+    # (only dimensions that vary within a cell: a tube ID scaled with d1 adds no panels)
+    facet_cols: list[str] = []
+    for c in _AXIS_ORDER:
+        if c not in (x, y) and t.groupby([x, y, *facet_cols])[c].nunique().max() > 1:
+            facet_cols.append(c)
+    combos = (list(t.groupby(facet_cols, sort=True).groups) if facet_cols else [()])
+    combos = [c if isinstance(c, tuple) else (c,) for c in combos]
+    v: Any
+    n = len(combos)
+    ncol = min(n, 3)
+    nrow = -(-n // ncol)
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        fig = plt.figure(figsize=(min(10.4, 1.0 + 3.3 * ncol) if n > 1 else 6.4,
+                                  1.6 + 3.0 * nrow if n > 1 else 5.2),
+                         layout="constrained")
+        axes = list(np.atleast_1d(fig.subplots(nrow, ncol, squeeze=False,
+                                               sharex=True, sharey=True).ravel()))
+        created = True
+    else:
+        fig = ax.figure
+        created = False
+        if n == 1:
+            axes = [ax]
+        else:  # split the caller's Axes into the panels
+            gs = ax.get_subplotspec().subgridspec(nrow, ncol)
+            ax.remove()
+            axes = [fig.add_subplot(gs[i // ncol, i % ncol]) for i in range(nrow * ncol)]
+    for extra in axes[n:]:
+        extra.remove()
+    axes = axes[:n]
+    lo, hi = float(t["torque_at_pmax_nm"].min()), float(t["torque_at_pmax_nm"].max())
+    reach = t["reaches_target"].to_numpy(bool) if "reaches_target" in t else \
+        (t["torque_at_pmax_nm"] >= search.target_torque_nm).to_numpy(bool)
+    t = t.assign(_reach=reach)
+    sc = None
     best = search.best
+    for a, combo in zip(axes, combos, strict=True):
+        sel = np.ones(len(t), bool)
+        for c, v in zip(facet_cols, combo, strict=True):
+            sel &= (t[c] == v).to_numpy()
+        sub = t[sel]
+        for reached, marker in ((True, "s"), (False, "o")):
+            part = sub[sub["_reach"] == reached]
+            if not len(part):
+                continue
+            sc = a.scatter(part[x], part[y], c=part["torque_at_pmax_nm"], cmap="viridis",
+                           vmin=lo, vmax=hi, s=330 if reached else 260, marker=marker,
+                           edgecolors=["black" if v else "red"
+                                       for v in part["in_validated_region"].to_numpy(bool)],
+                           linewidths=1.8, zorder=3)
+        for _, r in sub.iterrows():
+            a.annotate(f"{r['torque_at_pmax_nm']:.0f}", (r[x], r[y]), ha="center", va="center",
+                       fontsize=SMALL - 1, zorder=4,
+                       color="white" if r["torque_at_pmax_nm"] < 0.5 * (lo + hi) else "black")
+        if skipped is not None and len(skipped):
+            ok = np.ones(len(skipped), bool)
+            for c, v in zip(facet_cols, combo, strict=True):
+                ok &= (skipped[c] == v).to_numpy()
+            sk = skipped[ok]
+            if len(sk):
+                a.scatter(sk[x], sk[y], marker="x", s=50, color="0.5", zorder=2)
+        pairs: list[tuple[str, Any]] = list(zip(facet_cols, combo, strict=True))
+        if best is not None and all(best[c] == w for c, w in pairs):
+            a.scatter([best[x]], [best[y]], marker="*", s=140, color="orange", edgecolors="k",
+                      zorder=5, transform=a.transData)
+        if facet_cols:
+            a.set_title(", ".join(f"{_SHORT.get(c, c)} = {w:g}" for c, w in pairs),
+                        fontsize=SMALL + 1)
+        a.margins(0.25)
+        a.grid(alpha=0.3)
+    for i, a in enumerate(axes):
+        if i // ncol == nrow - 1 or i + ncol >= n:
+            a.set_xlabel(_LABELS.get(x, x))
+        if i % ncol == 0:
+            a.set_ylabel(_LABELS.get(y, y))
+    if sc is not None:
+        fig.colorbar(sc, ax=axes, label=f"torque at {search.pmax_mpa:g} MPa (Nm)", shrink=0.9)
+    tgt = f"{search.target_torque_nm:g} Nm"
+    handles = [
+        Line2D([], [], marker="s", ls="none", ms=11, mfc="0.8", mec="k", mew=1.5,
+               label=f"square: reaches {tgt} by {search.pmax_mpa:g} MPa"),
+        Line2D([], [], marker="o", ls="none", ms=10, mfc="0.8", mec="k", mew=1.5,
+               label=f"circle: does not reach {tgt}"),
+        Line2D([], [], marker="s", ls="none", ms=11, mfc="none", mec="k", mew=1.5,
+               label="black edge: inside the validated region"),
+        Line2D([], [], marker="s", ls="none", ms=11, mfc="none", mec="red", mew=1.5,
+               label="red edge: outside (> 20 % deviation or other hardness)"),
+    ]
+    if skipped is not None and len(skipped):
+        handles.append(Line2D([], [], marker="x", ls="none", color="0.5",
+                              label="impossible design"))
     if best is not None:
-        ax.scatter([best[x]], [best[y]], marker="*", s=300, color="orange", edgecolors="k",
-                   zorder=5, label=f"best ({search.objective}): {best['name']}")
-    ax.set_xlabel(_LABELS.get(x, x))
-    ax.set_ylabel(_LABELS.get(y, y))
-    ax.set_title(f"Target {search.target_torque_nm:g} Nm, R = {search.arm_radius_m:g} m, "
-                 f"gamma = {search.gamma:g}, pmax = {search.pmax_mpa:g} MPa", fontsize=9)
-    if ax.get_legend_handles_labels()[0]:
-        if created:
-            fig.legend(fontsize=7, loc="outside lower center", ncol=1, frameon=False)
-        else:
-            ax.legend(fontsize=7)
-    return ax
+        handles.append(Line2D([], [], marker="*", ls="none", ms=13, mfc="orange", mec="k",
+                              label=f"best ({search.objective}): {best['name']}"))
+    head = (f"Target {tgt}, R = {search.arm_radius_m:g} m, gamma = {search.gamma:g}, "
+            f"pmax = {search.pmax_mpa:g} MPa; numbers: torque (Nm); {len(t)} designs")
+    if created:
+        fig.suptitle(head, fontsize=SMALL + 1)
+        fig.legend(handles=handles, fontsize=SMALL, loc="outside lower center", ncol=2,
+                   frameon=False)
+    else:
+        axes[0].set_title(head if n == 1 else axes[0].get_title(), fontsize=SMALL)
+        axes[-1].legend(handles=handles, fontsize=SMALL - 1, loc="best")
+    return axes[0]

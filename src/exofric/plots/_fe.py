@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from exofric.plots._common import finish, new_axes, new_figure
+from exofric.plots._common import SMALL, finish, new_axes, new_figure
 
 if TYPE_CHECKING:
     from exofric.simulate import InflationResult, SqueezeResult
@@ -128,10 +128,16 @@ def draw_section(
     return pc
 
 
-def plot_inflation_curve(result: InflationResult, ax: Any | None = None) -> Any:
+def plot_inflation_curve(
+    result: InflationResult,
+    ax: Any | None = None,
+    *,
+    measured: tuple[Sequence[float], Sequence[float], str] | None = None,
+) -> Any:
     """Outer diameter (mm) against pressure (MPa): FE beside the incompressible closed form.
 
-    Two lines: FE (markers) and the closed form (dashed). Returns the Axes.
+    Two lines: FE (markers) and the closed form (dashed), and optionally measured diameters
+    (red squares). Returns the Axes.
 
     Parameters
     ----------
@@ -139,6 +145,10 @@ def plot_inflation_curve(result: InflationResult, ax: Any | None = None) -> Any:
         From :func:`exofric.simulate.inflate` (pressures in MPa, diameters in mm).
     ax : matplotlib Axes, optional
         Where to draw (default a new figure).
+    measured : (sequence of float, sequence of float, str), optional
+        Measured outer diameters to compare with: pressures (MPa), diameters (mm) and a
+        legend label, e.g. Table 1's test column for the paper's 8.3 mm tube
+        (``exofric.paper.table1()``).
 
     Returns
     -------
@@ -152,23 +162,32 @@ def plot_inflation_curve(result: InflationResult, ax: Any | None = None) -> Any:
     >>> from exofric.simulate import inflate
     >>> r = inflate(8.3, 4.97, MooneyRivlin.from_shore(62.5), [0.1, 0.2],
     ...             mesh=MeshSpec(1, 12, grading=6.0))
-    >>> ax = plot_inflation_curve(r, Figure().subplots())
+    >>> ax = plot_inflation_curve(r, Figure().subplots(),
+    ...                           measured=([0.1, 0.2], [8.53, 8.78], "test (Table 1)"))
     >>> len(ax.lines), ax.get_ylabel()
-    (2, 'outer diameter (mm)')
+    (3, 'outer diameter (mm)')
     """
     ax, created = new_axes(ax, (5.6, 4.4))
     ax.plot(result.pressure_mpa, result.outer_diameter_mm, "o-", label="FE (exofric)")
     ax.plot(result.pressure_mpa, result.analytic_outer_diameter_mm(), "k--",
             label="incompressible closed form")
+    if measured is not None:
+        ax.plot(list(measured[0]), list(measured[1]), "s", ms=7, mfc="none", mew=1.5,
+                color="tab:red", label=measured[2], zorder=4)
     ax.set_xlabel("pressure (MPa)")
     ax.set_ylabel("outer diameter (mm)")
     ax.grid(alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=SMALL + 1, loc="upper left")
     finish(ax.figure, created)
     return ax
 
 
-def plot_inflation(result: InflationResult, fig: Any | None = None) -> Any:
+def plot_inflation(
+    result: InflationResult,
+    fig: Any | None = None,
+    *,
+    measured: tuple[Sequence[float], Sequence[float], str] | None = None,
+) -> Any:
     """Undeformed and deformed tube sections coloured by von Mises stress, and OD(P).
 
     Draws two Axes on ``fig`` (an empty Figure; default a new one) and returns the Figure.
@@ -181,6 +200,9 @@ def plot_inflation(result: InflationResult, fig: Any | None = None) -> Any:
         pressure.
     fig : matplotlib Figure, optional
         Empty figure to draw on (default a new one).
+    measured : (sequence of float, sequence of float, str), optional
+        Measured outer diameters for the OD(P) panel (MPa, mm, label); see
+        :func:`plot_inflation_curve`.
 
     Returns
     -------
@@ -198,7 +220,7 @@ def plot_inflation(result: InflationResult, fig: Any | None = None) -> Any:
     >>> len(fig.axes), fig.axes[0].get_title()          # section, OD(P), colour bar
     (3, 'Section at 0.2 MPa (grey: undeformed)')
     """
-    fig, created = new_figure(fig, (11, 4.8))
+    fig, created = new_figure(fig, (10.0, 4.4))
     a1, a2 = fig.subplots(1, 2)
     draw_section(a1, result.nodes, result.elements, None, mirror=("x", "y"), edgecolor="0.6")
     if result.displacements:
@@ -206,10 +228,11 @@ def plot_inflation(result: InflationResult, fig: Any | None = None) -> Any:
         pc = draw_section(a1, result.nodes + result.displacements[-1], result.elements,
                           result.von_mises_mpa[-1], mirror=("x", "y"), vmax=vmax)
         fig.colorbar(pc, ax=a1, label="von Mises stress (MPa)")
-    a1.set_title(f"Section at {result.pressure_mpa[-1]:g} MPa (grey: undeformed)")
+    a1.set_title(f"Section at {result.pressure_mpa[-1]:g} MPa (grey: undeformed)",
+                 fontsize=SMALL + 2)
     a1.set_xlabel("x (mm)")
     a1.set_ylabel("y (mm)")
-    plot_inflation_curve(result, a2)
+    plot_inflation_curve(result, a2, measured=measured)
     finish(fig, created)
     return fig
 
@@ -273,9 +296,9 @@ def plot_squeeze_force(
     ax.set_xlabel("pressure P (MPa)")
     ax.set_ylabel(f"squeezing force N (N, L = {result.structure.length_mm:g} mm)")
     if title:
-        ax.set_title(title, fontsize=10)
+        ax.set_title(title, fontsize=SMALL + 1)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=SMALL, loc="lower right")  # N(P) rises to the upper right
     finish(ax.figure, created)
     return ax
 
@@ -317,9 +340,9 @@ def plot_squeeze_curves(
     ax.set_xlabel("pressure P (MPa)")
     ax.set_ylabel("squeezing force N (N)")
     if title:
-        ax.set_title(title, fontsize=10)
+        ax.set_title(title, fontsize=SMALL + 1)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=SMALL)
     finish(ax.figure, created)
     return ax
 
@@ -332,8 +355,10 @@ def plot_squeeze(
 ) -> Any:
     """Deformed sections with stress, the hole and the wire (Fig 6), and N(P) (Fig 7).
 
-    One section per pressure of ``show_pressures`` (MPa; the nearest computed ones), then the
-    N(P) panel of :func:`plot_squeeze_force`, on ``fig`` (an empty Figure; default a new one).
+    One section per pressure of ``show_pressures`` (MPa; the nearest computed ones; hole D as
+    a circle, the wire as a grey disc) and the N(P) panel of :func:`plot_squeeze_force`, on
+    ``fig`` (an empty Figure; default a new one): one section beside N(P), or two and more in
+    a row above it, sized for a page column (about 10 in wide).
     Without stored fields (``keep_fields=False``) only the N(P) panel is drawn.
     Returns the Figure.
 
@@ -369,24 +394,42 @@ def plot_squeeze(
     idx = sorted({int(np.argmin(np.abs(p - q))) for q in show_pressures})
     if not result.displacements:
         idx = []
-    fig, created = new_figure(fig, (4.2 * (len(idx) + 1), 4.4))
-    axes = np.atleast_1d(fig.subplots(1, len(idx) + 1))
+    # sized for a ~1100 px page column (<= 1400 px at 130 dpi, text >= 9 pt): one or no
+    # section beside N(P); two or more sections in a row above a centred N(P) panel
     s = result.structure
+    if len(idx) >= 2:
+        fig, created = new_figure(fig, (10.4, 7.6))
+        if created:
+            fig.set_layout_engine("constrained")
+        top, bottom = fig.subfigures(2, 1, height_ratios=[1.15, 1.0])
+        sections = list(np.atleast_1d(top.subplots(1, len(idx))))
+        ax_n = bottom.add_subplot(bottom.add_gridspec(1, 6)[0, 1:5])
+        bar_owner = top
+    else:
+        fig, created = new_figure(fig, (10.0, 4.4) if idx else (6.4, 4.4))
+        if created and idx:
+            fig.set_layout_engine("constrained")
+        row = list(np.atleast_1d(fig.subplots(1, len(idx) + 1)))
+        sections, ax_n = row[:-1], row[-1]
+        bar_owner = fig
     pc = None
     if idx:
         vmax = float(max(result.von_mises_mpa[i].max() for i in idx))
-        for ax, i in zip(axes[:-1], idx, strict=True):
+        for k, (ax, i) in enumerate(zip(sections, idx, strict=True)):
             pc = draw_section(ax, result.nodes + result.displacements[i], result.elements,
                               result.von_mises_mpa[i], mirror=("x",), vmax=vmax)
             ax.add_patch(Circle((0, 0), 0.5 * s.hole_mm, fill=False, color="0.3", lw=1.2))
             ax.add_patch(Circle(s.wire_center_mm, 0.5 * s.wire_mm, color="0.55"))
             ax.set_xlim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
             ax.set_ylim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
-            ax.set_title(f"P = {p[i]:g} MPa, N = {result.squeeze_force_n[i]:.1f} N")
+            ax.set_title(f"P = {p[i]:g} MPa, N = {result.squeeze_force_n[i]:.1f} N",
+                         fontsize=SMALL + 1)
             ax.set_xlabel("x (mm)")
+            if k == 0:
+                ax.set_ylabel("y (mm)")
     if pc is not None:
-        fig.colorbar(pc, ax=list(axes[:-1]), label="von Mises stress (MPa)", shrink=0.8)
-    plot_squeeze_force(result, axes[-1])
+        bar_owner.colorbar(pc, ax=sections, label="von Mises stress (MPa)", shrink=0.9)
+    plot_squeeze_force(result, ax_n)
     if created and pc is None:
         fig.tight_layout()
     return fig

@@ -20,7 +20,7 @@ Examples
 --------
 >>> from exofric.reproduction import ControlSetup, run_case
 >>> r = run_case(ControlSetup.default(), "pi", feedforward=True)
->>> round(r.metrics.steady_state_error, 3) + 0.0
+>>> round(r.metrics.steady_state_error_n, 3) + 0.0
 0.0
 """
 

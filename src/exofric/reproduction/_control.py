@@ -220,7 +220,7 @@ def stage_control(test5: SqueezeResult, gamma: float, target_n: float) -> Contro
         lab = f"{c.controller.upper()}{' + model' if c.feedforward else ''}"
         if c.paper_settling_time_s is None:
             comps.append(Comparison(f"{lab}: final friction (paper: 'steady-state error')", "N",
-                                    None, c.metrics.final_value, note))
+                                    None, c.metrics.final_friction_n, note))
             continue
         comps.append(Comparison(f"{lab}: settling time (Fig 12)", "s", c.paper_settling_time_s,
                                 c.metrics.settling_time_s, note))

@@ -12,7 +12,7 @@ Examples
 --------
 >>> from exofric.reproduction import ControlSetup, run_case
 >>> r = run_case(ControlSetup.default(), "pi", feedforward=True)
->>> round(r.metrics.steady_state_error, 3) + 0.0
+>>> round(r.metrics.steady_state_error_n, 3) + 0.0
 0.0
 """
 
@@ -274,8 +274,8 @@ class CaseResult:
             "rise_time_s": m["rise_time_s"],
             "overshoot_pct": m["overshoot_pct"],
             "steady_state_error_n": m["steady_state_error_n"],
-            "steady_state_error_pct": 100.0 * self.metrics.steady_state_error
-            / self.metrics.reference,
+            "steady_state_error_pct": 100.0 * self.metrics.steady_state_error_n
+            / self.metrics.target_friction_n,
             "final_friction_n": m["final_friction_n"],
             "final_pressure_mpa": self.final_pressure_mpa,
             "target_friction_n": m["target_friction_n"],
@@ -332,7 +332,7 @@ class CaseResult:
         from exofric.plots import plot_control_cases
 
         return plot_control_cases([self], fig,
-                                  title=f"target {self.metrics.reference:g} N")
+                                  title=f"target {self.metrics.target_friction_n:g} N")
 
 
 def run_case(

@@ -86,7 +86,7 @@ class Table2Stage:
     Examples
     --------
     >>> s = stage_table2()
-    >>> s.shore, round(s.material.c10, 4), round(s.slip_material.c10, 4)   # C10 in MPa
+    >>> s.shore, round(s.material.c10_mpa, 4), round(s.slip_material.c10_mpa, 4)   # C10 in MPa
     (62.5, 0.6354, 0.6639)
     """
 
@@ -142,7 +142,7 @@ def stage_table2() -> Table2Stage:
         dec = printed_decimals(pv)
         ov, sv = float(ours[key]), float(ours_slip[key])
         if key == "g_mpa":  # the slip column's G as implied by its constants
-            sv = 2.0 * (slip.c10 + slip.c01)
+            sv = 2.0 * (slip.c10_mpa + slip.c01_mpa)
         rows.append({
             "key": key, "quantity": label, "unit": unit, "paper_value": pv,
             "eq_value": ov, "slip_value": sv, "printed_decimals": dec,

@@ -197,12 +197,12 @@ def _piola(lr: np.ndarray, lt: np.ndarray, m: MooneyRivlin) -> tuple[np.ndarray,
     """First Piola stresses (P_rR, P_tT) of Eq 2 in plane strain for stretches (lr, lt)."""
     J = lr * lt
     s = lr**2 + lt**2  # I1 - 1 (in-plane |F|^2)
-    f_s = m.c10 * J ** (-2 / 3) + m.c01 * J ** (-4 / 3)
+    f_s = m.c10_mpa * J ** (-2 / 3) + m.c01_mpa * J ** (-4 / 3)
     f_J = (
-        -2 / 3 * m.c10 * J ** (-5 / 3) * (s + 1)
-        - 4 / 3 * m.c01 * J ** (-7 / 3) * s
-        + 2 / 3 * m.c01 * J ** (-1 / 3)
-        + 2.0 * (J - 1.0) / m.d
+        -2 / 3 * m.c10_mpa * J ** (-5 / 3) * (s + 1)
+        - 4 / 3 * m.c01_mpa * J ** (-7 / 3) * s
+        + 2 / 3 * m.c01_mpa * J ** (-1 / 3)
+        + 2.0 * (J - 1.0) / m.d_per_mpa
     )
     return 2.0 * f_s * lr + f_J * lt, 2.0 * f_s * lt + f_J * lr
 
