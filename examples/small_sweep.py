@@ -111,6 +111,5 @@ if best_validated:
 if __name__ == "__main__":
     from exofric.plots import plot_design_map, save
 
-    ax = plot_design_map(search, skipped=frame[frame["status"] == "skipped"])
-    ax.set_title(f"target {target_torque_nm:g} Nm on R = 0.10 m by 0.6 MPa", fontsize=10)
+    ax = plot_design_map(search, skipped=frame[frame["status"] == "skipped"])  # titled by it
     print("wrote", save(ax, "small_sweep.png"))
