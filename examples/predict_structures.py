@@ -84,7 +84,8 @@ clearance_mm = {p.structure.name: p.structure.clearance_mm for p in predictions}
 
 scale = 1.23                                          # test 3's hole scale, 12.3 / 10 mm
 resized = ef.BASE.scaled(scale, f"base x {scale:g}")
-resized_prediction = ef.predict([resized], gamma, material, pressures_mpa).predictions[0]
+resized_prediction = ef.predict([resized], gamma, material, pressures_mpa,
+                                base=ef.BASE).predictions[0]       # deviation from the base
 scaled_friction_ratio = resized_prediction.predicted_friction_n[-1] / friction_at_0_6_mpa_n[
     "test 1"]
 

@@ -220,3 +220,13 @@ def test_prediction_plot_renders(tmp_path) -> None:  # type: ignore[no-untyped-d
                       [0.2, 0.4, 0.6], squeeze_fn=fake_squeeze, measured=meas)
     out = save(plot_predictions(res.predictions, "fake squeeze"), tmp_path / "p.png")
     assert out.stat().st_size > 10_000
+
+
+def test_default_base_is_the_first_structure_and_is_reported() -> None:
+    """predict() without base= measures deviations from the first structure and says so."""
+    a = Structure(10.0, 8.3, 4.97, 1.6, name="mine")
+    b = Structure(11.0, 8.3, 4.97, 1.6, name="wider hole")
+    res = predict([a, b], 0.5, None, [0.2, 0.4], squeeze_fn=fake_squeeze)
+    assert res.base.name == "mine" and res.to_dict()["base"]["name"] == "mine"
+    assert res.predictions[0].deviation.deviation_pct == 0.0
+    assert res.predictions[1].deviation.deviation_pct == pytest.approx(10.0)

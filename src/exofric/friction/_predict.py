@@ -75,7 +75,8 @@ class ApplicabilityWarning(UserWarning):
     >>> fake = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p)
     >>> with warnings.catch_warnings(record=True) as caught:
     ...     warnings.simplefilter("always")
-    ...     _ = predict(paper_structures()[5:6], 0.7, None, [0.6], squeeze_fn=fake)  # test 6
+    ...     _ = predict(paper_structures()[5:6], 0.7, None, [0.6], squeeze_fn=fake,
+    ...                 base=paper_structures()[0])                      # test 6 vs base
     >>> [w.category.__name__ for w in caught]
     ['ApplicabilityWarning']
     """
@@ -596,7 +597,7 @@ def predict(
     *,
     squeeze_fn: SqueezeFn | None = None,
     measured: Mapping[str, MeasuredCurve] | None = None,
-    base: Structure = BASE,
+    base: Structure | None = None,
     threshold_pct: float = VALIDATED_DEVIATION_PCT,
     arm_radius_m: float = 0.10,
     required_torque_nm: tuple[float, float] = (0.0, 40.0),
@@ -620,8 +621,9 @@ def predict(
         ``contact_onset_pressure_mpa``; default :func:`exofric.simulate.squeeze`.
     measured : mapping name -> MeasuredCurve, optional
         Measured friction per structure name; the measured pressures are simulated too.
-    base : Structure
-        Reference for the deviation metrics (and the ANOVA base group when measured).
+    base : Structure, optional
+        Reference for the deviation metrics (and the ANOVA base group when measured); default
+        the first structure. The result's ``base`` (and ``to_dict()["base"]``) says which.
     threshold_pct : float
         Deviation (%) above which :class:`ApplicabilityWarning` is emitted.
     arm_radius_m, required_torque_nm : float, (float, float)
@@ -654,6 +656,8 @@ def predict(
     grid = check_pressures("pressures_mpa", np.asarray(pressures_mpa, dtype=float).ravel())
     if not structures:
         raise InputError("predict needs at least one structure")
+    if base is None:
+        base = structures[0]
     names = [s.name for s in structures]
     dup = {n for n in names if names.count(n) > 1}
     if dup:
