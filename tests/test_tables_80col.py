@@ -25,13 +25,19 @@ CASES = {
     "fit-friction": ["fit-friction", "--squeeze", str(EX / "friction-squeeze-eq8.csv"),
                      "--friction", str(EX / "rig-log.csv")],
     "control compare": ["control", "compare", "--duration", "8"],
+    "inflate": ["inflate", "--shore", "62.5", "--tube-od", "8.3", "--tube-id", "4.97",
+                "--pressures", "0.1,0.2,0.3,0.4"],
+    "material": ["material", "--shore", "62.5"],
+    "design": ["design", str(EX / "sweep-small.toml"), "--out", "{tmp}/d", "--no-plot",
+               "--target-torque", "15"],
 }
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
-def test_table_fits_80_columns(name: str) -> None:
+def test_table_fits_80_columns(name: str, tmp_path: Path) -> None:
     env = {**os.environ, "COLUMNS": "80", "LINES": "50"}
-    proc = subprocess.run([sys.executable, "-m", "exofric", *CASES[name]], capture_output=True,
+    args = [a.replace("{tmp}", str(tmp_path)) for a in CASES[name]]
+    proc = subprocess.run([sys.executable, "-m", "exofric", *args], capture_output=True,
                           text=True, env=env, timeout=300, cwd=ROOT)
     assert proc.returncode == 0, proc.stderr
     lines = proc.stdout.splitlines()

@@ -85,16 +85,17 @@ def register(app: typer.Typer) -> None:
                             defaults.INFLATION_MESH["n_circ"] if n_circ is None else n_circ)
         res = inflate(tube_od, tube_id, mat, p, accuracy=accuracy, mesh=mesh)
         out = res.to_dict()
+        from exofric import paper
         from exofric.plots import plot_inflation
 
+        # the paper's tube: Table 1's measured diameters beside ours (table, JSON, plot)
+        t1 = paper.table1()
+        table1: dict[float, float] = {}
         measured = None
-        if plot is not None:  # the paper's tube: overlay Table 1's measured diameters
-            from exofric import paper
-
-            t1 = paper.table1()
-            if abs(tube_od - float(t1["tube_od_mm"])) < 1e-9:
-                measured = (t1["pressure_mpa"], t1["test_outer_diameter_mm"],
-                            "test, paper Table 1")
+        if abs(tube_od - float(t1["tube_od_mm"])) < 1e-9:
+            table1 = dict(zip(t1["pressure_mpa"], t1["test_outer_diameter_mm"], strict=True))
+            measured = (t1["pressure_mpa"], t1["test_outer_diameter_mm"], "test, paper Table 1")
+            out["paper_table1_test_outer_diameter_mm"] = {f"{k:g}": v for k, v in table1.items()}
         out.update(write_outputs(res, plot, vtu,
                                  lambda r: plot_inflation(r, measured=measured)))
 
@@ -108,6 +109,8 @@ def register(app: typer.Typer) -> None:
             est = res.outer_diameter_error_estimate_mm
             cols = ["P (MPa)", "OD FE (mm)", "ID FE (mm)", "OD closed form (mm)"]
             cols += ["OD error est. (mm)"] if est is not None else ["Newton it."]
+            if table1:
+                cols += ["OD Table 1 test (mm)"]
             for c in cols:
                 t.add_column(c, justify="right")
             for i, row in enumerate(zip(
@@ -119,7 +122,11 @@ def register(app: typer.Typer) -> None:
                 strict=True,
             )):
                 last = f"{est[i]:.1e}" if est is not None else str(row[4])
-                t.add_row(f"{row[0]:g}", f"{row[1]:.4f}", f"{row[2]:.4f}", f"{row[3]:.4f}", last)
+                cells = [f"{row[0]:g}", f"{row[1]:.4f}", f"{row[2]:.4f}", f"{row[3]:.4f}", last]
+                if table1:
+                    cells.append(next((f"{v:g}" for k, v in table1.items()
+                                       if abs(k - row[0]) < 1e-9), "-"))
+                t.add_row(*cells)
             console.print(t)
             console.print(f"[dim]{res.symmetry}. Closed form: incompressible (J = 1).[/dim]")
             for k in ("plot", "vtu"):
