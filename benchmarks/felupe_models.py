@@ -466,7 +466,7 @@ class SqueezeSetup:
         Examples
         --------
         >>> s = SqueezeSetup.from_structure(SqueezeSetup(), (0.6, 0.03, 0.006), n_circ=80)
-        >>> s.c10_mpa, s.n_circ, s.density_t_per_mm3
+        >>> s.c10, s.n_circ, s.density_t_per_mm3
         (0.6, 80, 1.1e-13)
         """
         c10, c01, d = _constants(material)
@@ -567,7 +567,7 @@ def felupe_squeeze_model(
     region = fem.RegionBiQuadraticQuad(mesh)
     fields = fem.FieldsMixed(region, n=3, planestrain=True)
     u = fields[0]
-    solid = fem.SolidBody(mooney_rivlin_umat(s.c10_mpa, s.c01_mpa, s.d), fields)
+    solid = fem.SolidBody(mooney_rivlin_umat(s.c10, s.c01, s.d), fields)
     mask = np.zeros(mesh.npoints, dtype=bool)
     mask[grid[0]] = True
     boundary = fem.RegionBiQuadraticQuadBoundary(mesh, mask=mask, ensure_3d=True)
@@ -707,15 +707,15 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     ap.add_argument("--penalty", type=float, default=1e4)
     args = ap.parse_args(argv)
     p = [float(v) for v in args.pressures.split(",")]
-    mat = (args.c10_mpa, args.c01_mpa, args.d)
+    mat = (args.c10, args.c01, args.d)
     if args.problem == "inflate":
         r = felupe_inflate_tube(args.tube_od, args.tube_id, mat, p,
                                 n_radial=args.n_radial or 2, n_circ=args.n_circ or 6)
         out: dict[str, Any] = {"problem": "inflate", **r.to_dict()}
     else:
         setup = SqueezeSetup(hole_mm=args.hole, tube_od_mm=args.tube_od,
-                             tube_id_mm=args.tube_id, wire_mm=args.wire, c10=args.c10_mpa,
-                             c01=args.c01_mpa, d=args.d, density_t_per_mm3=WEIGHTLESS_DENSITY,
+                             tube_id_mm=args.tube_id, wire_mm=args.wire, c10=args.c10,
+                             c01=args.c01, d=args.d, density_t_per_mm3=WEIGHTLESS_DENSITY,
                              n_radial=args.n_radial or 4, n_circ=args.n_circ or 40,
                              grading=args.grading, penalty=args.penalty)
         out = {"problem": "squeeze", **felupe_squeeze_model(p, setup).to_dict()}

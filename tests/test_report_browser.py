@@ -2,8 +2,11 @@
 
 Checks that every figure loaded (naturalWidth > 0), every table has rows, the console shows
 no errors, nothing is fetched from the network, and the page does not overflow sideways at
-phone width. Screenshots (desktop and phone) are written next to the report for a look.
-Skipped only when no browser executable (or Playwright) is available.
+phone width. On a 1400 px wide page no figure is shown below 80 % of its natural width and
+its smallest text is shown at >= 9 pt (the report sizes figures for the page); no difference
+cell of the paper-beside-ours tables shows a percentage above 1000 % (differences are shown
+only where they mean something). Screenshots (desktop and phone) are written next to the
+report for a look. Skipped only when no browser executable (or Playwright) is available.
 """
 
 from __future__ import annotations
@@ -39,7 +42,7 @@ def test_report_in_headless_chromium(report: Path) -> None:
     with sync_api.sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
         try:
-            for name, vp in (("desktop", {"width": 1280, "height": 900}),
+            for name, vp in (("desktop", {"width": 1400, "height": 900}),
                              ("phone", {"width": 390, "height": 844})):
                 page = browser.new_page(viewport=vp)
                 errors: list[str] = []
@@ -50,10 +53,35 @@ def test_report_in_headless_chromium(report: Path) -> None:
                 page.on("request", lambda r, q=requests: q.append(r.url))
                 page.goto(url, wait_until="load")
                 imgs = page.evaluate("""() => [...document.images].map(i => ({
-                    alt: i.alt, complete: i.complete, w: i.naturalWidth, h: i.naturalHeight}))""")
+                    alt: i.alt, complete: i.complete, w: i.naturalWidth, h: i.naturalHeight,
+                    shown: i.getBoundingClientRect().width}))""")
                 assert len(imgs) == len(figures)
                 bad = [i["alt"] for i in imgs if not (i["complete"] and i["w"] > 0 and i["h"] > 0)]
                 assert bad == [], f"figures not loaded: {bad}"
+                if name == "desktop":   # sized for the page: shown at >= 80 % of natural width
+                    small = [(i["alt"], i["w"], round(i["shown"])) for i in imgs
+                             if i["shown"] < 0.8 * i["w"]]
+                    assert small == [], f"figures shrunk by more than 20 %: {small}"
+                    # text as shown: min font (pt at the PNG's dpi) x dpi/96 x shown/natural
+                    tiny = [(f["key"], round(f["min_font_pt"] * f["dpi"] / 96 * i["shown"]
+                                             / i["w"], 1))
+                            for f, i in zip(figures, imgs, strict=True)
+                            if f["min_font_pt"] is not None
+                            and f["min_font_pt"] * f["dpi"] / 96 * i["shown"] / i["w"] < 9.0]
+                    assert tiny == [], f"figure text shown below 9 pt: {tiny}"
+                # differences: a percentage in a difference cell stays <= 1000 % (none for
+                # p-values, percentage points for quantities already in %)
+                pcts = page.evaluate(r"""() => [...document.querySelectorAll('td.diff')].flatMap(
+                    td => {
+                        const th = td.closest('table').querySelectorAll('thead th')[td.cellIndex];
+                        const inPct = th && th.textContent.includes('%');
+                        const t = td.textContent;
+                        if (/pp/.test(t)) return [];
+                        const re = inPct ? /[-+]?\d+(\.\d+)?/g : /[-+]?\d+(\.\d+)?(?= %)/g;
+                        return (t.match(re) || []).map(Number);
+                    })""")
+                assert pcts, "no difference cells found"
+                assert max(abs(x) for x in pcts) <= 1000, sorted(pcts)[-3:]
                 rows = page.evaluate("""() => [...document.querySelectorAll('table')].map(
                     t => t.querySelectorAll('tbody tr').length)""")
                 assert len(rows) >= 15 and min(rows) >= 1, rows

@@ -11,6 +11,7 @@ import fcntl
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -57,7 +58,8 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict[str, Any],
 NUM = (int, float)
 OPT_NUM = (int, float, type(None))
 CMP = {"quantity": str, "unit": str, "paper_value": OPT_NUM, "our_value": OPT_NUM,
-       "difference": OPT_NUM, "difference_pct": OPT_NUM, "note": str, "synthetic": bool}
+       "difference": OPT_NUM, "difference_pct": OPT_NUM, "difference_kind": str,
+       "decimals": OPT_NUM, "note": str, "synthetic": bool}
 SCHEMA: dict[str, Any] = {
     "exofric_version": str,
     "config": {"fast": bool, "pressures_mpa": [NUM], "gamma_true": NUM, "seed": int,
@@ -240,6 +242,81 @@ def test_comparison_and_printed_decimals() -> None:
     assert Comparison("x", "", None, 1.0).difference is None
     assert Comparison("x", "", 0.0, 1.0).difference_pct is None
     assert [printed_decimals(v) for v in (4.0033, 0.00575, 62.5, 30.0, 1e-05)] == [4, 5, 1, 0, 5]
+
+
+def test_difference_shown_only_where_it_means_something() -> None:
+    from exofric.report import comparison_cells
+
+    def cells(*args: Any, **kw: Any) -> tuple[str, str, str]:
+        return comparison_cells(Comparison(*args, **kw).to_dict())
+
+    # relative: by hand, 239.557 - 268.55 = -28.993 N, 100 x -28.993 / 268.55 = -10.796 %
+    assert cells("N", "N", 268.55, 239.557) == ("268.55", "239.56", "-28.99 (-10.8 %)")
+    # already in %: percentage points, to the paper's 0 decimals (32.673 - 26 = 6.673 pp)
+    c = Comparison("PI reduction", "%", 26.0, 32.673)
+    assert (c.difference_kind, c.difference_pct) == ("points", None)
+    assert cells("PI reduction", "%", 26.0, 32.673) == ("26", "33", "+7 pp")
+    # p-values (the issue's +8.74e+03 %) and fitted cubic coefficients: no difference
+    p = Comparison("test 7: ANOVA p-value vs base (Table 4)", "", 0.0075, 0.6631)
+    assert (p.difference_kind, p.difference_pct) == ("none", None)
+    assert cells("test 7: ANOVA p-value", "", 0.0075, 0.6631) == ("0.0075", "0.6631", "-")
+    assert cells("Eq 8 coefficient c0", "N", -7.9531, 88.396)[2] == "-"
+    # opposite signs: a ratio means nothing, the difference in the unit does (3 - -5 = 8)
+    assert cells("x", "N", -5.0, 3.0) == ("-5", "3.0", "+8")
+    # equal to the digits the paper printed (Table 2 E0 = 4.00333 vs 4.0033)
+    assert cells("E0", "MPa", 4.0033, 4.0033333)[2] == "0"
+    # ours keeps two significant figures where the paper's digits would hide it
+    assert cells("max error", "%", -12.0, 0.3568) == ("-12", "0.36", "+12 pp")
+    # the paper's digits, at most 5 significant figures of a value its equations give
+    assert Comparison("x", "N", 152.04130000000006, 1.0).decimals == 2
+    assert Comparison("x", "1/MPa", 0.00575, 1.0).decimals == 5
+    assert Comparison("x", "N", None, 1.0).decimals is None
+    assert Comparison("x", "N", 10.0, 12.0, kind="points").difference_pct is None
+    with pytest.raises(ValueError, match="kind"):
+        Comparison("x", "N", 1.0, 2.0, kind="ratio")
+
+
+def test_report_difference_rules_and_no_repeated_tables(run) -> None:  # type: ignore[no-untyped-def]
+    out, _, res = run
+    for c in res["comparisons"] + res["paper_checks"]:
+        q = c["quantity"]
+        if "p-value" in q or "coefficient" in q or c["paper_value"] is None:
+            assert c["difference_kind"] == "none", q
+        elif c["unit"] == "%":
+            assert c["difference_kind"] == "points" and c["difference_pct"] is None, q
+        if c["difference_pct"] is not None:
+            assert abs(c["difference_pct"]) < 1000, q
+    html = (out / "report.html").read_text(encoding="utf-8")
+    # the stage tables already show Table 1, Table 2 and the prediction rows: not repeated
+    assert "Table 1 OD" not in html and "Table 2 E0" not in html
+    assert "ANOVA p-value vs base" not in html
+    diffs = re.findall(r'<td class="n diff"[^>]*>([^<]*)</td>', html)
+    assert len(diffs) > 20 and not [d for d in diffs if re.search(r"\de[-+]", d)], diffs
+
+
+def test_cli_summary_reads_at_80_columns(fast_result, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    import io
+    from types import SimpleNamespace
+
+    from rich.console import Console
+
+    import exofric.cli.reproduce as cli_reproduce
+
+    con = Console(width=80, file=io.StringIO(), record=True, color_system=None)
+    monkeypatch.setattr(cli_reproduce, "console", con)
+    files = SimpleNamespace(report_time_s=1.0, report_html=Path("r/report.html"),
+                            out_dir=Path("r"))
+    cli_reproduce._summary(fast_result, files, 2.0)
+    text = con.export_text()
+    lines = text.splitlines()
+    assert max(len(line) for line in lines) <= 80 and "\u2026" not in text   # no ellipsis
+    # one line per row (nothing wrapped), differences as the rules say
+    for _, label in cli_reproduce._PICKS:
+        assert sum(label in line for line in lines) == 1, label
+    pi = next(line for line in lines if line.lstrip().startswith("PI:"))
+    assert pi.rstrip().endswith("pp") and "%" not in pi.split()[-1]
+    n06 = next(line for line in lines if "N at 0.6 MPa, base" in line)
+    assert n06.rstrip().endswith("%)")
 
 
 def test_cli_out_is_a_file_gives_one_line_error(cli, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]

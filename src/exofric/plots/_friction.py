@@ -78,6 +78,8 @@ def plot_gamma_fit(
         a1.plot([paper_point[0]], [paper_point[1]], "*", ms=13, color="k", mfc="gold",
                 zorder=4, label=paper_point[2])
     a1.set_ylabel("friction F (N)")
+    y0, y1 = a1.get_ylim()
+    a1.set_ylim(y0, y1 + 0.45 * (y1 - y0))          # headroom: the legend sits above the data
     a1.legend(fontsize=SMALL, loc="upper left")
     lo, hi = fit.gamma_ci95
     a1.set_title(f"95% CI [{lo:.4f}, {hi:.4f}]\n({fit.ci_method})", fontsize=SMALL + 1)
@@ -165,7 +167,7 @@ def plot_predictions(
     (1, 2)
     >>> meas = {"test 2": MeasuredCurve.of([0.3, 0.6], [80.0, 170.0])}
     >>> r = predict(paper_structures()[1:2], 0.7, None, [0.3, 0.6], squeeze_fn=fake,
-    ...             measured=meas)
+    ...             measured=meas, base=paper_structures()[0])
     >>> fig = plot_predictions(r.predictions, fig=Figure(), paper_max_error_pct={"test 2": -12.0})
     >>> len(fig.axes), fig.axes[0].get_title(), fig.axes[1].get_legend().get_texts()[1].get_text()
     (2, 'test 2: deviation 9.1%', "paper's printed max -12.00%")

@@ -30,7 +30,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         write_report,
     )
     from exofric.report._html import render_html
-    from exofric.report._style import REPORT_CSS, fmt
+    from exofric.report._style import REPORT_CSS, comparison_cells, fmt
 
 # Lazy facade (PEP 562): ``fmt`` and the HTML helpers do not load the figures and the pipeline;
 # each name is loaded from its module on first use (exofric/__init__.py does the same one level
@@ -41,13 +41,13 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "write_report",
     ),
     "_html": ("render_html",),
-    "_style": ("REPORT_CSS", "fmt"),
+    "_style": ("REPORT_CSS", "comparison_cells", "fmt"),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
-    "FigureFile", "find_notes_dir", "fmt", "make_figures", "read_notes", "render_html",
-    "REPORT_CSS", "ReportFiles", "write_report",
+    "comparison_cells", "FigureFile", "find_notes_dir", "fmt", "make_figures", "read_notes",
+    "render_html", "REPORT_CSS", "ReportFiles", "write_report",
 ]
 
 __getattr__, __dir__ = facade(__name__, _HOME, __all__)

@@ -44,9 +44,17 @@ from exofric.report._style import REPORT_CSS
 from exofric.reproduction import ReproduceResult
 
 __all__ = ["FigureFile", "ReportFiles", "write_report", "find_notes_dir", "read_notes",
-           "make_figures", "REPORT_CSS"]
+           "make_figures", "REPORT_CSS", "FIGURE_DPI", "FIGURE_MAX_PX"]
 
 _KNEE = "knee 0-40 Nm"
+
+#: Resolution (dpi) of the report's figures: text of ``s`` pt is shown at ``s`` x 130/96 pt
+#: when the figure is shown at its natural size.
+FIGURE_DPI = 130
+#: Widest figure written (px). The report's figure column is ~1160 CSS px wide on a page of
+#: 1280 px or more (``main`` max-width 1200 px less its padding), so a figure of at most
+#: 1400 px is shown at >= 83 % of its natural width; a wider figure is written at a lower dpi.
+FIGURE_MAX_PX = 1400
 
 
 @dataclass(frozen=True)
@@ -65,13 +73,20 @@ class FigureFile:
         Caption under the figure (says what is SYNTHETIC).
     stage : str
         Key of the stage whose section shows it (see :data:`exofric.reproduction.STAGES`).
+    dpi : int
+        Resolution it was written with (dots per inch).
+    width_px : int
+        Natural width of the PNG in pixels (a dimensionless count); 0 if unknown.
+    min_font_pt : float or None
+        Smallest visible text in the figure (pt at ``dpi``); shown at
+        ``min_font_pt * dpi / 96 * displayed width / width_px`` CSS pt.
 
     Examples
     --------
     >>> from pathlib import Path
     >>> f = FigureFile("fig7", Path("out/fig7.png"), "Fig 7", "N(P) of the base", "squeeze")
-    >>> f.to_dict()["file"], f.stage
-    ('fig7.png', 'squeeze')
+    >>> f.to_dict()["file"], f.stage, f.dpi
+    ('fig7.png', 'squeeze', 130)
     """
 
     key: str
@@ -79,11 +94,15 @@ class FigureFile:
     title: str
     caption: str
     stage: str
+    dpi: int = FIGURE_DPI
+    width_px: int = 0
+    min_font_pt: float | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict."""
+        """JSON-ready dict (``dpi`` in dots per inch, ``width_px`` in px, font in pt)."""
         return {"key": self.key, "file": self.path.name, "title": self.title,
-                "caption": self.caption, "stage": self.stage}
+                "caption": self.caption, "stage": self.stage, "dpi": self.dpi,
+                "width_px": self.width_px, "min_font_pt": self.min_font_pt}
 
 
 @dataclass(frozen=True)
@@ -207,7 +226,11 @@ def _fig_all_curves(r: ReproduceResult) -> Any:
 
 def _fig_predictions(r: ReproduceResult, names: tuple[str, ...], fig_no: int) -> Any:
     preds = [p for p in r.prediction.predictions.predictions if p.structure.name in names]
-    return plot_predictions(preds, f"Fig {fig_no}: SYNTHETIC 'tested' curves (virtual rig)")
+    e = paper.load()["max_relative_error"]
+    printed = {f"test {t}": v for t, v in zip(e["test"], e["max_relative_error_pct"], strict=True)}
+    return plot_predictions(preds, f"Fig {fig_no}: SYNTHETIC 'tested' curves (virtual rig)",
+                            paper_max_error_pct=printed,
+                            data_label="synthetic (virtual rig)")
 
 
 def _fig_cubic(r: ReproduceResult) -> Any:
@@ -217,7 +240,7 @@ def _fig_cubic(r: ReproduceResult) -> Any:
 
 
 def _fig_control(r: ReproduceResult) -> Any:
-    return plot_control_cases(r.control.paper_map.cases, pressure=False)
+    return plot_control_cases(r.control.paper_map.cases)      # the CLI's design
 
 
 def _fig_torque(r: ReproduceResult) -> Any:
@@ -229,8 +252,33 @@ def _fig_torque(r: ReproduceResult) -> Any:
                        limit_label=_KNEE + " (max)")
 
 
+def _root_figure(fig: Any) -> Any:
+    """The figure of a Figure or an Axes (what :func:`exofric.plots.save` writes)."""
+    root = fig if hasattr(fig, "savefig") else fig.figure
+    return getattr(root, "figure", None) or root
+
+
+def _min_font_pt(fig: Any) -> float | None:
+    """Smallest font size (pt) of the visible, non-empty texts of a drawn figure."""
+    root = _root_figure(fig)
+    texts = root.findobj(lambda a: hasattr(a, "get_fontsize") and hasattr(a, "get_text"))
+    sizes = [float(t.get_fontsize()) for t in texts
+             if t.get_visible() and str(t.get_text()).strip()]
+    return min(sizes) if sizes else None
+
+
+def _png_width(path: Path) -> int:
+    """Width (px) from a PNG's IHDR chunk; 0 if the file is not a PNG."""
+    head = path.read_bytes()[:24]
+    return int.from_bytes(head[16:20], "big") if head[:8] == b"\x89PNG\r\n\x1a\n" else 0
+
+
 def make_figures(r: ReproduceResult, out_dir: Path) -> tuple[FigureFile, ...]:
-    """Draw and save every report figure as PNG in ``out_dir`` (11 figures, 130 dpi).
+    """Draw and save every report figure as PNG in ``out_dir`` (11 figures, sized for the page).
+
+    Each is written at :data:`FIGURE_DPI` (130 dpi), or at the dpi that makes it
+    :data:`FIGURE_MAX_PX` wide if it is wider, so the page shows it at >= 80 % of its natural
+    width; its smallest text (pt) is recorded.
 
     Parameters
     ----------
@@ -263,7 +311,11 @@ def make_figures(r: ReproduceResult, out_dir: Path) -> tuple[FigureFile, ...]:
         ("fig4", "Fig 4 / Eq 7: gamma fit (SYNTHETIC data)", "gamma",
          f"SYNTHETIC virtual-rig friction, gamma_true = {gm.gamma_true:g}, on exofric's base "
          "N(P); the fit, residuals (N) and relative errors (%).",
-         lambda: plot_gamma_fit(gm.fit, f"SYNTHETIC rig data, gamma_true = {gm.gamma_true:g}")),
+         lambda: plot_gamma_fit(
+             gm.fit, f"SYNTHETIC rig data, gamma_true = {gm.gamma_true:g}",
+             data_label="synthetic (virtual rig)",
+             paper_point=(0.6, paper.scalar("base_friction_at_0_6_mpa_n"),
+                          "paper, Sec 3.2"))),
         ("squeeze_all", "N(P) of the seven Table 3 structures", "prediction",
          "exofric FE squeezing force for tests 1-7 (tube IDs scaled with d1).",
          lambda: _fig_all_curves(r)),
@@ -288,8 +340,15 @@ def make_figures(r: ReproduceResult, out_dir: Path) -> tuple[FigureFile, ...]:
     out = []
     for key, title, stage, caption, draw in specs:
         path = out_dir / f"{key}.png"
-        save(plot_squeeze(r.squeeze.result) if draw is None else draw(), path)
-        out.append(FigureFile(key, path, title, caption, stage))
+        fig = plot_squeeze(r.squeeze.result) if draw is None else draw()
+        dpi = FIGURE_DPI
+        save(fig, path, dpi=dpi)   # draws the figure (tick labels get their text), then closes
+        width = _png_width(path)
+        if width > FIGURE_MAX_PX:  # too wide for the page: again at a lower dpi (a closed
+            dpi = max(50, int(dpi * FIGURE_MAX_PX / width))   # figure still saves)
+            save(fig, path, dpi=dpi)
+            width = _png_width(path)
+        out.append(FigureFile(key, path, title, caption, stage, dpi, width, _min_font_pt(fig)))
     return tuple(out)
 
 

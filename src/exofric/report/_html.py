@@ -11,7 +11,8 @@ the stage sections of :mod:`exofric.report`, what is synthetic, the paper's
 inconsistencies and the run details. The stylesheet, number format (:func:`fmt`, importable
 from here) and table helpers are in :mod:`exofric.report`.
 
-Units: mm, N, MPa, s, Nm; differences in %.
+Units: mm, N, MPa, s, Nm; differences in the row's unit, in % of the paper value, or in
+percentage points (pp) for quantities already in %.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from collections.abc import Sequence
 from datetime import datetime, timezone
 from typing import Any
 
-from exofric.report._sections import _SECTIONS
+from exofric.report._sections import _SECTIONS, _SHOWN_IN_SECTION
 from exofric.report._style import REPORT_CSS, _cmp_table, _e, _figure, _table, fmt
 
 __all__ = ["render_html", "fmt"]
@@ -54,6 +55,13 @@ def _md(text: str, seen: dict[str, int]) -> str:
 
 def _cmps(d: dict[str, Any], stage: str) -> list[dict[str, Any]]:
     return [c for c in d["comparisons"] if c["stage"] == stage]
+
+
+def _beside(d: dict[str, Any], stage: str) -> str:
+    """The stage's "Paper beside exofric" table: rows its section's tables do not show."""
+    shown = _SHOWN_IN_SECTION.get(stage, ())
+    rows = [c for c in _cmps(d, stage) if not any(s in c["quantity"] for s in shown)]
+    return f"<h3>Paper beside exofric</h3>{_cmp_table(rows)}" if rows else ""
 
 
 def _pick(d: dict[str, Any], stage: str, prefix: str) -> dict[str, Any] | None:
@@ -159,7 +167,7 @@ def render_html(data: dict[str, Any], figures: Sequence[Any],
         body.append(
             f'<section id="{key}"><h2>{i}. {_e(title)}<span class="time">stage wall time '
             f"{times.get(key, float('nan')):.2f} s</span></h2>{_SECTIONS[key](data)}"
-            f"<h3>Paper beside exofric</h3>{_cmp_table(_cmps(data, key))}{figs}</section>")
+            f"{_beside(data, key)}{figs}</section>")
     when = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")  # noqa: UP017
     mode = "fast (coarse meshes)" if data["config"]["fast"] else "default (converged meshes)"
     return f"""<!DOCTYPE html>
@@ -175,7 +183,10 @@ Limb Exosuit Based on Finite Element Analysis</i>, Actuators 2021. exofric
 {_e(data['exofric_version'])}, {mode}, generated {when}; stages took
 {data['wall_time_s']:.1f} s. Units: mm, N, MPa, s, Nm. Rows marked
 <span class="badge">SYNTHETIC</span> rest on virtual-rig data (the paper's raw friction
-curves are unpublished).</p>
+curves are unpublished). Paper beside exofric: values to the digits the paper printed;
+"ours - paper" in the row's unit with its % of the paper value, in percentage points (pp)
+for quantities already in %, and '-' where a difference means nothing (p-values, fitted
+cubic coefficients).</p>
 <nav class="toc"><b>Contents</b><ol>{toc}</ol></nav>
 <h2 id="glance">At a glance</h2>
 {_cmp_table(glance)}

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from exofric.report._style import _e, _signed, _table, fmt
+from exofric.report._style import _e, _fixed, _signed, _table, fmt
 
 # ----------------------------------------------------------------------------- sections
 
@@ -42,16 +42,20 @@ def _s_calibration(d: dict[str, Any]) -> str:
     head.append("test")
     test = d["stages"]["calibration"]["bisection"]["points"]
     rows: list[list[Any]] = []
+    # to the paper's digits: diameters in mm and average errors in % with 2 decimals; the
+    # difference of two average errors (already in %) in percentage points
     for i, pv in enumerate(p):
         row: list[Any] = [pv]
         for c in cols:
-            row += [c["paper_outer_diameter_mm"][i], c["our_outer_diameter_mm"][i],
-                    ("n", _signed(c["difference_pct"][i], 3))]
-        row.append(test[i]["measured_outer_diameter_mm"])
+            row += [_fixed(c["paper_outer_diameter_mm"][i], 2),
+                    _fixed(c["our_outer_diameter_mm"][i], 2),
+                    ("d", f"{c['difference_pct'][i]:+.2f}")]
+        row.append(_fixed(test[i]["measured_outer_diameter_mm"], 2))
         rows.append(row)
     avg: list[Any] = ["average error (%)"]
     for c in cols:
-        avg += [c["paper_average_error_pct"], c["our_average_error_pct"], ""]
+        pa, oa = c["paper_average_error_pct"], c["our_average_error_pct"]
+        avg += [_fixed(pa, 2), _fixed(oa, 2), ("d", f"{oa - pa:+.2f} pp")]
     avg.append("")
     rows.append(avg)
     bis, bnd = s["bisection"], s["bounded"]
@@ -153,13 +157,17 @@ def _s_prediction(d: dict[str, Any]) -> str:
     geo, err = [], []
     for r in s["rows"]:
         st = r["structure"]
+        # deviations to the paper's 1 decimal, errors to its 2, p-values to its 4
         geo.append([f"{r['test']} ({r['group']})", st["hole_mm"], st["tube_od_mm"],
                     st["tube_id_mm"], st["wire_mm"], r["clearance_mm"],
-                    r["contact_onset_pressure_mpa"], r["paper_deviation_printed_pct"],
-                    r["paper_deviation_pct"], r["tube_ref_deviation_pct"], r["deviation_pct"],
-                    r["in_validated_region"]])
-        err.append([f"test {r['test']}", r["n_rig_points"], r["paper_max_relative_error_pct"],
-                    r["max_relative_error_pct"], r["paper_p_value"], r["p_value"]])
+                    ("n", fmt(r["contact_onset_pressure_mpa"], 3)),
+                    _fixed(r["paper_deviation_printed_pct"], 1),
+                    _fixed(r["paper_deviation_pct"], 1), _fixed(r["tube_ref_deviation_pct"], 1),
+                    _fixed(r["deviation_pct"], 1), r["in_validated_region"]])
+        err.append([f"test {r['test']}", r["n_rig_points"],
+                    _fixed(r["paper_max_relative_error_pct"], 2),
+                    _fixed(r["max_relative_error_pct"], 2), _fixed(r["paper_p_value"], 4),
+                    _fixed(r["p_value"], 4)])
     warn = "".join(f"<li>{_e(w)}</li>" for w in s["warnings"])
     return (
         '<div class="box synthetic"><span class="badge">SYNTHETIC</span> Every structure\'s '
@@ -204,9 +212,11 @@ def _s_control(d: dict[str, Any]) -> str:
     rows = []
     for k in c["paper_map"]["cases"]:
         o = ours[(k["controller"], k["feedforward"])]
+        # times to the paper's 2 decimals, friction to the target's (54.40 N)
         rows.append([k["controller"].upper() + (" + model" if k["feedforward"] else ""),
-                     k["paper_settling_time_s"], k["settling_time_s"], k["overshoot_pct"],
-                     k["final_friction_n"], o["settling_time_s"], o["final_friction_n"]])
+                     _fixed(k["paper_settling_time_s"], 2), _fixed(k["settling_time_s"], 2),
+                     _fixed(k["overshoot_pct"], 1), _fixed(k["final_friction_n"], 2),
+                     _fixed(o["settling_time_s"], 2), _fixed(o["final_friction_n"], 2)])
     red = c["paper_map"]["settling_reduction_pct"]
     red_o = c["our_map"]["settling_reduction_pct"]
     return (
@@ -226,8 +236,9 @@ def _s_control(d: dict[str, Any]) -> str:
 
 def _s_torque(d: dict[str, Any]) -> str:
     tr = d["stages"]["torque"]["rows"]
-    rows = [[r["name"], r["friction_n"], r["arm_radius_m"], r["torque_nm"], r["coverage_pct"],
-             r["meets_max"]] for r in tr]
+    # to the paper's digits: friction 180.49 N, torque 18.05 Nm, coverage 75%
+    rows = [[r["name"], _fixed(r["friction_n"], 2), r["arm_radius_m"], _fixed(r["torque_nm"], 2),
+             _fixed(r["coverage_pct"], 0), r["meets_max"]] for r in tr]
     reach = [r["name"] for r in tr if r["meets_max"]]
     best = max(tr, key=lambda r: r["torque_nm"])
     verdict = (f"{', '.join(reach)} reach(es) 40 Nm at 0.6 MPa" if reach else
@@ -239,6 +250,17 @@ def _s_torque(d: dict[str, Any]) -> str:
             + _table(["structure", "F at 0.6 MPa (N)", "arm (m)", "T (Nm)",
                       "covers 0-40 Nm (%)", "reaches 40 Nm"], rows, cards=True))
 
+
+#: Per stage, substrings of the comparison rows whose two numbers the section's own tables
+#: already show (Table 2, Table 1, the prediction tables, the inverse table, the control
+#: table): the stage's "Paper beside exofric" table leaves them out instead of repeating them.
+_SHOWN_IN_SECTION: dict[str, tuple[str, ...]] = {
+    "table2": ("Table 2 ",),
+    "calibration": ("Table 1 OD", "Table 1 average error"),
+    "prediction": ("maximum relative error", "ANOVA p-value", "maximum relative deviation"),
+    "cubic": ("pressure for",),
+    "control": ("settling time (Fig 12)", "final friction"),
+}
 
 _SECTIONS = {"table2": _s_table2, "calibration": _s_calibration, "squeeze": _s_squeeze,
              "gamma": _s_gamma, "prediction": _s_prediction, "cubic": _s_cubic,

@@ -1,9 +1,13 @@
 """Paper numbers beside ours: :class:`Comparison` rows and the paper's self-consistency checks.
 
 * :class:`Comparison` -- one printed number of the paper beside exofric's value, with the
-  difference (in the row's unit) and the difference in %; ``synthetic`` flags rows built on
-  the virtual rig's output (the paper's raw friction curves are not published).
-* :func:`printed_decimals` -- the decimals with which a paper value was printed.
+  difference (in the row's unit) and, where it means something, the difference in %
+  (:attr:`Comparison.difference_kind` says which difference a row shows: none for p-values
+  and fitted polynomial coefficients, percentage points for quantities already in %);
+  ``synthetic`` flags rows built on the virtual rig's output (the paper's raw friction curves
+  are not published).
+* :func:`printed_decimals` -- the decimals with which a paper value was printed;
+  :attr:`Comparison.decimals` the decimals a row is shown with (the paper's).
 * :func:`paper_checks` -- printed numbers against the same quantity recomputed from the
   paper's own equations and numbers (no FE, no rig).
 
@@ -20,13 +24,30 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
 from exofric import paper
 from exofric.friction import CubicFit, FrictionModel, pressure_for_friction, torque
 
-__all__ = ["Comparison", "printed_decimals", "paper_checks"]
+__all__ = ["Comparison", "DIFFERENCE_KINDS", "printed_decimals", "paper_checks"]
+
+#: How a :class:`Comparison` row shows ours - paper: ``"relative"`` (in the row's unit and in %
+#: of the paper value), ``"points"`` (in the row's unit only: the row is already in %, so the
+#: difference is in percentage points), ``"absolute"`` (in the unit only: the values differ in
+#: sign or the paper value is 0, so a ratio means nothing), ``"none"`` (no difference: a value
+#: is missing, or the quantity is a p-value or a fitted polynomial coefficient). ``"auto"``
+#: (the default of :class:`Comparison`) picks one from the row.
+DIFFERENCE_KINDS = ("auto", "relative", "points", "absolute", "none")
+
+#: Quantities for which ours - paper means nothing (lower-case substrings of the quantity):
+#: p-values (of synthetic data, or of unpublished curves) and fitted polynomial coefficients
+#: (ill-conditioned: they trade off against each other; compare the curves).
+_NO_DIFFERENCE = ("p-value", "coefficient")
+
+#: Most significant figures a row is shown with, whatever the paper value's float repr says.
+_MAX_SIGNIFICANT = 5
 
 
 def printed_decimals(value: float) -> int:
@@ -71,12 +92,19 @@ class Comparison:
         Why they differ, or what the row means.
     synthetic : bool
         True when our value comes from synthetic (virtual-rig) data.
+    kind : str
+        Which difference the row shows, one of :data:`DIFFERENCE_KINDS`; ``"auto"`` (default)
+        resolves it from the row (see :attr:`difference_kind`).
 
     Examples
     --------
     >>> c = Comparison("N at 0.6 MPa", "N", 268.55, 240.1)
-    >>> round(c.difference, 2), round(c.difference_pct, 2)
-    (-28.45, -10.59)
+    >>> round(c.difference, 2), round(c.difference_pct, 2), c.difference_kind, c.decimals
+    (-28.45, -10.59, 'relative', 2)
+    >>> Comparison("PI settling-time reduction", "%", 26.0, 32.67).difference_kind
+    'points'
+    >>> Comparison("test 6: ANOVA p-value", "", 0.0164, 0.94).difference_pct is None
+    True
     """
 
     quantity: str
@@ -85,6 +113,34 @@ class Comparison:
     our_value: float | None
     note: str = ""
     synthetic: bool = False
+    kind: str = "auto"
+
+    def __post_init__(self) -> None:
+        if self.kind not in DIFFERENCE_KINDS:
+            raise ValueError(f"kind: {self.kind!r} is not one of {DIFFERENCE_KINDS}")
+
+    @property
+    def difference_kind(self) -> str:
+        """Which difference the row shows: ``"relative"``, ``"points"``, ``"absolute"``, ``"none"``.
+
+        ``kind`` unless it is ``"auto"``; then: ``"none"`` when a value is missing or the
+        quantity is a p-value or a fitted coefficient, ``"points"`` when the unit is ``%``,
+        ``"absolute"`` when the paper value is 0 or the two differ in sign, else
+        ``"relative"``.
+        """
+        if self.paper_value is None or self.our_value is None:
+            return "none"
+        if self.kind != "auto":
+            return self.kind
+        q = self.quantity.lower()
+        if any(word in q for word in _NO_DIFFERENCE):
+            return "none"
+        if self.unit.strip() == "%":
+            return "points"
+        p, o = float(self.paper_value), float(self.our_value)
+        if p == 0.0 or (o != 0.0 and (p > 0) != (o > 0)):
+            return "absolute"
+        return "relative"
 
     @property
     def difference(self) -> float | None:
@@ -95,14 +151,30 @@ class Comparison:
 
     @property
     def difference_pct(self) -> float | None:
-        """100 (ours - paper) / |paper| (%), None if undefined."""
+        """100 (ours - paper) / |paper| (%); None unless :attr:`difference_kind` is relative."""
         d = self.difference
-        if d is None or self.paper_value == 0:
+        if d is None or self.paper_value == 0 or self.difference_kind != "relative":
             return None
         return float(100.0 * d / abs(float(self.paper_value)))  # type: ignore[arg-type]
 
+    @property
+    def decimals(self) -> int | None:
+        """Decimals to show our value and the difference with: the paper's printed decimals.
+
+        From :func:`printed_decimals` of the paper value, at most 5 significant figures of it
+        (a value the paper's equations give, e.g. Eq 8 at 0.4 MPa, has a long repr); None
+        without a paper value.
+        """
+        if self.paper_value is None:
+            return None
+        p = float(self.paper_value)
+        dec = printed_decimals(p)
+        if p != 0.0 and math.isfinite(p):
+            dec = min(dec, max(0, _MAX_SIGNIFICANT - 1 - math.floor(math.log10(abs(p)))))
+        return dec
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready row: values in ``unit``, ``difference_pct`` in %."""
+        """JSON-ready row: values in ``unit``, ``difference_pct`` in %, how to show them."""
         return {
             "quantity": self.quantity,
             "unit": self.unit,
@@ -110,6 +182,8 @@ class Comparison:
             "our_value": self.our_value,
             "difference": self.difference,
             "difference_pct": self.difference_pct,
+            "difference_kind": self.difference_kind,
+            "decimals": self.decimals,
             "note": self.note,
             "synthetic": self.synthetic,
         }
