@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from exofric import paper
+from exofric.errors import InputError
 from exofric.friction import CubicFit, FrictionModel, pressure_for_friction, torque
 
 __all__ = ["Comparison", "DIFFERENCE_KINDS", "printed_decimals", "paper_checks"]
@@ -117,7 +118,8 @@ class Comparison:
 
     def __post_init__(self) -> None:
         if self.kind not in DIFFERENCE_KINDS:
-            raise ValueError(f"kind: {self.kind!r} is not one of {DIFFERENCE_KINDS}")
+            raise InputError(f"kind must be one of {', '.join(DIFFERENCE_KINDS)}, got "
+                             f"{self.kind!r}")
 
     @property
     def difference_kind(self) -> str:
