@@ -445,8 +445,7 @@ def _register_run(ctl: typer.Typer) -> None:
     ) -> None:
         """Run the friction loop on a device at a fixed rate, safely (vents on faults). N, MPa.
 
-        Gains come from the IMC/SIMC rule on the paper's supply (lag 0.8 s, dead time 0.2 s)
-        unless --step-csv gives an identified step of your supply (`control identify`).
+        Gains: the IMC/SIMC rule on the paper's supply; --step-csv tunes on your own.
         """
         from exofric.control import Controller, ScheduledController, local_slope
         from exofric.errors import InputError, check_range
