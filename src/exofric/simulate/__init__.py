@@ -6,6 +6,8 @@
 * :func:`incompressible_inflation`, :func:`compressible_inflation` -- exact and 1D-BVP
   references for the free inflation.
 * :func:`check_stretch`, :class:`StretchWarning` -- the paper's validated stretch range.
+* :func:`squeeze_with_clearance` -> :class:`ClearanceSqueeze` -- N(P) with the clearance
+  distributed along the tube (:class:`ClearanceDistribution`).
 
 Units: mm, N, MPa, s; forces per unit depth in N/mm, totals = per depth x tube length.
 
@@ -32,6 +34,11 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         incompressible_limit_pressure,
         incompressible_pressure,
     )
+    from exofric.simulate._clearance import (
+        ClearanceDistribution,
+        ClearanceSqueeze,
+        squeeze_with_clearance,
+    )
     from exofric.simulate._inflate import InflationResult, inflate
     from exofric.simulate._squeeze import SqueezeResult, squeeze
     from exofric.simulate._stretch import StretchWarning, check_stretch
@@ -44,6 +51,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "InflationCurve", "compressible_inflation", "incompressible_inflation",
         "incompressible_limit_pressure", "incompressible_pressure",
     ),
+    "_clearance": ("ClearanceDistribution", "ClearanceSqueeze", "squeeze_with_clearance"),
     "_inflate": ("InflationResult", "inflate"),
     "_squeeze": ("SqueezeResult", "squeeze"),
     "_stretch": ("StretchWarning", "check_stretch"),
@@ -51,6 +59,8 @@ _MODULES: dict[str, tuple[str, ...]] = {
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
+    "ClearanceDistribution",
+    "ClearanceSqueeze",
     "InflationCurve",
     "InflationResult",
     "SqueezeResult",
@@ -58,6 +68,7 @@ __all__ = [
     "check_stretch",
     "compressible_inflation",
     "incompressible_inflation",
+    "squeeze_with_clearance",
     "incompressible_limit_pressure",
     "incompressible_pressure",
     "inflate",
