@@ -7,7 +7,9 @@
   references for the free inflation.
 * :func:`check_stretch`, :class:`StretchWarning` -- the paper's validated stretch range.
 * :func:`squeeze_with_clearance` -> :class:`ClearanceSqueeze` -- N(P) with the clearance
-  distributed along the tube (:class:`ClearanceDistribution`).
+  distributed along the tube (:class:`ClearanceDistribution`);
+  :func:`squeeze_tolerances` -> :class:`ToleranceResult` -- percentile bands of N(P) under size
+  and hardness tolerances (quasi-Monte Carlo) and a sensitivity ranking.
 
 Units: mm, N, MPa, s; forces per unit depth in N/mm, totals = per depth x tube length.
 
@@ -42,6 +44,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.simulate._inflate import InflationResult, inflate
     from exofric.simulate._squeeze import SqueezeResult, squeeze
     from exofric.simulate._stretch import StretchWarning, check_stretch
+    from exofric.simulate._tolerance import TOLERANCE_NAMES, ToleranceResult, squeeze_tolerances
 
 # Lazy facade (PEP 562): ``squeeze`` does not load the inflation and its closed-form references;
 # each name is loaded from its module on first use (exofric/__init__.py does the same one level
@@ -53,6 +56,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
     ),
     "_clearance": ("ClearanceDistribution", "ClearanceSqueeze", "squeeze_with_clearance"),
     "_inflate": ("InflationResult", "inflate"),
+    "_tolerance": ("TOLERANCE_NAMES", "ToleranceResult", "squeeze_tolerances"),
     "_squeeze": ("SqueezeResult", "squeeze"),
     "_stretch": ("StretchWarning", "check_stretch"),
 }
@@ -68,7 +72,10 @@ __all__ = [
     "check_stretch",
     "compressible_inflation",
     "incompressible_inflation",
+    "squeeze_tolerances",
     "squeeze_with_clearance",
+    "TOLERANCE_NAMES",
+    "ToleranceResult",
     "incompressible_limit_pressure",
     "incompressible_pressure",
     "inflate",
