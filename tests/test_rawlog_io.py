@@ -381,6 +381,17 @@ def test_bad_headers(tmp_path, header, match):
     _one_line_error(p, match)
 
 
+@pytest.mark.parametrize("header", ["time_s,pressure_mpa,force_n,force_n",
+                                    "time_s,pressure_mpa,force_n,Force_N"])
+def test_one_header_twice_says_rename_not_columns(tmp_path, header):
+    # --columns cannot choose between two columns of one name: the message must not offer it
+    p = tmp_path / "h.csv"
+    p.write_text(header + "\n" + "".join(f"{i},1,2,3\n" for i in range(25)))
+    msg = _one_line_error(p, r"column 'force_n' is in the file 2 times \(columns 3, 4\); "
+                             r"rename all but one$")
+    assert "--columns" not in msg
+
+
 def test_unknown_unit_beside_a_known_one_is_ignored_and_listed(tmp_path):
     frame = _long(30).assign(pressure_atm=1.0)
     assert read_raw_log(_csv(tmp_path, frame)).attrs["ignored_columns"] == ["pressure_atm"]

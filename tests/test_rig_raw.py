@@ -130,6 +130,65 @@ def test_pulls_found_in_the_force_when_there_is_no_displacement() -> None:
     assert ((m["kinetic_n"] / m["kinetic_n_true"] - 1).abs() < 0.01).all()
 
 
+@pytest.mark.parametrize("into_s", [0.5, 2.9])     # into the 3 s first pull of FAST
+@pytest.mark.parametrize("displacement", [True, False])
+def test_log_starting_during_a_pull(into_s: float, displacement: bool) -> None:
+    # The cut first pull is skipped with its reason (no breakaway, no rest before it); every
+    # other pull is found and matches its planted truth. Before: without displacement the first
+    # plateau's friction came out 108 N for 57 N (the pull level taken for the rest level), or
+    # all its pulls vanished unlisted (a pull edge in the first window inflated the threshold);
+    # with displacement the cut pull's static friction was its kinetic one.
+    log = simulate_raw_log(SQ_P, SQ_N, GAMMA, SET_P[:3], config=FAST, seed=12)
+    f = log.to_frame()
+    t_cut = log.pulls[0]["t_start_s"] + into_s
+    f = f[f["time_s"] >= t_cut].reset_index(drop=True)
+    if not displacement:
+        f = f.drop(columns="displacement_mm")
+    red = _reduce(f)
+    assert [s["pull"] for s in red.skipped] == [1]
+    assert "starts during this pull" in red.skipped[0]["reason"]
+    assert len(red.pulls) == log.n_pulls - 1
+    m = _matched(log, red)
+    assert (m["t_start_s"] - m["t_start_s_true"]).abs().max() < 0.3
+    assert ((m["kinetic_n"] / m["kinetic_n_true"] - 1).abs() < 0.01).all()
+    assert ((m["static_n"] / m["static_n_true"] - 1).abs() < 0.02).all()
+
+
+@pytest.mark.parametrize("rate_hz", [20.0, 1000.0])
+def test_slow_and_fast_loggers_find_every_pull(rate_hz: float) -> None:
+    # 20 Hz: a 1 s rest less two 0.3 s tare gaps leaves 8 samples; it used to need 10, and 24 of
+    # 30 pulls were skipped for want of a tare
+    cfg = RawRigConfig(sample_rate_hz=rate_hz, replicates=3)
+    log = simulate_raw_log(SQ_P, SQ_N, GAMMA, SET_P[2::2], config=cfg, seed=13)
+    for frame in (log.to_frame(), log.to_frame().drop(columns="displacement_mm")):
+        red = _reduce(frame)
+        assert len(red.pulls) == log.n_pulls and not red.skipped
+        m = _matched(log, red)
+        assert ((m["kinetic_n"] / m["kinetic_n_true"] - 1).abs() < 0.01).all()
+
+
+def test_unix_time_stamps_give_the_same_reduction() -> None:
+    # time from 1.7e9 s (a Unix time stamp; float64 steps of 2.4e-7 s there): no precision lost
+    log = simulate_raw_log(SQ_P, SQ_N, GAMMA, SET_P[:2], config=FAST, seed=14)
+    f = log.to_frame()
+    red = _reduce(f)
+    f["time_s"] += 1.7e9
+    red_unix = _reduce(f)
+    a, b = red.to_frame(), red_unix.to_frame()
+    assert len(a) == len(b) == log.n_pulls
+    for c in ("kinetic_n", "static_n", "kinetic_se_n", "tare_n"):
+        np.testing.assert_allclose(b[c], a[c], rtol=1e-6, atol=1e-6)
+    np.testing.assert_allclose(b["t_start_s"] - 1.7e9, a["t_start_s"], atol=1e-6)
+
+
+def test_time_in_ms_read_as_seconds_is_one_clear_error() -> None:
+    f = simulate_raw_log(SQ_P, SQ_N, GAMMA, SET_P[:2], config=FAST, seed=15).to_frame()
+    f["time_s"] *= 1000.0
+    with pytest.raises(InputError, match=r"time_s steps by 5 s \(median; 0.2 Hz\).* is the "
+                                         r"time in ms\?"):
+        reduce_log(f)
+
+
 def test_integrated_autocorrelation_time_of_ar1_matches_closed_form() -> None:
     rng = np.random.default_rng(0)
     for phi in (0.0, 0.5, 0.9):

@@ -10,7 +10,9 @@ speed, several times, maybe in both directions. :func:`reduce_log` finds, withou
 * **pulls**: from the displacement speed when there is a displacement column (faster than
   ``speed_fraction`` of the log's typical speed; the sign gives the direction), otherwise from
   the force (leaving its rest level by more than ``force_sigmas`` rest-noise standard
-  deviations; the log must then start at rest and the sign of the force gives the direction).
+  deviations, median and MAD of the first ``tare_s`` window, or of the first quiet one when the
+  log starts during a pull; the sign of the force gives the direction). A pull cut by the log's
+  start is skipped (no breakaway, no rest before it).
 * **tare**: the force at rest (wire slack) in windows of ``tare_s`` before and after each pull,
   ``tare_gap_s`` away from it, interpolated linearly in time: offset and drift are removed.
 
@@ -456,15 +458,28 @@ def _pulls_from_force(f: NDArray[np.float64], fs: float, s: ReduceSettings,
                       t: NDArray[np.float64], source: str) -> list[tuple[int, int, int]]:
     n = f.size
     n0 = max(_MIN_WINDOW, int(round(s.tare_s * fs)))
-    head = f[:n0]
-    tt = np.arange(head.size)
-    resid = head - np.polyval(np.polyfit(tt, head, 1), tt)
-    sigma = float(np.std(resid))
-    thr = s.force_sigmas * max(sigma, 1e-9 * max(1.0, float(np.abs(f).max())))
+    # Rest level and noise from a window of tare_s, by median and MAD: a pull's edge inside the
+    # window must not inflate the threshold (that hid every pull of a plateau). The window is the
+    # log's first one unless that is much noisier than the quietest ones (the log starts during
+    # a pull, which slides with stick-slip): then the first quiet window, and the partial pull
+    # before it is returned as starting at sample 0 (reduce_log skips it, with its reason).
+    nb = max(1, n // n0)
+    blocks = f[: nb * n0].reshape(nb, -1) if n >= n0 else f[None, :]
+    med = np.median(blocks, axis=1)
+    mad = 1.4826 * np.median(np.abs(blocks - med[:, None]), axis=1)
+    quiet = mad <= 2.5 * max(float(np.percentile(mad, 5)), 1e-12)
+    j0 = int(np.argmax(quiet))
+    base = float(med[j0])
+    floor = 1e-9 * max(1.0, float(np.abs(f).max()))
+    thr = s.force_sigmas * max(float(mad[j0]), floor)
     q = max(2, int(round(s.tare_gap_s * fs)))     # quiet samples that end a pull
-    base = float(np.median(head))
     out: list[tuple[int, int, int]] = []
-    k = n0
+    if j0 > 0:
+        away = np.flatnonzero(np.abs(f[: j0 * n0] - base) > thr)
+        if away.size:
+            b0 = int(away[-1]) + 1
+            out.append((0, b0, 1 if float(np.mean(f[:b0])) >= base else -1))
+    k = (j0 + 1) * n0
     chunk = max(4 * q, int(10.0 * fs))        # search windows (doubling): O(n), not O(n pulls)
     while k < n:
         a = _first(lambda lo, hi, base=base: np.abs(f[lo:hi] - base) > thr, k, n, chunk)
@@ -492,7 +507,8 @@ def _pulls_from_force(f: NDArray[np.float64], fs: float, s: ReduceSettings,
     if not out:
         raise InputError(f"{source}no pull found in {t[0]:.2f}-{t[-1]:.2f} s: the force never "
                          f"left its rest level {base:.3g} N by more than {thr:.3g} N "
-                         f"({s.force_sigmas:g} x the rest noise of the first {s.tare_s:g} s)")
+                         f"({s.force_sigmas:g} x the rest noise in {t[j0 * n0]:.2f}-"
+                         f"{t[min(n, (j0 + 1) * n0) - 1]:.2f} s)")
     return out
 
 
@@ -554,8 +570,9 @@ def reduce_log(
     Raises
     ------
     InputError
-        One line naming the time range: missing columns, non-increasing time, a saturated force
-        channel, pressure never steady, no pull found, no usable pull.
+        One line naming the time range: missing columns, non-increasing time, fewer than 4
+        samples per ``tare_s`` (time in ms read as s?), a saturated force channel, pressure
+        never steady, no pull found, no usable pull.
 
     Warns
     -----
@@ -605,6 +622,10 @@ def reduce_log(
         raise InputError(f"{pre}time_s not increasing at {t[k]:.3f} s -> {t[k + 1]:.3f} s "
                          f"(row {k + 2})")
     fs = 1.0 / float(np.median(dt))
+    if fs * s.tare_s < 4.0:  # e.g. milliseconds read as seconds
+        raise InputError(f"{pre}time_s steps by {1.0 / fs:.4g} s (median; {fs:.4g} Hz): fewer "
+                         f"than 4 samples per tare window of {s.tare_s:g} s; is the time in "
+                         "ms? (name the column time_ms)")
     _check_saturation(t, f, pre)
     w = max(3, int(round(s.smooth_s * fs)) | 1)
     p_s = median_filter(p, size=w, mode="nearest")
@@ -625,6 +646,9 @@ def reduce_log(
         if gap else in_pull
     rest = ~busy
     n_tare = max(_MIN_WINDOW, int(round(s.tare_s * fs)))
+    # fewest rest samples for a tare: _MIN_WINDOW, or half a tare window at low rates (a 20 Hz
+    # log has 10 samples per 0.5 s window, and a 1 s rest less the two gaps leaves 8)
+    min_tare = min(_MIN_WINDOW, max(5, n_tare // 2))
     n_static = max(1, int(round(s.static_window_s * fs)))
     rows: list[dict[str, Any]] = []
     skipped: list[dict[str, Any]] = []
@@ -634,6 +658,10 @@ def reduce_log(
     rest_idx = np.flatnonzero(rest)
     for k_pull, (a, b, d) in enumerate(found, start=1):
         base = {"pull": k_pull, "t_start_s": float(t[a]), "t_end_s": float(t[b - 1])}
+        if a == 0:
+            skipped.append({**base, "reason": "the log starts during this pull (no breakaway "
+                            "and no rest before it)"})
+            continue
         if t[b - 1] - t[a] < s.min_pull_s:
             skipped.append({**base, "reason": f"shorter than min_pull_s = {s.min_pull_s:g} s "
                             f"({t[b - 1] - t[a]:.3f} s)"})
@@ -654,13 +682,14 @@ def reduce_log(
             skipped.append({**base, "reason": f"pressure not steady during the pull "
                             f"({p[ks:ke].min():.4g}-{p[ks:ke].max():.4g} MPa)"})
             continue
-        before = rest_idx[(rest_idx < a)][-n_tare:]
-        after = rest_idx[(rest_idx >= b)][:n_tare]
+        i_a, i_b = np.searchsorted(rest_idx, (a, b))
+        before = rest_idx[max(0, i_a - n_tare):i_a]
+        after = rest_idx[i_b:i_b + n_tare]
         before = before[t[a] - t[before] <= s.tare_s + s.tare_gap_s + 2.0 / fs] \
             if before.size else before
         after = after[t[after] - t[b - 1] <= s.tare_s + s.tare_gap_s + 2.0 / fs] \
             if after.size else after
-        sides = [_rest_mean(t[ix], f[ix]) for ix in (before, after) if ix.size >= _MIN_WINDOW]
+        sides = [_rest_mean(t[ix], f[ix]) for ix in (before, after) if ix.size >= min_tare]
         if not sides:
             skipped.append({**base, "reason": f"no rest window of {s.tare_s:g} s next to the "
                             "pull for the tare"})

@@ -247,6 +247,11 @@ def _resolve(headers: Sequence[str], mapping: dict[str, tuple[str, str]], name: 
             if i in used or parts is None or parts[0] != q or parts[1] is None:
                 continue
             (good if parts[1] in _UNITS[q] else bad).append((i, parts[1]))
+        same = [i for i, _ in good if found[i].lower() == found[good[0][0]].lower()]
+        if len(same) > 1:  # one header twice: --columns cannot choose between them
+            raise InputError(f"{name}: {what} {found[same[0]]!r} is in the file "
+                             f"{len(same)} times ({what}s {', '.join(str(i + 1) for i in same)}"
+                             f"); rename all but one")
         if len(good) > 1:
             names = " and ".join(repr(found[i]) for i, _ in good)
             raise InputError(f"{name}: two {q} {what}s, {names}: keep one, or choose one with "
