@@ -27,6 +27,8 @@ const float P_V_PER_MPA = 4.0;           // V per MPa (0.5..4.5 V = 0..1 MPa)
 const float REG_MAX_MPA = 0.9;           // regulator full scale in MPa (PWM 255)
 const float HX_N_PER_COUNT = 1.0e-4;     // load cell scale, N per HX711 count (calibrate!)
 long hxOffset = 0;                       // tare, HX711 counts (measured at start-up)
+const unsigned long STALE_MS = 250;      // no new HX711 sample for this long: `ERR stale`
+                                         // (> 2 periods at 10 samples/s)
 
 // ---- state ----------------------------------------------------------------------------------
 unsigned long lastCommandMs = 0;
@@ -84,8 +86,8 @@ void answer(const char *cmd) {
   if (strcmp(cmd, "?") == 0) {
     Serial.println("EXOFRIC-RIG 1 exofric_rig 1.0");
   } else if (strcmp(cmd, "R") == 0) {
-    if (!haveForce) {
-      Serial.println("ERR stale");
+    if (!haveForce || millis() - sampleMs > STALE_MS) {
+      Serial.println("ERR stale");       // never sampled, or the load cell stopped
       return;
     }
     Serial.print("D ");
@@ -95,7 +97,12 @@ void answer(const char *cmd) {
     Serial.print(' ');
     Serial.println(forceN, 4);
   } else if (cmd[0] == 'S' && cmd[1] == ' ') {
-    float p = atof(cmd + 2);
+    char *end;
+    float p = strtod(cmd + 2, &end);
+    if (end == cmd + 2 || *end != '\0' || p != p) {   // not a number (or NaN): refuse
+      Serial.println("ERR bad set-point");
+      return;
+    }
     if (p < 0.0 || p > REG_MAX_MPA) {
       Serial.println("ERR set-point out of range");
       return;
@@ -108,7 +115,13 @@ void answer(const char *cmd) {
     vent();
     Serial.println("OK");
   } else if (cmd[0] == 'W' && cmd[1] == ' ') {
-    watchdogMs = strtoul(cmd + 2, NULL, 10);
+    char *end;
+    unsigned long ms = strtoul(cmd + 2, &end, 10);
+    if (end == cmd + 2 || *end != '\0') {
+      Serial.println("ERR bad watchdog time");
+      return;
+    }
+    watchdogMs = ms;
     Serial.println("OK");
   } else {
     Serial.println("ERR unknown command");

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 
+from exofric import defaults as D
 from exofric.cli._common import (
     JSON_OPTION,
     console,
@@ -430,11 +431,13 @@ def _register_run(ctl: typer.Typer) -> None:
         rate: float = typer.Option(100.0, "--rate", help="Loop rate in Hz."),
         log: str | None = typer.Option(None, "--log", help="Write the run log (rig-log schema "
                                        "CSV; `exofric reduce` and `control identify` read it)."),
-        max_pressure: float = typer.Option(0.6, "--max-pressure", help="Pressure limit in MPa "
-                                           "(commands clipped; 10 % above it trips)."),
-        max_force: float = typer.Option(250.0, "--max-force", help="Force limit in N."),
-        watchdog: float = typer.Option(0.5, "--watchdog", help="Vent when a sensor is stale "
-                                       "this long, s."),
+        max_pressure: float = typer.Option(D.LOOP_MAX_PRESSURE_MPA, "--max-pressure",
+                                           help="Pressure limit in MPa (commands clipped; "
+                                           "10 % above it trips)."),
+        max_force: float = typer.Option(D.LOOP_MAX_FORCE_N, "--max-force",
+                                        help="Force limit in N."),
+        watchdog: float = typer.Option(D.LOOP_WATCHDOG_S, "--watchdog",
+                                       help="Vent when a sensor is stale this long, s."),
         dry_run: bool = typer.Option(False, "--dry-run", help="Read sensors and run the "
                                      "controller, never actuate."),
         baseline: float = typer.Option(1.0, "--baseline", help="Seconds logged vented before "

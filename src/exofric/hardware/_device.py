@@ -91,9 +91,11 @@ class SensorStale(DeviceError):
 
 
 class LoopFault(RuntimeError):
-    """The control loop stopped on a fault (watchdog or a limit); the device was vented.
+    """The control loop stopped on a fault (watchdog or a limit) and vented the device.
 
-    The CLI maps it to exit code 4 and prints the one-line message (reason and time).
+    The CLI maps it to exit code 4 and prints the one-line message (reason and time). The
+    message ends in ``(vented)``, or in ``(NOT vented: the vent failed)`` when ``result``
+    says the vent did not succeed -- then close the supply by hand.
 
     Parameters
     ----------
@@ -114,7 +116,9 @@ class LoopFault(RuntimeError):
     """
 
     def __init__(self, reason: str, time_s: float, detail: str, result: Any = None) -> None:
-        super().__init__(f"{reason} at {time_s:.3f} s: {detail} (vented)")
+        vented = bool(getattr(result, "vented", True))
+        how = "vented" if vented else "NOT vented: the vent failed"
+        super().__init__(f"{reason} at {time_s:.3f} s: {detail} ({how})")
         self.reason = reason
         self.time_s = time_s
         self.detail = detail

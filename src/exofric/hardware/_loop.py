@@ -8,14 +8,21 @@ samples are counted), so lateness never accumulates into drift.
 
 Safety, in this order every sample:
 
-* watchdog -- a read that fails (:class:`SensorStale`) or a sensor that does not change for
+* watchdog -- no valid reading (a read that fails with :class:`SensorStale`, or a non-finite
+  pressure or force: it could pass no limit check) or a sensor that does not change for
   ``watchdog_s`` (its sample counter where the device has one, else pressure and force both
-  exactly unchanged) -> vent, stop, :class:`LoopFault` ``'watchdog'``;
+  exactly unchanged) -> vent, stop, :class:`LoopFault` ``'watchdog'``; while readings are
+  invalid no set-point is written (the last one holds until the watchdog trips);
 * limits -- measured pressure above ``trip_pressure_mpa`` or force above ``max_force_n`` ->
   vent, stop, :class:`LoopFault`; commands are clipped to ``max_pressure_mpa``; a set-point
   above ``max_force_n`` (or needing a model pressure above ``max_pressure_mpa``) is refused
-  before start (:class:`~exofric.errors.InputError`);
+  before start (:class:`~exofric.errors.InputError`); a non-finite controller output is an
+  error (vent, stop) and never reaches the device;
 * Ctrl-C (KeyboardInterrupt) and any exception -> vent, write the log, re-raise.
+
+Every stop vents (a completed run too, unless ``vent_at_end=False``); a failed vent is tried
+once more, and a Ctrl-C that lands inside it does not cut it short. The result's ``vented``
+and the log's ``vented:`` line say whether it succeeded.
 
 The log (CSV, the rig-log schema of :func:`exofric.io.read_raw_log`): ``time_s``,
 ``pressure_mpa``, ``force_n``, ``setpoint_n``, ``command_mpa``, ``p_term_mpa``, ``i_term_mpa``,
@@ -126,7 +133,8 @@ class LoopResult:
     stopped_at_s : float
         Time in s of the stop (since the first sample).
     vented : bool
-        Whether the device was vented at the end.
+        Whether the device was vented at the end (False: the vent failed twice, or
+        ``vent_at_end=False``).
     dry_run : bool
         No set-points were written.
     metrics : StepMetrics or None
@@ -197,12 +205,22 @@ def _fmt(v: float) -> str:
     return "" if v != v else repr(float(v))
 
 
-def _safe_vent(device: Any) -> bool:
-    try:
-        device.vent()
-        return True
-    except Exception:  # noqa: BLE001 - report it as not vented; the caller raises or faults
-        return False
+#: Vent attempts at the end of a run (a failed vent is retried).
+_VENT_ATTEMPTS = 2
+
+
+def _safe_vent(device: Any) -> tuple[bool, KeyboardInterrupt | None]:
+    """Vent, retrying once; (vented, a Ctrl-C that arrived meanwhile, to re-raise)."""
+    interrupt: KeyboardInterrupt | None = None
+    for _ in range(_VENT_ATTEMPTS):
+        try:
+            device.vent()
+            return True, interrupt
+        except KeyboardInterrupt as exc:  # a second Ctrl-C must not cut the vent short
+            interrupt = exc
+        except Exception:  # noqa: BLE001, S112 - not vented: retried, then reported
+            continue
+    return False, interrupt
 
 
 def _terms(controller: Any, u: float) -> tuple[float, float, float, float]:
@@ -316,7 +334,9 @@ def run_loop(
         def sp(_t: float) -> float:
             return value
 
-    targets = np.array([float(sp(k * dt)) for k in range(int(round(duration_s * rate_hz)) + 1)])
+    # a constant set-point is checked once (not once per sample of a long run)
+    targets = (np.array([float(sp(k * dt)) for k in range(int(round(duration_s * rate_hz)) + 1)])
+               if callable(setpoint) else np.array([value]))
     if not np.all(np.isfinite(targets)) or targets.min() < 0.0:
         raise InputError("setpoint_n must be finite and >= 0 N")
     if targets.max() > lim.max_force_n:
@@ -376,14 +396,22 @@ def run_loop(
                 r = device.read()
             except SensorStale as exc:
                 r, last_err = None, str(exc)
+            if r is not None and not (math.isfinite(r.pressure_mpa)
+                                      and math.isfinite(r.force_n)):
+                # NaN compares False with every limit: it must not pass as a reading
+                last_err = (f"non-finite reading: pressure {r.pressure_mpa} MPa, force "
+                            f"{r.force_n} N")
+                r = None
+            t_read = clk.now()      # after the read: a read that timed out took its time
             if r is not None:
                 sig = r.sample_id if r.sample_id is not None else (r.pressure_mpa, r.force_n)
                 if sig != last_sig:
                     last_fresh, last_sig = t_now, sig
-            if t_now - last_fresh >= watchdog_s:
-                why = (f"no valid reading for {t_now - last_fresh:.3g} s ({last_err})"
-                       if r is None else f"sensor unchanged for {t_now - last_fresh:.3g} s")
-                fault = ("watchdog", t_rel, why)
+            if t_read - last_fresh >= watchdog_s:
+                quiet = t_read - last_fresh
+                why = (f"no valid reading for {quiet:.3g} s ({last_err})"
+                       if r is None else f"sensor unchanged for {quiet:.3g} s")
+                fault = ("watchdog", t_read - start, why)
                 break
             if r is not None:
                 if r.pressure_mpa > lim.trip_mpa:
@@ -407,6 +435,10 @@ def run_loop(
                     u = float(controller.step(target, r.force_n, dt if t_prev is None
                                               else max(t_now - t_prev, 1e-9)))
                     t_prev = t_now
+                    if not math.isfinite(u):
+                        raise InputError(f"the controller returned a non-finite command {u} "
+                                         f"MPa at {t_rel:.3f} s (set-point {target:g} N, "
+                                         f"force {r.force_n:g} N): stopped and vented")
                     cmd = min(max(u, 0.0), lim.max_pressure_mpa)
                     if not dry_run:
                         device.write_setpoint_mpa(cmd)
@@ -431,10 +463,17 @@ def run_loop(
         state["t_stop"] = clk.now() - start
     if fault is not None:
         state["reason"], state["t_stop"] = fault[0], fault[1]
-    vented = _safe_vent(device) if (failure is not None or fault is not None or vent_at_end
-                                    or dry_run) else False
+    vented = False
+    if failure is not None or fault is not None or vent_at_end or dry_run:
+        vented, interrupt = _safe_vent(device)
+        if interrupt is not None and failure is None:
+            failure = interrupt
+            state["reason"] = "interrupted"
     if fh is not None:
-        fh.close()
+        try:
+            fh.close()
+        except OSError:     # e.g. a full disk: the final write below reports it
+            pass
     result = _result(device, rows, rate_hz, state, vented, dry_run, log, base)
     if log is not None and partial is not None:
         tail = [f"stopped: {state['reason']} at {state['t_stop']:.3f} s"

@@ -356,7 +356,11 @@ def encode_registers(spec: RegisterSpec, value: float, *, raw: bool = False) -> 
     code, n = _TYPES[spec.type]
     x = float(value) if raw else (float(value) / spec.to_si - spec.offset) / spec.scale
     if code == "f":
-        b = struct.pack(">f", x)
+        try:
+            b = struct.pack(">f", x)
+        except OverflowError:
+            raise DeviceError(f"{spec.describe()}: cannot encode {value} (beyond float32)"
+                              ) from None
     else:
         if not math.isfinite(x):
             raise DeviceError(f"{spec.describe()}: cannot encode {value}")
@@ -531,6 +535,8 @@ class ModbusDevice(DeviceBase):
         for name in ("pressure", "force"):
             s = self.map.signals[name]
             v = _in_unit(s, values[name])
+            if not math.isfinite(v):        # a float32 NaN/inf: the sensor has no value
+                raise SensorStale(f"{self.url}: {s.describe()} reads {v} (no valid value)")
             if s.range is not None and not s.range[0] <= v <= s.range[1]:
                 raise DeviceError(f"{self.url}: {s.describe()} reads {v:g} {s.unit}, outside its "
                                   f"declared range [{s.range[0]:g}, {s.range[1]:g}] {s.unit}: "
@@ -569,11 +575,26 @@ class ModbusDevice(DeviceBase):
         self._write(s, encode_registers(s, p))
 
     def vent(self) -> None:
-        """Write the vent register's ``vent_value`` and a zero set-point."""
+        """Write the vent register's ``vent_value`` and a zero set-point.
+
+        Both writes are attempted even when the first fails (a refused vent register must
+        not leave the regulator at its last set-point); the first error is then raised.
+
+        Raises
+        ------
+        DeviceError
+            A write failed (:class:`SensorStale` for no answer).
+        """
         v = self.map.signals["vent"]
-        self._write(v, encode_registers(v, v.vent_value, raw=True))
         s = self.map.signals["setpoint"]
-        self._write(s, encode_registers(s, 0.0))
+        error: DeviceError | None = None
+        for spec, value, raw in ((v, float(v.vent_value), True), (s, 0.0, False)):
+            try:
+                self._write(spec, encode_registers(spec, value, raw=raw))
+            except DeviceError as exc:
+                error = error or exc
+        if error is not None:
+            raise error
         self._vented = True
 
     def close(self) -> None:

@@ -6,9 +6,14 @@ terminated, host first; every command gets exactly one answer line:
 * ``?`` -> ``EXOFRIC-RIG 1 <name> <firmware>`` (handshake; ``1`` is the protocol version);
 * ``R`` -> ``D <t_ms> <p_mpa> <f_n>`` (device time in ms of the sample, pressure MPa gauge,
   force N) or ``ERR <text>``;
-* ``S <p_mpa>`` -> ``OK`` (pressure set-point in MPa) or ``ERR <text>``;
+* ``S <p_mpa>`` -> ``OK`` (pressure set-point in MPa) or ``ERR <text>`` (out of range, not a
+  number: refused, nothing changes);
 * ``V`` -> ``OK`` (vent: set-point 0 and the exhaust valve open);
-* ``W <ms>`` -> ``OK`` (device watchdog: vent when no command arrives for ``ms``; 0 = off).
+* ``W <ms>`` -> ``OK`` (device watchdog: vent when no command arrives for ``ms``; 0 = off)
+  or ``ERR <text>``.
+
+A refused ``S`` or ``W`` is a :class:`DeviceError`; ``ERR`` to ``R`` (e.g. ``ERR stale``)
+and a missing answer are :class:`SensorStale`, counted by the control loop's watchdog.
 """
 
 from __future__ import annotations
@@ -85,8 +90,8 @@ class SerialDevice(DeviceBase):
         while True:
             try:
                 answer = self._command("?", timeout_s=_HANDSHAKE_RETRY_S)
-            except SensorStale:
-                answer = ""
+            except SensorStale as exc:
+                answer, last = "", str(exc).split(": ", 1)[-1]
             if answer:
                 words = answer.split()
                 if words[0] != "EXOFRIC-RIG" or len(words) < 2:
@@ -113,9 +118,11 @@ class SerialDevice(DeviceBase):
             port.write(line.encode("ascii") + b"\n")
             if timeout_s is not None:
                 port.timeout = timeout_s
-            raw = port.readline()
-            if timeout_s is not None:
-                port.timeout = self.timeout_s
+            try:
+                raw = port.readline()
+            finally:
+                if timeout_s is not None:
+                    port.timeout = self.timeout_s
         except (serial.SerialException, OSError) as exc:
             raise SensorStale(f"{self.url}: {line.split()[0]!r}: "
                               f"{' '.join(str(exc).split())}") from None

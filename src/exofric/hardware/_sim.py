@@ -77,6 +77,7 @@ class SimRig:
         self._t = self._t0
         self._count = 0
         self._last: Reading | None = None
+        self._sample_t = self._t0
 
     @property
     def time_s(self) -> float:
@@ -89,6 +90,11 @@ class SimRig:
         if dt > 1e-9:
             self.plant.advance(self.command_mpa, dt)
             self._t = t
+
+    @property
+    def sample_time_s(self) -> float:
+        """Rig time in s of the newest sensor sample (a frozen sensor's stays put)."""
+        return self._sample_t - self._t0
 
     @property
     def frozen(self) -> bool:
@@ -104,6 +110,7 @@ class SimRig:
                 return None if self.fault == "silent" else self._last
             p = float(self.plant.pressure_mpa)
             self._count += 1
+            self._sample_t = self._t
             self._last = Reading(p, float(self.friction(p)), self._count)
             return self._last
 
@@ -396,7 +403,9 @@ class SerialSimDevice:
             r = rig.sample()
             if r is None:
                 return None
-            return f"D {int(round(rig.time_s * 1000.0))} {r.pressure_mpa:.6f} {r.force_n:.4f}"
+            # t_ms of the sample itself: it must not move while the sensor is stale
+            return (f"D {int(round(rig.sample_time_s * 1000.0))} {r.pressure_mpa:.6f} "
+                    f"{r.force_n:.4f}")
         if cmd == "S" and len(words) == 2:
             try:
                 p = float(words[1])
@@ -409,7 +418,9 @@ class SerialSimDevice:
         if cmd == "V" and len(words) == 1:
             rig.vent()
             return "OK"
-        if cmd == "W" and len(words) == 2 and words[1].isdigit():
+        if cmd == "W" and len(words) == 2:
+            if not words[1].isdigit():
+                return "ERR bad watchdog time"
             self.watchdog_ms = int(words[1])
             return "OK"
         return f"ERR unknown command {cmd!r}"
