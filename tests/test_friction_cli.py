@@ -248,3 +248,24 @@ def test_invert_at_the_papers_inputs_prints_the_papers_pressure(capsys) -> None:
     assert code == 0, err
     d = json.loads(out)
     assert d["paper_pressure_mpa"] == 0.26 and abs(d["pressure_mpa"] - 0.2926) < 1e-3
+
+
+def test_predict_one_structure_with_clearance_scatter_and_tolerances(cli) -> None:
+    """predict with squeeze's flags, a clearance sd and tolerances (issue 19): per structure
+    friction_n and its 5/50/95 % bands, p05 <= p50 <= p95, the nominal inside the band."""
+    r = cli(["predict", "--gamma", "0.7168", "--hole", "10", "--tube-od", "8.3", "--tube-id",
+             "4.97", "--wire", "1.6", "--pressures", "0.5,0.6", "--clearance-sd", "0.05",
+             "--tolerance", "tube_id=0.05", "--samples", "8", "--json"])
+    assert r.code == 0, r.err
+    s = r.json()["structures"][0]
+    for k in ("friction_n", "friction_n_p05", "friction_n_p50", "friction_n_p95",
+              "squeeze_force_n_p50"):
+        assert len(s[k]) == 2
+    assert s["friction_n_p05"][-1] <= s["friction_n_p50"][-1] <= s["friction_n_p95"][-1]
+    assert s["friction_n_p05"][-1] <= s["friction_n"][-1] <= s["friction_n_p95"][-1]
+    bad = cli(["predict", "--gamma", "0.7", "--hole", "10", "--tube-od", "8.3", "--tube-id",
+               "4.97", "--wire", "1.6", "--tolerance", "colour=1"])
+    assert bad.code == 2 and "tolerance" in bad.err
+    neg = cli(["predict", "--gamma", "0.7", "--hole", "10", "--tube-od", "8.3", "--tube-id",
+               "4.97", "--wire", "1.6", "--clearance-sd", "-0.1"])
+    assert neg.code == 2 and "clearance" in neg.err

@@ -236,9 +236,30 @@ def _register_predict(app: typer.Typer) -> None:
         torque_max: float = typer.Option(40.0, help="Required torque in Nm (knee: 40)."),
         alpha: float = typer.Option(0.05, help="ANOVA significance level."),
         plot: str | None = typer.Option(None, help="Write a PNG: predicted vs tested, errors."),
+        hole: float | None = typer.Option(None, help="One structure: hole diameter D in mm "
+                                          "(with --tube-od, --tube-id, --wire)."),
+        tube_od: float | None = typer.Option(None, help="One structure: tube OD d1 in mm."),
+        tube_id: float | None = typer.Option(None, help="One structure: tube ID in mm."),
+        wire: float | None = typer.Option(None, help="One structure: wire diameter d2 in mm."),
+        length: float = typer.Option(116.0, help="One structure: tube length L in mm."),
+        clearance_sd: float | None = typer.Option(None, "--clearance-sd", help="Clearance "
+                                                  "spread along the tube: normal sd in mm "
+                                                  "around each structure's clearance."),
+        clearance_profile: str | None = typer.Option(None, "--clearance-profile",
+                                                     help="Measured clearance along the tube: "
+                                                     "CSV position_mm,clearance_mm covering "
+                                                     "0..L."),
+        tolerance: list[str] = typer.Option([], "--tolerance", help="A tolerance (1 sd) as "
+                                            "name=value: hole=, tube_od=, tube_id=, wire= (mm) "
+                                            "or shore= (Shore A); repeat for several."),
+        samples: int = typer.Option(64, help="Quasi-Monte Carlo samples for --tolerance."),
         as_json: bool = JSON_OPTION,
     ) -> None:
-        """Predict friction F = gamma N(P) for other structures via the FE (Sec. 4). MPa, N."""
+        """Predict friction F = gamma N(P) for other structures via the FE (Sec. 4). MPa, N.
+
+        With --clearance-sd or --clearance-profile the clearance varies along the tube; with
+        --tolerance the answers get 5/50/95 % bands (JSON: friction_n_p05, _p50, _p95).
+        """
         from exofric import paper
         from exofric.errors import InputError
         from exofric.friction import FrictionModel, paper_structures, predict, structures_from_dict
@@ -248,29 +269,57 @@ def _register_predict(app: typer.Typer) -> None:
 
         if plot:
             plot_path(plot)
-        if use_paper == (structures is not None):
-            raise InputError("give exactly one of --structures FILE.toml or --paper")
+        one = [hole, tube_od, tube_id, wire]
+        if sum([use_paper, structures is not None, any(v is not None for v in one)]) != 1:
+            raise InputError("give exactly one of --paper, --structures FILE.toml or one "
+                             "structure (--hole --tube-od --tube-id --wire)")
         model = FrictionModel(gamma, f0)
         grid = parse_floats("--pressures", pressures)
         base = BASE
         if use_paper:
             structs = paper_structures(BASE)
-        else:
+        elif structures is not None:
             if not Path(str(structures)).is_file():
                 raise InputError(f"{structures}: file not found")
             structs, base = structures_from_dict(read_toml(str(structures)), BASE)
+        else:
+            if any(v is None for v in one):
+                raise InputError("one structure needs all of --hole, --tube-od, --tube-id and "
+                                 "--wire (mm)", param="hole")
+            from exofric.geometry import Structure
+
+            structs = (Structure(float(hole), float(tube_od), float(tube_id),  # type: ignore[arg-type]
+                                 float(wire), length, name="structure"),)  # type: ignore[arg-type]
+        solver, tols = _scatter_options(clearance_sd, clearance_profile, tolerance, samples)
         names = [s.name for s in structs]
         meas = _measured_map(measured, names) if measured else None
         material = MooneyRivlin.from_shore(shore)
         res = predict(structs, model, material, grid, measured=meas, base=base,
                       threshold_pct=threshold, arm_radius_m=arm_radius,
-                      required_torque_nm=(0.0, torque_max), alpha=alpha)
+                      required_torque_nm=(0.0, torque_max), alpha=alpha, squeeze_fn=solver)
         printed = {f"test {r['test']}": r for r in paper.table3()} if use_paper else {}
         p4 = paper.table4() if use_paper else {}
         errs = paper.load()["max_relative_error"] if use_paper else {"test": [],
                                                                      "max_relative_error_pct": []}
         p_err = dict(zip(errs["test"], errs["max_relative_error_pct"], strict=True))
         d = res.to_dict()
+        for entry, pr in zip(d["structures"], res.predictions, strict=True):
+            entry["friction_n"] = list(pr.predicted_friction_n)
+            entry["squeeze_force_n"] = list(pr.squeeze_force_n)
+        if tols:
+            from exofric.simulate import squeeze_tolerances
+
+            for entry, pr in zip(d["structures"], res.predictions, strict=True):
+                tr = squeeze_tolerances(pr.structure, shore, pr.pressure_mpa, tols,
+                                        samples=samples, solver=solver)
+                for q, v in tr.percentiles_n.items():
+                    entry[f"squeeze_force_n_p{q:02d}"] = list(v)
+                    entry[f"friction_n_p{q:02d}"] = [float(model.friction(x)) for x in v]
+                entry["sensitivity"] = tr.to_dict()["sensitivity"]
+                entry["tolerance_samples_failed"] = tr.failed
+        if clearance_sd is not None or clearance_profile is not None:
+            d["clearance"] = ({"normal_sd_mm": clearance_sd} if clearance_sd is not None
+                              else {"profile": str(clearance_profile)})
         if use_paper:
             d["tube_id_note"] = "Table 3 prints no tube IDs: ID = base ID x d1 / base d1"
             d["paper_max_relative_error_pct"] = {f"test {k}": v for k, v in p_err.items()}
@@ -324,8 +373,66 @@ def _register_predict(app: typer.Typer) -> None:
                    "its ANOVA p-value (Table 4)" if use_paper else "") + ".")
             for a in res.anova:
                 console.print(f"ANOVA {a.name}: F = {a.f_stat:.3f}, {a.verdict}")
+            if "clearance" in d:
+                console.print(f"clearance varies along the tube: {d['clearance']}")
+            for entry in d["structures"]:
+                if "friction_n_p05" in entry:
+                    top = entry["sensitivity"][0]
+                    console.print(
+                        f"{entry['name']}: F at {grid[-1]:g} MPa 5/50/95 % = "
+                        f"{entry['friction_n_p05'][-1]:.1f} / {entry['friction_n_p50'][-1]:.1f}"
+                        f" / {entry['friction_n_p95'][-1]:.1f} N (tolerances {dict(tols)}); "
+                        f"largest share of the variance: {top['tolerance']} "
+                        f"{100 * top['variance_share'][-1]:.0f} %")
 
         emit(d, as_json, render)
+
+
+def _scatter_options(clearance_sd: float | None, clearance_profile: str | None,
+                     tolerance: list[str], samples: int) -> tuple[Any, dict[str, float]]:
+    """The squeeze to use (a clearance distribution or None) and the tolerances (sd)."""
+    from exofric.errors import InputError
+
+    if clearance_sd is not None and clearance_profile is not None:
+        raise InputError("give --clearance-sd or --clearance-profile, not both",
+                         param="clearance_sd")
+    solver = None
+    if clearance_sd is not None or clearance_profile is not None:
+        from exofric.simulate import ClearanceDistribution, squeeze_with_clearance
+
+        if clearance_sd is not None:
+            sd = float(clearance_sd)
+            if not sd > 0:
+                raise InputError(f"clearance_sd must be > 0 mm, got {clearance_sd:g}",
+                                 param="clearance_sd")
+
+            def solver(s: Any, m: Any, p: Any) -> Any:
+                return squeeze_with_clearance(s, m, p, ClearanceDistribution.normal(
+                    max(s.clearance_mm, 1e-3), sd))
+        else:
+            from exofric.io import read_table
+
+            prof = read_table(str(clearance_profile), ["position_mm", "clearance_mm"],
+                              unique_within=("position_mm", None))
+
+            def solver(s: Any, m: Any, p: Any) -> Any:
+                return squeeze_with_clearance(s, m, p, ClearanceDistribution.profile(
+                    prof["position_mm"], prof["clearance_mm"], s.length_mm))
+    names = {"hole": "hole_mm", "tube_od": "tube_od_mm", "tube_id": "tube_id_mm",
+             "wire": "wire_mm", "shore": "shore"}
+    tols: dict[str, float] = {}
+    for item in tolerance:
+        key, sep, value = item.partition("=")
+        key = key.strip()
+        if not sep or key not in names:
+            raise InputError(f"tolerance {item!r}: expected name=value with name one of "
+                             f"{', '.join(names)}", param="tolerance")
+        try:
+            tols[names[key]] = float(value)
+        except ValueError:
+            raise InputError(f"tolerance {item!r}: the value must be a number (mm or Shore "
+                             "A)", param="tolerance") from None
+    return solver, tols
 
 
 def _register_invert(app: typer.Typer) -> None:
