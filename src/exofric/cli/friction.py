@@ -327,7 +327,10 @@ def _register_predict(app: typer.Typer) -> None:
         if plot:
             from exofric.plots import plot_predictions
 
-            d["plot"] = str(save_figure(plot_predictions(res.predictions), plot))
+            bands = {e["name"]: (e["friction_n_p05"], e["friction_n_p95"])
+                     for e in d["structures"] if "friction_n_p05" in e}
+            d["plot"] = str(save_figure(plot_predictions(res.predictions, bands=bands or None),
+                                        plot))
 
 
         def render() -> None:

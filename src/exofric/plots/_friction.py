@@ -100,13 +100,18 @@ def plot_gamma_fit(
     return fig
 
 
-def _one_panel(preds: Sequence[Prediction], fig: Any) -> Any:
+def _one_panel(preds: Sequence[Prediction], fig: Any,
+               bands: Mapping[str, tuple[Sequence[float], Sequence[float]]] | None = None) -> Any:
     """All predicted curves on one Axes (no measured curves to compare with)."""
     ax = fig.subplots()
     marks = "osD^vP*Xh<>"
     for i, pr in enumerate(preds):
         dev = pr.deviation
         ok = dev.in_validated_region
+        if bands and pr.structure.name in bands:
+            lo, hi = bands[pr.structure.name]
+            ax.fill_between(pr.pressure_mpa, lo, hi, color=f"C{i % 10}", alpha=0.18, lw=0,
+                            label=f"{pr.structure.name}: 5-95 % band")
         ax.plot(pr.pressure_mpa, pr.predicted_friction_n, "-" if ok else "--",
                 marker=marks[i % len(marks)], ms=4, color=f"C{i % 10}",
                 label=f"{pr.structure.name} ({dev.deviation_pct:.1f} %"
@@ -127,6 +132,7 @@ def plot_predictions(
     fig: Any | None = None,
     paper_max_error_pct: Mapping[str, float] | None = None,
     data_label: str | None = None,
+    bands: Mapping[str, tuple[Sequence[float], Sequence[float]]] | None = None,
 ) -> Any:
     """Per structure: predicted vs tested friction and the relative error curve (Figs 8-10).
 
@@ -150,6 +156,9 @@ def plot_predictions(
     data_label : str, optional
         Legend label of the tested points; default ``"synthetic 'tested' (virtual rig)"``
         when ``title`` says SYNTHETIC, else ``"tested"``.
+    bands : mapping of str to (sequence, sequence), optional
+        Per structure name, the 5 % and 95 % friction (N) at its pressures, shaded around the
+        predicted curve (``exofric predict --tolerance``).
 
     Returns
     -------
@@ -175,7 +184,7 @@ def plot_predictions(
     fig, created = new_figure(fig, (6.4, 4.4) if not any(p.measured is not None for p in preds)
                               else (10.0, 3.4 * max(len(preds), 1) + 0.4))
     if not any(p.measured is not None for p in preds):
-        _one_panel(preds, fig)
+        _one_panel(preds, fig, bands)
         if title:
             fig.suptitle(title)
         finish(fig, created)
@@ -190,6 +199,10 @@ def plot_predictions(
                     color="tab:red", alpha=0.8, label=data_label, zorder=2)
         a1.plot(pr.pressure_mpa, pr.predicted_friction_n, "-", color="k", lw=1.4, marker="s",
                 ms=3.5, mfc="white", mew=1.0, label="predicted (exofric)", zorder=3)
+        if bands and pr.structure.name in bands:
+            lo, hi = bands[pr.structure.name]
+            a1.fill_between(pr.pressure_mpa, lo, hi, color="0.6", alpha=0.3, lw=0,
+                            label="predicted 5-95 % band", zorder=1)
         if pr.measured is not None:
             a2.plot(pr.measured.pressure_mpa, pr.relative_error_pct, "o-", color="tab:blue",
                     label="exofric: (F^ - F)/F")
