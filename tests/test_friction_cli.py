@@ -269,3 +269,20 @@ def test_predict_one_structure_with_clearance_scatter_and_tolerances(cli) -> Non
     neg = cli(["predict", "--gamma", "0.7", "--hole", "10", "--tube-od", "8.3", "--tube-id",
                "4.97", "--wire", "1.6", "--clearance-sd", "-0.1"])
     assert neg.code == 2 and "clearance" in neg.err
+
+
+def test_predict_with_a_measured_clearance_profile(cli, tmp_path: Path) -> None:
+    """--clearance-profile: a CSV position_mm,clearance_mm over the tube; a profile that does
+    not cover the length is refused with one line."""
+    prof = tmp_path / "prof.csv"
+    prof.write_text("position_mm,clearance_mm\n0,0.1\n58,0.3\n116,0.1\n")
+    r = cli(["predict", "--gamma", "0.7168", "--hole", "10", "--tube-od", "8.3", "--tube-id",
+             "4.97", "--wire", "1.6", "--pressures", "0.6", "--clearance-profile", str(prof),
+             "--json"])
+    assert r.code == 0, r.err
+    assert r.json()["clearance"] == {"profile": str(prof)}
+    short = tmp_path / "short.csv"
+    short.write_text("position_mm,clearance_mm\n0,0.1\n50,0.3\n")
+    bad = cli(["predict", "--gamma", "0.7168", "--hole", "10", "--tube-od", "8.3", "--tube-id",
+               "4.97", "--wire", "1.6", "--pressures", "0.6", "--clearance-profile", str(short)])
+    assert bad.code == 2 and "not the tube's 0-116 mm" in bad.err
