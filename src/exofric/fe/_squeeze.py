@@ -16,6 +16,35 @@ on the tube, so its vertical position is fixed by contact only.
   therefore never enters a reported force.
 
 The mesh is graded toward theta = +90 deg (the wire).
+
+**Full model** (``wire_angle_deg != 0``, issue 19): the wire centre sits on the circle of
+radius D/2 - d2/2 at the angle ``a`` from the top (positive toward +x), so no symmetry plane is
+left. The whole ring is meshed (``2 n_circ`` elements, graded toward the wire's direction
+seen from the tube, polar angle 90 deg - a: the half model's mesh and its mirror image,
+turned by a), with no symmetry constraint. Its in-plane floating modes:
+
+* the two translations: with ``gravity="none"`` a spring on both dofs of the outer node
+  opposite the wire (stiffness ``spring_rel x mu``), taken out like the half model's once the
+  tube bears on wall and wire; with gravity the weight and the curved wall hold them;
+* the rotation of the tube about its own axis, a zero-energy mode of the continuum (the
+  annulus is isotropic and frictionless contact exerts no torque about its centre): a
+  rotational spring ``k_rot omega^2 / 2`` on the rotation ``omega`` of the radial segment
+  from the inner to the outer node opposite the wire (reference direction -> current
+  direction), kept on. Without gravity the frictionless tube slides along the wall until it
+  lies opposite the wire (wall forces act through the hole centre, wire forces through the
+  wire centre: two forces in equilibrium are collinear), so the solution is the a = 0 one
+  rotated by a about the hole centre, in which that segment keeps its reference direction:
+  ``omega = 0`` exactly and the spring carries no force. With gravity the spring's couple is
+  the mesh's (discretisation-level) resistance to the rotation mode.
+
+Without gravity the tube starts opposite the wire (where it comes to rest anyway). With
+gravity toward the wall it starts at the bottom of the hole (turned so that a node sits there,
+lowered by the penetration that carries its weight) and slides along the wall as the wire
+pushes it; that slide is resisted only by the weight (tangential stiffness ~W/R ~ 1e-4 N/mm
+per mm against the contact's 1e5), and load control loses it on coarse meshes (2 x 24 graded,
+2 x 16) or with a stiff rotation spring: :func:`exofric.simulate.squeeze` therefore accepts an
+off-centre wire only without gravity. Gravity toward the wire with an off-centre wire is
+refused here (the hanging tube need not fit).
 """
 
 from __future__ import annotations
@@ -25,20 +54,27 @@ from collections.abc import Callable
 import numpy as np
 import scipy.sparse as sp
 
-from exofric.errors import InputError
+from exofric.errors import InputError, check_positive
 from exofric.fe._contact import ContactState, RigidCircle, evaluate_contact, nodal_weights
 from exofric.fe._inflation import MeshSpec, PressurizedTube
 from exofric.fe._mesh import polar_mesh
+from exofric.fe._solver import Assembler
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
 
-__all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "GRAVITY_OPTIONS", "wire_halfwidth", "wall_arc"]
+__all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "GRAVITY_OPTIONS", "ROTATION_SPRING_REL",
+           "wire_halfwidth", "wall_arc", "ring_wire_halfwidth", "ring_wall_arc"]
 
 GRAVITY_MM_S2 = 9810.0
 
 #: Orientations of gravity in the squeeze: none (regulariser only), toward the hole wall the
 #: tube rests on, or toward the wire (the device upside down).
 GRAVITY_OPTIONS = ("none", "toward-wall", "toward-wire")
+
+#: Full model (off-centre wire): stiffness of the spring on the tube's rotation about its own
+#: axis, relative to mu B^2 (N mm per mm depth per rad^2 per MPa mm^2; unitless). Its force is
+#: zero without gravity; the reported forces do not depend on it (tests/test_squeeze_wire_angle).
+ROTATION_SPRING_REL = 1.0
 
 
 #: Angle test of a refined direction d (``refine_direction``): kept only if
@@ -68,11 +104,23 @@ class SqueezeProblem(PressurizedTube):
     spring_rel : float
         Stiffness of the floating-mode spring of ``gravity="none"`` relative to the
         shear modulus (unitless; the spring is ``spring_rel x mu`` N/mm per mm depth).
+    wire_angle_deg : float
+        Angle of the wire centre from the top of the hole (deg, positive toward +x,
+        |a| < 90). 0 is the half model; any other value the full model.
+    rotation_rel : float
+        Full model: stiffness of the rotation spring relative to ``mu B^2`` (unitless).
+    full : bool, optional
+        Force the full model (True, also at angle 0: for checks against the half model) or
+        the half one (False: angle 0 only); default: full iff the angle is not 0.
 
     Attributes
     ----------
     spring_k : float
         Current stiffness of the floating-mode spring (N/mm per mm depth; 0 with gravity).
+    full : bool
+        True for the full (360 deg, unconstrained) model of an off-centre wire.
+    rot_k : float
+        Full model: stiffness of the rotation spring (N mm per mm depth per rad^2).
 
     Examples
     --------
@@ -95,11 +143,27 @@ class SqueezeProblem(PressurizedTube):
         density: float,
         gravity: str = "toward-wall",
         spring_rel: float = 1.0,
+        wire_angle_deg: float = 0.0,
+        rotation_rel: float = ROTATION_SPRING_REL,
+        full: bool | None = None,
     ) -> None:
         if gravity not in GRAVITY_OPTIONS:
             raise InputError(
                 f"gravity must be one of {', '.join(GRAVITY_OPTIONS)}, got {gravity!r}",
                 param="gravity")
+        a = float(wire_angle_deg)
+        if not (np.isfinite(a) and abs(a) < 90.0):
+            raise InputError(f"wire_angle_deg must be a number in (-90, 90) deg, got {a:g}",
+                             param="wire_angle_deg")
+        self.full = a != 0.0 if full is None else bool(full)
+        if a != 0.0 and not self.full:
+            raise InputError("the half model needs wire_angle_deg = 0", param="wire_angle_deg")
+        self.wire_angle_deg = a
+        self.rot_k = 0.0
+        if self.full:
+            self._init_full(structure, material, spec, penalty, density, gravity, spring_rel,
+                            np.radians(a), rotation_rel)
+            return
         s = structure
         self.gravity = gravity
         # +1: the body force points to +y (the wire); -1: to -y (the wall the tube rests on)
@@ -150,6 +214,107 @@ class SqueezeProblem(PressurizedTube):
         if gravity == "none":
             self.f_body[:] = 0.0
 
+    def _init_full(self, s: Structure, material: MooneyRivlin, spec: MeshSpec, penalty: float,
+                   density: float, gravity: str, spring_rel: float, a: float,
+                   rotation_rel: float) -> None:
+        """Full model of the wire at the angle ``a`` (rad) from the top (module docstring)."""
+        if gravity == "toward-wire":
+            raise InputError("gravity 'toward-wire' needs the wire at the top "
+                             "(wire_angle_deg = 0): a tube hanging on an off-centre wire "
+                             "need not fit in the hole", param="wire_angle_deg")
+        check_positive("rotation_rel", rotation_rel)
+        self.gravity = gravity
+        self.sign = -1.0
+        self.structure = s
+        self.A, self.B = 0.5 * s.tube_id_mm, 0.5 * s.tube_od_mm
+        e = np.array([np.sin(a), np.cos(a)])  # unit vector from the hole centre to the wire
+        rc = 0.5 * (s.hole_mm - s.tube_od_mm)
+        # no weight: the tube starts opposite the wire, where it comes to rest; with weight at
+        # the bottom of the hole, where it rests until the wire pushes it
+        c = -rc * e if gravity == "none" else np.array([0.0, -rc])
+        tw = 0.5 * np.pi - a  # polar angle of e: from the tube (opposite the wire) to the wire
+        nc = 2 * spec.n_circ
+        mesh = polar_mesh(self.A, self.B, spec.n_radial, nc, theta0=tw - np.pi,
+                          theta1=tw + np.pi, grading=spec.grading, grade_toward=tw,
+                          kind=spec.kind, center=(float(c[0]), float(c[1])))
+        if gravity != "none":
+            # resting on the wall under its weight: turned so that a node sits at the bottom
+            # (at most half an element from the wire's direction) and lowered by the penalty
+            # penetration that carries the weight, so that the contact holds it from the start
+            ang = mesh.angles[:-1]
+            j = int(np.argmin(np.abs(np.angle(np.exp(1j * (ang + 0.5 * np.pi))))))
+            tw += float(np.angle(np.exp(1j * (-0.5 * np.pi - ang[j]))))
+            mesh = polar_mesh(self.A, self.B, spec.n_radial, nc, theta0=tw - np.pi,
+                              theta1=tw + np.pi, grading=spec.grading, grade_toward=tw,
+                              kind=spec.kind, center=(float(c[0]), float(c[1])))
+            w = nodal_weights(mesh.boundary_edges("outer"), mesh.nodes, mesh.n_nodes)
+            weight = density * GRAVITY_MM_S2 * np.pi * (self.B**2 - self.A**2)
+            pen = weight / (penalty * float(w[mesh.grid[-1, j]])) + 1e-12
+            mesh = polar_mesh(self.A, self.B, spec.n_radial, nc, theta0=tw - np.pi,
+                              theta1=tw + np.pi, grading=spec.grading, grade_toward=tw,
+                              kind=spec.kind, center=(float(c[0]), float(c[1]) - pen))
+        n = mesh.n_nodes
+        self.outer = mesh.outer_nodes[:-1]  # the closed ring's last line is its first
+        cd = 2 * self.outer[:, None] + np.arange(2)
+        self.contact_dofs = cd
+        wall_node = int(mesh.grid[-1, 0])  # outer node opposite the wire (angle tw - pi)
+        self.spring_dofs = np.array([2 * wall_node, 2 * wall_node + 1])
+        self.spring_dof = int(self.spring_dofs[1])
+        sd = self.spring_dofs
+        # rotation of the radial segment inner -> outer node at angle tw - pi
+        i0 = int(mesh.grid[0, 0])
+        self.rot_dofs = np.array([2 * i0, 2 * i0 + 1, 2 * wall_node, 2 * wall_node + 1])
+        d = mesh.nodes[wall_node] - mesh.nodes[i0]
+        self.rot_c = np.array([d[1], -d[0], -d[1], d[0]]) / float(d @ d)
+        rd = self.rot_dofs
+        extra = ((np.repeat(cd, 2, axis=1), np.tile(cd, (1, 2))),
+                 (np.repeat(sd, 1), np.repeat(sd, 1)),
+                 (np.repeat(rd, 4), np.tile(rd, 4)))
+        PressurizedTube.__init__(self, mesh, material, spec, np.zeros(0, dtype=int), extra)
+        # the closed ring's narrowest band: its lines folded pairwise (the line at angle tw - pi,
+        # then tw - pi +- one line, ...), the two halves side by side
+        nt = mesh.grid.shape[1] - 1
+        seq = [0] + [j for k in range(1, nt // 2 + 1) for j in dict.fromkeys((k, nt - k))]
+        fold = (2 * mesh.grid[:, seq].T.ravel()[:, None] + np.arange(2)).ravel()
+        ed = self.body.edofs
+        k = ed.shape[1]
+        self.assembler = Assembler(
+            self.n_dofs, self.free,
+            [(np.repeat(ed, k, axis=1), np.tile(ed, (1, k))), (self.H.row, self.H.col), *extra],
+            orders=[fold])
+        mu = material.shear_modulus
+        self.spring_k = spring_rel * mu if gravity == "none" else 0.0
+        self.rot_k = rotation_rel * mu * self.B**2
+        self.w_outer = nodal_weights(mesh.boundary_edges("outer"), mesh.nodes, n)[self.outer]
+        self.hole = RigidCircle((0.0, 0.0), 0.5 * s.hole_mm, inside=True, name="hole")
+        wc = (0.5 * s.hole_mm - 0.5 * s.wire_mm) * e
+        self.wire = RigidCircle((float(wc[0]), float(wc[1])), 0.5 * s.wire_mm, inside=False,
+                                name="wire")
+        self.penalty = float(penalty)
+        r = self.body.ref
+        nodal_vol = np.bincount(
+            mesh.elements.ravel(), weights=np.einsum("eq,qa->ea", r.w, r.N).ravel(), minlength=n
+        )
+        self.f_body = np.zeros(self.n_dofs)
+        self.f_body[1::2] = self.sign * density * GRAVITY_MM_S2 * nodal_vol
+        self._weight = density * GRAVITY_MM_S2 * float(nodal_vol.sum())
+        if gravity == "none":
+            self.f_body[:] = 0.0
+
+    def rotation(self, u: np.ndarray) -> float:
+        """Full model: rotation (rad) held by the rotation spring (0 for the half model).
+
+        The linearised rotation of the radial segment from the inner to the outer node
+        opposite the wire, ``d x (u_out - u_in) / |d|^2`` with ``d`` its reference vector;
+        it is zero whenever the segment keeps its reference direction.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        """
+        return float(self.rot_c @ u[self.rot_dofs]) if self.full else 0.0
+
     def contact(self, u: np.ndarray, tangent: bool = False) -> tuple[ContactState, ContactState]:
         """Contact states (hole, wire) of the outer nodes at displacement ``u``.
 
@@ -187,6 +352,17 @@ class SqueezeProblem(PressurizedTube):
         ch, cw = self.contact(u, tangent)
         R -= self.f_body
         np.subtract.at(R, self.contact_dofs.ravel(), (ch.force + cw.force).ravel())
+        if self.full:
+            sd, rd, c = self.spring_dofs, self.rot_dofs, self.rot_c
+            us = u[sd]
+            om = float(c @ u[rd])
+            R[sd] += self.spring_k * us
+            R[rd] += self.rot_k * om * c
+            energy += (ch.energy + cw.energy - float(self.f_body @ u)
+                       + 0.5 * self.spring_k * float(us @ us) + 0.5 * self.rot_k * om**2)
+            K = (self.tangent(st, load, ch.blocks + cw.blocks, np.full(2, self.spring_k),
+                              self.rot_k * np.outer(c, c).ravel()) if tangent else None)
+            return energy, R, K
         uy = float(u[self.spring_dof])
         R[self.spring_dof] += self.spring_k * uy
         energy += ch.energy + cw.energy - float(self.f_body @ u) + 0.5 * self.spring_k * uy**2
@@ -323,7 +499,49 @@ class SqueezeProblem(PressurizedTube):
         u : ndarray (n_dofs,)
             Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
         """
+        if self.full:
+            return -self.spring_k * float(u[self.spring_dof])
         return -2.0 * self.spring_k * float(u[self.spring_dof])
+
+    def contact_extent(self, u: np.ndarray) -> tuple[float, float]:
+        """Half-width of the contact arc on the wire and hole-wall arc in contact (mm).
+
+        Full section (:func:`wire_halfwidth` and :func:`wall_arc` for the half model,
+        :func:`ring_wire_halfwidth` and :func:`ring_wall_arc` for the full one).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        """
+        ch, cw = self.contact(u)
+        xo = (self.X + u).reshape(-1, 2)[self.outer]
+        if self.full:
+            return (ring_wire_halfwidth(xo, cw.gap, self.wire.center, self.wire.radius),
+                    ring_wall_arc(xo, ch.active, self.hole.radius))
+        return (wire_halfwidth(xo, cw.gap, self.wire.center, self.wire.radius),
+                wall_arc(xo, ch.active, self.hole.radius))
+
+    def resultants(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Force of the tube on the wire and of the hole wall on the tube (N/mm), full section.
+
+        The half model's are vertical by symmetry (twice its half's vertical components).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+
+        Returns
+        -------
+        tuple of ndarray (2,)
+            ``(on_wire, wall_on_tube)``, (x, y) components (N per mm depth).
+        """
+        ch, cw = self.contact(u)
+        if self.full:
+            return -cw.force.sum(axis=0) + 0.0, ch.force.sum(axis=0) + 0.0
+        return (np.array([0.0, -2.0 * cw.force[:, 1].sum() + 0.0]),
+                np.array([0.0, 2.0 * ch.force[:, 1].sum() + 0.0]))
 
     def bearing_gap(self, u: np.ndarray) -> float:
         """Smallest gap (mm) to the obstacle the tube touches last: where the squeeze begins.
@@ -416,3 +634,86 @@ def wall_arc(xo: np.ndarray, active: np.ndarray, radius: float) -> float:
     th = np.arctan2(xo[:, 1], xo[:, 0])
     both = active[:-1] & active[1:]
     return float(2.0 * radius * np.sum(np.abs(np.diff(th))[both]))
+
+
+def ring_wire_halfwidth(
+    xo: np.ndarray, gap: np.ndarray, center: tuple[float, float], radius: float
+) -> float:
+    """Arc half-width (mm) on the wire of the contact zone of a closed ring of outer nodes.
+
+    Half the angle (about the wire centre) between the two ends of the contiguous active arc,
+    each end interpolated to where the gap crosses zero, times the wire radius; angles are
+    measured from the direction of the hole centre (the origin) seen from the wire.
+
+    Parameters
+    ----------
+    xo : ndarray (m, 2)
+        Current coordinates (mm) of the ring's outer nodes, in ring order (closed).
+    gap : ndarray (m,)
+        Signed gap to the wire (mm), negative in contact.
+    center : tuple of float
+        Wire centre (x, y) (mm), not at the origin.
+    radius : float
+        Wire radius (mm).
+
+    Returns
+    -------
+    float
+        Half-width of the contact arc (mm); 0 without contact.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> xo = np.array([[-0.1, 3.4], [0.0, 3.4], [0.1, 3.4], [0.0, -4.0]])
+    >>> gap = np.array([0.1, -0.01, 0.1, 8.0])
+    >>> round(ring_wire_halfwidth(xo, gap, (0.0, 4.2), 0.8), 4)   # ends interpolated: 0.8 x 0.0113
+    0.009
+    """
+    act = gap <= 0.0
+    if not np.any(act):
+        return 0.0
+    c = np.asarray(center, dtype=float)
+    down = -c / np.hypot(c[0], c[1])  # from the wire toward the hole centre
+    v = xo - c
+    ang = np.arctan2(down[0] * v[:, 1] - down[1] * v[:, 0], v @ down)
+    m = len(gap)
+    ends = []
+    for k in np.flatnonzero(act):
+        for nb in ((k - 1) % m, (k + 1) % m):
+            if not act[nb]:  # the gap changes sign between k and nb
+                t = gap[nb] / (gap[nb] - gap[k])
+                ends.append(ang[nb] + t * (ang[k] - ang[nb]))
+    if not ends:  # every node in contact
+        return float(np.pi * radius)
+    ends.extend(ang[act])
+    return float(0.5 * radius * (max(ends) - min(ends)))
+
+
+def ring_wall_arc(xo: np.ndarray, active: np.ndarray, radius: float) -> float:
+    """Hole-wall arc length (mm) in contact along a closed ring of outer nodes.
+
+    Parameters
+    ----------
+    xo : ndarray (m, 2)
+        Current coordinates (mm) of the ring's outer nodes, in ring order (closed).
+    active : ndarray of bool (m,)
+        Nodes in contact with the hole wall.
+    radius : float
+        Hole radius (mm).
+
+    Returns
+    -------
+    float
+        Contact arc length (mm).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> xo = np.array([[5.0, 0.0], [0.0, 5.0], [-5.0, 0.0]])
+    >>> round(ring_wall_arc(xo, np.array([True, True, False]), 5.0), 4)  # pi/2 x 5 mm
+    7.854
+    """
+    th = np.arctan2(xo[:, 1], xo[:, 0])
+    dth = np.abs(np.angle(np.exp(1j * (np.roll(th, -1) - th))))
+    both = active & np.roll(active, -1)
+    return float(radius * np.sum(dth[both]))

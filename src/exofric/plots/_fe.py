@@ -413,13 +413,19 @@ def plot_squeeze(
         sections, ax_n = row[:-1], row[-1]
         bar_owner = fig
     pc = None
+    # a full model (off-centre wire) is drawn as it is; the half model is mirrored about x = 0
+    full = str(getattr(result, "symmetry", "")).startswith("full")
+    angle = np.radians(float(getattr(result, "wire_angle_deg", 0.0)))
+    r_wire = float(np.hypot(*s.wire_center_mm))
+    wire_xy = (r_wire * np.sin(angle), r_wire * np.cos(angle))
     if idx:
         vmax = float(max(result.von_mises_mpa[i].max() for i in idx))
         for k, (ax, i) in enumerate(zip(sections, idx, strict=True)):
             pc = draw_section(ax, result.nodes + result.displacements[i], result.elements,
-                              result.von_mises_mpa[i], mirror=("x",), vmax=vmax)
+                              result.von_mises_mpa[i], mirror=() if full else ("x",),
+                              vmax=vmax)
             ax.add_patch(Circle((0, 0), 0.5 * s.hole_mm, fill=False, color="0.3", lw=1.2))
-            ax.add_patch(Circle(s.wire_center_mm, 0.5 * s.wire_mm, color="0.55"))
+            ax.add_patch(Circle(wire_xy, 0.5 * s.wire_mm, color="0.55"))
             ax.set_xlim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
             ax.set_ylim(-0.55 * s.hole_mm, 0.55 * s.hole_mm)
             ax.set_title(f"P = {p[i]:g} MPa, N = {result.squeeze_force_n[i]:.1f} N",

@@ -27,6 +27,7 @@ from exofric.fe import (
     wall_arc,
     wire_halfwidth,
 )
+from exofric.fe._squeeze import ROTATION_SPRING_REL
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
 from exofric.simulate._stretch import check_stretch
@@ -42,16 +43,21 @@ class SqueezeResult:
     """Squeeze of the wire by the inflated tube, per pressure (paper Figs 6-7).
 
     Forces are for the full section (2 x the half model): per unit depth (N/mm)
-    and in total over the tube length (N).
+    and in total over the tube length (N). With an off-centre wire (``wire_angle_deg`` != 0,
+    the full model) the squeezing force N is the magnitude of the resultant contact force of
+    the tube on the wire and the wall force the magnitude of the hole wall's resultant on the
+    tube; their directions are reported separately.
 
     Attributes
     ----------
     pressure_mpa : ndarray
         Pressures (MPa).
     squeeze_force_n_per_mm, squeeze_force_n : ndarray
-        Tube-wire contact force along the line of centres (N/mm, N).
+        Tube-wire contact force along the line of centres (N/mm, N); with an off-centre wire
+        the magnitude of the resultant force of the tube on the wire.
     wall_force_n_per_mm, wall_force_n : ndarray
-        Net vertical force of the hole wall on the tube (N/mm, N).
+        Net vertical force of the hole wall on the tube (N/mm, N); with an off-centre wire the
+        magnitude of its resultant.
     wire_contact_halfwidth_mm : ndarray
         Half-width of the contact arc on the wire (mm, 0 before contact).
     wall_contact_arc_mm : ndarray
@@ -110,6 +116,15 @@ class SqueezeResult:
         Newton attempts, failed attempts, iterations, linear solves and the wall time (s)
         spent in them and in the failed ones, over both meshes, the onset bracketing and the
         regulariser's release.
+    wire_angle_deg : float
+        Angle of the wire centre from the top of the hole (deg, positive toward +x; 0: the
+        half model).
+    squeeze_force_direction_deg : ndarray or None
+        Direction of the tube's resultant force on the wire (deg from +y, positive toward +x;
+        0 for the half model, NaN where N = 0).
+    wall_force_direction_deg : ndarray or None
+        Direction of the hole wall's resultant force on the tube (deg from +y, positive toward
+        +x; NaN where it is 0).
 
     Examples
     --------
@@ -151,6 +166,9 @@ class SqueezeResult:
     n_error_estimate_n_per_mm: np.ndarray | None = None
     coarse_squeeze_force_n_per_mm: np.ndarray | None = field(default=None, repr=False)
     solver_stats: SolverStats = field(default_factory=SolverStats, repr=False)
+    wire_angle_deg: float = 0.0
+    squeeze_force_direction_deg: np.ndarray | None = None
+    wall_force_direction_deg: np.ndarray | None = None
 
     @property
     def length_mm(self) -> float:
@@ -188,6 +206,9 @@ class SqueezeResult:
             "n_error_estimate_n_per_mm": _opt_list(self.n_error_estimate_n_per_mm),
             "coarse_squeeze_force_n_per_mm": _opt_list(self.coarse_squeeze_force_n_per_mm),
             "solver_stats": self.solver_stats.to_dict(),
+            "wire_angle_deg": self.wire_angle_deg,
+            "squeeze_force_direction_deg": _nan_list(self.squeeze_force_direction_deg),
+            "wall_force_direction_deg": _nan_list(self.wall_force_direction_deg),
         }
 
     def to_frame(self) -> pd.DataFrame:
@@ -265,6 +286,20 @@ def _opt_list(a: np.ndarray | None) -> list[float] | None:
     return None if a is None else np.asarray(a, dtype=float).tolist()
 
 
+def _nan_list(a: np.ndarray | None) -> list[float | None] | None:
+    """An optional array as a JSON list, NaN as None (JSON has no NaN)."""
+    if a is None:
+        return None
+    return [None if not np.isfinite(v) else float(v) for v in np.asarray(a, dtype=float)]
+
+
+def _direction_deg(f: np.ndarray) -> np.ndarray:
+    """Directions (deg from +y, positive toward +x) of the forces ``f`` (k, 2); NaN for 0."""
+    f = np.asarray(f, dtype=float).reshape(-1, 2)
+    ang = np.degrees(np.arctan2(f[:, 0], f[:, 1])) + 0.0
+    return np.where(np.hypot(f[:, 0], f[:, 1]) > 0.0, ang, np.nan)
+
+
 def _opt_col(a: np.ndarray | None, like: np.ndarray) -> np.ndarray:
     """An optional per-pressure array as a column (NaN when absent)."""
     return np.full(len(like), np.nan) if a is None else np.asarray(a, dtype=float)
@@ -277,6 +312,9 @@ class _MeshSolution:
                  iterations: np.ndarray, path: list[tuple[float, np.ndarray]]) -> None:
         self.prob, self.p, self.states, self.iterations = prob, p, states, iterations
         self.path = path
+        if prob.full:
+            self._full_outputs(states)
+            return
         rows = []
         for u in states:
             ch, cw = prob.contact(u)
@@ -290,6 +328,24 @@ class _MeshSolution:
             ))
         self.arr = np.array(rows).reshape(-1, 5)
         self.stretch = np.array([prob.body.max_stretch(u) for u in states])
+        self.n_dir = np.where(self.arr[:, 0] > 0.0, 0.0, np.nan)
+        self.wall_dir = np.where(self.arr[:, 1] > 0.0, 0.0, np.nan)
+
+    def _full_outputs(self, states: list[np.ndarray]) -> None:
+        """Outputs of the full model: resultant magnitudes and directions."""
+        prob = self.prob
+        rows, on_wire, on_tube = [], [], []
+        for u in states:
+            fw, fh = prob.resultants(u)
+            ch, cw = prob.contact(u)
+            on_wire.append(fw)
+            on_tube.append(fh)
+            rows.append((float(np.hypot(*fw)), float(np.hypot(*fh)), *prob.contact_extent(u),
+                         max(0.0, -float(ch.gap.min()), -float(cw.gap.min()))))
+        self.arr = np.array(rows).reshape(-1, 5)
+        self.stretch = np.array([prob.body.max_stretch(u) for u in states])
+        self.n_dir = _direction_deg(np.array(on_wire))
+        self.wall_dir = _direction_deg(np.array(on_tube))
 
     @property
     def n(self) -> np.ndarray:
@@ -322,7 +378,9 @@ def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings) -
 
 def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
                 penalty: float, density: float, gravity: str, settings: NewtonSettings,
-                spring_rel: float, release: bool = True) -> _MeshSolution:
+                spring_rel: float, release: bool = True, wire_angle_deg: float = 0.0,
+                rotation_rel: float = ROTATION_SPRING_REL,
+                full: bool | None = None) -> _MeshSolution:
     """Follow the load path on one mesh; release the regulariser at each output (gravity none).
 
     With ``release``, the floating-mode spring is also taken out of the path itself at the
@@ -330,7 +388,8 @@ def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spe
     later sub-steps converge without it, so only the outputs up to that sub-step need a
     release solve (one Newton attempt each; they were ~15% of a default squeeze's attempts).
     """
-    prob = SqueezeProblem(structure, material, spec, penalty, density, gravity, spring_rel)
+    prob = SqueezeProblem(structure, material, spec, penalty, density, gravity, spring_rel,
+                          wire_angle_deg, rotation_rel, full)
     path: list[tuple[float, np.ndarray]] = []
     spring = prob.spring_k
     freed_at = np.inf  # the load (MPa) of the sub-step after which the spring is out
@@ -451,11 +510,13 @@ def resolve_accuracy(accuracy: str | None, mesh: MeshSpec | None,
 def _solve_levels(
     structure: Structure, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
     coarse_spec: MeshSpec | None, penalty: float, density: float, gravity: str,
-    s: NewtonSettings, regulariser: float, onset_tol_mpa: float,
+    s: NewtonSettings, regulariser: float, onset_tol_mpa: float, wire_angle_deg: float = 0.0,
+    rotation_rel: float = ROTATION_SPRING_REL, full: bool | None = None,
 ) -> tuple[_MeshSolution, float | None, np.ndarray | None, np.ndarray | None,
            np.ndarray | None]:
     """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm) of :func:`squeeze`."""
-    sol = _solve_mesh(structure, material, p, spec, penalty, density, gravity, s, regulariser)
+    sol = _solve_mesh(structure, material, p, spec, penalty, density, gravity, s, regulariser,
+                      wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full)
     est_pct: np.ndarray | None = None
     est_abs: np.ndarray | None = None
     coarse_n: np.ndarray | None = None
@@ -469,7 +530,8 @@ def _solve_levels(
         # its N enters only the estimate (% level): Newton to 1e-7 instead of 1e-9 suffices
         loose = replace(s, tol_r=max(s.tol_r, 1e-7), tol_u=max(s.tol_u, 1e-8))
         coarse = _solve_mesh(structure, material, p, coarse_spec, penalty, density, gravity,
-                             loose, regulariser, release=False)
+                             loose, regulariser, release=False,
+                             wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full)
         onset = _bracket_onset(coarse, s, onset_tol_mpa)
         coarse_n = coarse.n.copy()
         fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
@@ -493,6 +555,9 @@ def squeeze(
     keep_fields: bool = True,
     onset_tol_mpa: float = 2e-4,
     regulariser: float = defaults.REGULARISER_SPRING_REL,
+    wire_angle_deg: float = 0.0,
+    rotation_regulariser: float = ROTATION_SPRING_REL,
+    full_model: bool = False,
 ) -> SqueezeResult:
     """Squeezing force N(P) between the inflated tube and the wire (paper §3.4, Figs 6-7).
 
@@ -538,6 +603,20 @@ def squeeze(
         With gravity ``'none'``: stiffness of the spring that holds the floating tube before
         it bears on wall and wire, relative to the shear modulus (unitless, > 0). The
         spring carries no force at the reported states, so N does not depend on it.
+    wire_angle_deg : float
+        Angle of the wire centre from the top of the hole, i.e. from the position opposite
+        the tube's contact with the wall (deg, |a| < 90, positive toward +x). 0 (default) is
+        the half model; any other angle solves the full 360 deg section, 1.9-3.1 x the
+        CPU time (docs/formulation.md section 4); only with ``gravity="none"``. Without
+        gravity the frictionless tube slides along the wall until it lies opposite the wire,
+        so N is the centred wire's and only its direction turns by the angle.
+    rotation_regulariser : float
+        Full model: stiffness of the spring on the tube's rotation about its own axis (a
+        zero-energy mode), relative to mu B^2 (unitless, > 0). It carries no force at the
+        reported states, so N does not depend on it.
+    full_model : bool
+        Solve the full section also at angle 0 (a check against the half model; the mesh is
+        the half model's and its mirror image, ``2 n_circ`` elements around).
 
     Returns
     -------
@@ -567,6 +646,21 @@ def squeeze(
     check_positive("density", density, "t/mm^3")
     check_positive("onset_tol_mpa", onset_tol_mpa, "MPa")
     check_positive("regulariser", regulariser)
+    check_positive("rotation_regulariser", rotation_regulariser)
+    try:
+        angle = float(wire_angle_deg)
+    except (TypeError, ValueError):
+        raise InputError(f"wire_angle_deg must be a number in (-90, 90) deg, got "
+                         f"{wire_angle_deg!r}", param="wire_angle_deg") from None
+    if not (np.isfinite(angle) and abs(angle) < 90.0):
+        raise InputError(f"wire_angle_deg must be a number in (-90, 90) deg, got {angle:g}",
+                         param="wire_angle_deg")
+    if (angle != 0.0 or full_model) and gravity != "none":
+        # toward the wall the weight holds the tube at the bottom until the wire pushes it
+        # along the wall; that slide, resisted only by the weight (~1e-4 N/mm per mm against
+        # the contact's 1e5), defeats load control on coarse meshes (fe/_squeeze.py).
+        raise InputError(f"an off-centre wire (wire_angle_deg = {angle:g}) needs gravity "
+                         f"'none', got {gravity!r}", param="wire_angle_deg")
     if gravity not in GRAVITY_OPTIONS:
         raise InputError(f"gravity must be one of {', '.join(GRAVITY_OPTIONS)}, got {gravity!r}",
                          param="gravity")
@@ -576,7 +670,8 @@ def squeeze(
     with collect_stats() as counted:
         sol, onset, coarse_n, est_pct, est_abs = _solve_levels(
             structure, material, p, spec, coarse_spec, penalty, density, gravity, s,
-            regulariser, onset_tol_mpa)
+            regulariser, onset_tol_mpa, angle, rotation_regulariser,
+            True if full_model else None)
     dt = time.perf_counter() - t0
     prob = sol.prob
     L = structure.length_mm
@@ -608,7 +703,9 @@ def squeeze(
         mesh=spec,
         penalty=float(penalty),
         density=float(density),
-        symmetry="half model: u_x = 0 on the plane x = 0 through the hole, tube and wire centres",
+        symmetry=("half model: u_x = 0 on the plane x = 0 through the hole, tube and wire centres"
+                  if not prob.full else f"full model (no symmetry): wire at {angle:g} deg from "
+                  "the top; translations held by the contacts, rotation by a spring"),
         nodes=prob.mesh.nodes.copy(),
         elements=prob.mesh.elements.copy(),
         displacements=disp,
@@ -620,4 +717,7 @@ def squeeze(
         n_error_estimate_n_per_mm=est_abs,
         coarse_squeeze_force_n_per_mm=coarse_n,
         solver_stats=counted.stats,
+        wire_angle_deg=angle,
+        squeeze_force_direction_deg=sol.n_dir,
+        wall_force_direction_deg=sol.wall_dir,
     )
