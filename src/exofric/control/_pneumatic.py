@@ -787,6 +787,10 @@ def tube_volume_table(squeeze_result: SqueezeResult,
     >>> round(float(v[0]), 1), bool(v[1] > v[0])   # pi 4.97^2 / 4 x 116 = 2250.4 mm^3 (exact)
     (2250.3, True)
     """
+    if str(getattr(squeeze_result, "symmetry", "")).startswith("full"):
+        raise InputError("squeeze_result is a full model (off-centre wire): use the centred "
+                         "squeeze (wire_angle_deg = 0); the frictionless tube's cavity is the "
+                         "same, turned", param="squeeze_result")
     disp = getattr(squeeze_result, "displacements", ())
     if not disp or len(disp) != len(squeeze_result.pressure_mpa):
         raise InputError("squeeze_result has no displacements: run squeeze with "
