@@ -193,6 +193,10 @@ def register(app: typer.Typer) -> None:
         plot: Path = typer.Option(None, "--plot",
                                   help="Design map PNG (default OUT/design-map.png)."),
         no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the design map."),
+        surrogate: bool = typer.Option(False, "--surrogate",
+                                       help="Also fit a surrogate of N(P) on the sweep "
+                                       "(leave-one-out error), explore 4096 candidates in the "
+                                       "sweep's box on it and confirm the best 5 with the FE."),
         workers: int = WORKERS,
         scheduler: str = SCHEDULER,
         serial: bool = SERIAL,
@@ -234,6 +238,9 @@ def register(app: typer.Typer) -> None:
         d = search.to_dict(top=top)
         d["sweep"] = run.summary.to_dict()
         d["warnings"] = list(run.warnings)
+        if surrogate:
+            d["surrogate"] = _surrogate(frame, spec, search, target_torque, pmax, gamma, f0,
+                                        objective, validated_only)
         if not no_plot:
             from exofric.plots import plot_design_map
 
@@ -242,6 +249,23 @@ def register(app: typer.Typer) -> None:
                                         plot or Path(run.summary.out) / "design-map.png"))
 
         emit(d, as_json, lambda: _render_design(d))
+
+
+def _surrogate(frame: Any, spec: Any, search: Any, target: float, pmax: float,
+               gamma: float | None, f0: float | None, objective: str,
+               validated_only: bool) -> dict[str, Any]:
+    """``exofric design --surrogate``: fit on the sweep, explore, confirm with FE (JSON part)."""
+    from exofric.design import fit_surrogate, surrogate_search
+
+    sur = fit_surrogate(frame)
+    res = surrogate_search(sur, spec, target, search.arm_radius_m, pmax, gamma=gamma, f0_n=f0,
+                           objective=objective, validated_only=validated_only)
+    d = res.to_dict()
+    d["trained_designs"] = sur.n_designs
+    d["fit_time_s"] = sur.fit_time_s
+    fe_best = search.best
+    d["sweep_best_required_pressure_mpa"] = fe_best["required_pressure_mpa"] if fe_best else None
+    return d
 
 
 def _verify(out: Path, as_json: bool) -> None:
@@ -313,5 +337,19 @@ def _render_design(d: dict[str, Any]) -> None:
         console.print("[yellow]the best design is outside the validated region: its friction "
                       "prediction is an extrapolation[/yellow]; best validated: "
                       + (bv["name"] if bv else "none"))
+    if "surrogate" in d:
+        s = d["surrogate"]
+        loo = s["loo_error_pct"]
+        console.print(f"surrogate: {s['trained_designs']} designs, leave-one-out error max "
+                      f"{loo['max']:.2g} % (median {loo['median']:.2g} %) of N(pmax); "
+                      f"{s['candidates']} candidates in {s['predict_time_s']:.2f} s, "
+                      f"{len(s['confirmed'])} confirmed by FE in {s['confirm_time_s']:.2f} s")
+        b = s["best"]
+        if b is None:
+            console.print("surrogate search: no confirmed design reaches the target")
+        else:
+            console.print(f"surrogate best (FE-confirmed): D {b['hole_mm']:g}, d1 "
+                          f"{b['tube_od_mm']:g}, ID {b['tube_id_mm']:.3g}, d2 {b['wire_mm']:g} "
+                          f"mm, Shore {b['shore']:g}: P* {b['required_pressure_mpa']:.3f} MPa")
     if "plot" in d:
         console.print(f"wrote {d['plot']}")

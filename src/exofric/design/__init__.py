@@ -9,6 +9,11 @@
   workers from the work size (:func:`estimate_design_time_s`, then measured solve times).
 * :func:`search_designs` -> :class:`DesignSearch` -- torque at the maximum pressure, least
   pressure reaching the target, margins, the validated region.
+* :func:`sweep_groups`, :func:`applicability` -- the dimensionless groups (P/G, c/d1, t/d1,
+  d2/d1; response N/(P L d2)) and the distance from the calibration designs in them.
+* :func:`fit_surrogate` -> :class:`SqueezeSurrogate` (N(P) over the groups, leave-one-out
+  errors); :func:`surrogate_search` -> :class:`SurrogateSearch` explores thousands of
+  candidates on it and confirms the best with the FE.
 
 Units: mm, MPa, N, s; torque in Nm, arm radius in m, deviation in %.
 
@@ -20,6 +25,16 @@ Examples
 2
 """
 
+from exofric.design._dimensionless import (
+    APPLICABILITY_THRESHOLD,
+    GROUP_SCALES,
+    GROUPS,
+    Applicability,
+    applicability,
+    dimensionless_groups,
+    squeeze_number,
+    sweep_groups,
+)
 from exofric.design._execution import (
     EXECUTORS,
     ExecutionPlan,
@@ -53,6 +68,13 @@ from exofric.design._store import (
     load_sweep,
     verify_sweep,
 )
+from exofric.design._surrogate import (
+    SqueezeSurrogate,
+    SurrogateSearch,
+    candidate_designs,
+    fit_surrogate,
+    surrogate_search,
+)
 
 __all__ = [
     "BLAS_ENV", "DEFAULT_SPACE", "Design", "design_key", "design_metrics", "DesignSearch",
@@ -60,5 +82,8 @@ __all__ = [
     "OBJECTIVES", "parse_sweep", "plan_execution", "run_sweep", "SCHEMA", "search_designs",
     "solve_design", "SolverSpec", "STATUSES", "sweep", "SweepPool", "SweepRun", "SweepSpec",
     "SweepStore", "SweepSummary", "SweepCheck", "check_rows", "verify_sweep",
-    "check_scheduler",
+    "check_scheduler", "APPLICABILITY_THRESHOLD", "GROUP_SCALES", "GROUPS", "Applicability",
+    "applicability", "dimensionless_groups", "squeeze_number", "sweep_groups",
+    "SqueezeSurrogate", "SurrogateSearch", "candidate_designs", "fit_surrogate",
+    "surrogate_search",
 ]
