@@ -356,3 +356,12 @@ __all__ += ["DEVICE_BAUD", "DEVICE_CONNECT_TIMEOUT_S", "DEVICE_IO_TIMEOUT_S",
             "PNEU_LINE_VOLUME_MM3", "PNEU_PROPORTIONAL_BAND_MPA", "PNEU_RTOL",
             "PNEU_SUPPLY_MPA", "PNEU_TUBE_VOLUME_MM3",
             "SCHEDULE_COMPARE_HYSTERESIS_MPA", "SCHEDULE_FLOOR_RATIO"]
+
+# --- Off-centre wire (full squeeze model; issue 19) -------------------------------------------
+
+#: Full model (off-centre wire): stiffness of the spring on the tube's rotation about its own
+#: axis, relative to mu B^2 (unitless; N mm per mm depth per rad^2 over MPa mm^2). Its force is
+#: zero without gravity; the reported forces do not depend on it (tests/test_squeeze_wire_angle).
+ROTATION_SPRING_REL: Final = 1.0
+
+__all__ += ["ROTATION_SPRING_REL"]

@@ -54,6 +54,7 @@ from collections.abc import Callable
 import numpy as np
 import scipy.sparse as sp
 
+from exofric import defaults
 from exofric.errors import InputError, check_positive
 from exofric.fe._contact import ContactState, RigidCircle, evaluate_contact, nodal_weights
 from exofric.fe._inflation import MeshSpec, PressurizedTube
@@ -71,10 +72,9 @@ GRAVITY_MM_S2 = 9810.0
 #: tube rests on, or toward the wire (the device upside down).
 GRAVITY_OPTIONS = ("none", "toward-wall", "toward-wire")
 
-#: Full model (off-centre wire): stiffness of the spring on the tube's rotation about its own
-#: axis, relative to mu B^2 (N mm per mm depth per rad^2 per MPa mm^2; unitless). Its force is
-#: zero without gravity; the reported forces do not depend on it (tests/test_squeeze_wire_angle).
-ROTATION_SPRING_REL = 1.0
+#: Full model (off-centre wire): stiffness of the rotation spring relative to mu B^2 (see
+#: :data:`exofric.defaults.ROTATION_SPRING_REL`).
+ROTATION_SPRING_REL = defaults.ROTATION_SPRING_REL
 
 
 #: Angle test of a refined direction d (``refine_direction``): kept only if

@@ -27,7 +27,6 @@ from exofric.fe import (
     wall_arc,
     wire_halfwidth,
 )
-from exofric.fe._squeeze import ROTATION_SPRING_REL
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
 from exofric.simulate._stretch import check_stretch
@@ -379,7 +378,7 @@ def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings) -
 def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
                 penalty: float, density: float, gravity: str, settings: NewtonSettings,
                 spring_rel: float, release: bool = True, wire_angle_deg: float = 0.0,
-                rotation_rel: float = ROTATION_SPRING_REL,
+                rotation_rel: float = defaults.ROTATION_SPRING_REL,
                 full: bool | None = None) -> _MeshSolution:
     """Follow the load path on one mesh; release the regulariser at each output (gravity none).
 
@@ -511,7 +510,7 @@ def _solve_levels(
     structure: Structure, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
     coarse_spec: MeshSpec | None, penalty: float, density: float, gravity: str,
     s: NewtonSettings, regulariser: float, onset_tol_mpa: float, wire_angle_deg: float = 0.0,
-    rotation_rel: float = ROTATION_SPRING_REL, full: bool | None = None,
+    rotation_rel: float = defaults.ROTATION_SPRING_REL, full: bool | None = None,
 ) -> tuple[_MeshSolution, float | None, np.ndarray | None, np.ndarray | None,
            np.ndarray | None]:
     """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm) of :func:`squeeze`."""
@@ -556,7 +555,7 @@ def squeeze(
     onset_tol_mpa: float = 2e-4,
     regulariser: float = defaults.REGULARISER_SPRING_REL,
     wire_angle_deg: float = 0.0,
-    rotation_regulariser: float = ROTATION_SPRING_REL,
+    rotation_regulariser: float = defaults.ROTATION_SPRING_REL,
     full_model: bool = False,
 ) -> SqueezeResult:
     """Squeezing force N(P) between the inflated tube and the wire (paper §3.4, Figs 6-7).
