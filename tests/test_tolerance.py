@@ -63,3 +63,28 @@ def test_bad_tolerances() -> None:
         squeeze_tolerances(BASE, 62.5, P, {"wire_mm": 5.0})
     with pytest.raises(InputError, match="tolerance tube_id_mm"):
         squeeze_tolerances(BASE, 62.5, P, {"tube_id_mm": -0.1})
+
+
+def test_failing_nominal_design_is_reported_as_such() -> None:
+    """The nominal design's own error reaches the caller: a solver failure stays a
+    ConvergenceError (exit 3 in the CLI), not an input error; failing samples are counted."""
+    from exofric.errors import ConvergenceError
+
+    def never_converges(st, mat, p):  # type: ignore[no-untyped-def]
+        raise ConvergenceError("squeeze did not converge at 0.31 MPa", reached=0.3)
+
+    with pytest.raises(ConvergenceError, match="did not converge at 0.31 MPa"):
+        squeeze_tolerances(BASE, 62.5, P, {"tube_id_mm": 0.05}, solver=never_converges)
+
+    calls = []
+
+    def nominal_only(st, mat, p):  # type: ignore[no-untyped-def]
+        calls.append(st.tube_id_mm)
+        if len(calls) > 1 and st.tube_id_mm > BASE.tube_id_mm:
+            raise ConvergenceError("sample did not converge")
+        return type("R", (), {"squeeze_force_n": [1.0 + st.tube_id_mm] * len(p)})()
+
+    r = squeeze_tolerances(BASE, 62.5, P, {"tube_id_mm": 0.05}, samples=16,
+                           solver=nominal_only)
+    above = sum(1 for x in calls[1:17] if x > BASE.tube_id_mm)
+    assert r.failed == above and 0 < above < 16

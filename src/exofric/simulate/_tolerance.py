@@ -158,7 +158,10 @@ def squeeze_tolerances(
     Raises
     ------
     InputError
-        Unknown tolerance names, a non-positive sd, an sd not smaller than the nominal value.
+        Unknown tolerance names, a non-positive sd, an sd not smaller than the nominal value,
+        an impossible nominal design, or fewer than 4 samples that solve.
+    ConvergenceError
+        The nominal design's squeeze does not converge.
 
     Examples
     --------
@@ -193,21 +196,23 @@ def squeeze_tolerances(
     p = np.asarray(pressures_mpa, dtype=float).ravel()
     squeeze_options.setdefault("keep_fields", False)
 
-    def solve(values: dict[str, float]) -> NDArray[np.float64] | None:
+    def run(values: dict[str, float]) -> NDArray[np.float64]:
+        """N(P) (N) of the design with ``values`` changed."""
         st, sh = structure, float(shore)
         for k, v in values.items():
             st, sh = _design(st, sh, k, v)
+        mat = MooneyRivlin.from_shore(sh)
+        r = solver(st, mat, p) if solver is not None else squeeze(st, mat, p, **squeeze_options)
+        return np.asarray(r.squeeze_force_n, dtype=float)
+
+    def solve(values: dict[str, float]) -> NDArray[np.float64] | None:
+        """As ``run``, None for a sample that cannot be solved (impossible or not converged)."""
         try:
-            mat = MooneyRivlin.from_shore(sh)
-            r = (solver(st, mat, p) if solver is not None
-                 else squeeze(st, mat, p, **squeeze_options))
-            return np.asarray(r.squeeze_force_n, dtype=float)
+            return run(values)
         except (InputError, ConvergenceError):
             return None
 
-    base = solve({})
-    if base is None:
-        raise InputError("the nominal design does not solve: check it with exofric squeeze")
+    base = run({})    # the nominal design's own InputError or ConvergenceError reaches the user
     u = qmc.Sobol(d=len(names), scramble=True, seed=seed).random(samples)
     z = norm.ppf(np.clip(u, 1e-12, 1 - 1e-12))
     rows, failed = [], 0
