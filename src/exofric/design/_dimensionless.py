@@ -171,15 +171,22 @@ def sweep_groups(frame: pd.DataFrame) -> pd.DataFrame:
     (0.45, 2.155)
     """
     f = frame.copy()
-    d1 = f["tube_od_mm"].to_numpy(float)
     f["shear_modulus_mpa"] = 2.0 * (f["c10_mpa"].to_numpy(float) + f["c01_mpa"].to_numpy(float))
     f["pressure_ratio"] = f["pressure_mpa"].to_numpy(float) / f["shear_modulus_mpa"]
-    f["clearance_ratio"] = (f["hole_mm"].to_numpy(float) - d1 - f["wire_mm"].to_numpy(float)) / d1
-    f["wall_ratio"] = 0.5 * (d1 - f["tube_id_mm"].to_numpy(float)) / d1
-    f["wire_ratio"] = f["wire_mm"].to_numpy(float) / d1
+    _add_geometric_groups(f)
     f["squeeze_number"] = squeeze_number(f["squeeze_force_n"], f["pressure_mpa"],
                                          f["length_mm"], f["wire_mm"])
     return f
+
+
+def _add_geometric_groups(f: pd.DataFrame) -> None:
+    """Add the columns of :data:`GROUPS` (unitless) to a table of designs, in place, from its
+    ``hole_mm``, ``tube_od_mm``, ``tube_id_mm`` and ``wire_mm`` (mm): the definitions of
+    :func:`dimensionless_groups`, one row per design or per sweep row."""
+    d1 = f["tube_od_mm"].to_numpy(float)
+    f["clearance_ratio"] = (f["hole_mm"].to_numpy(float) - d1 - f["wire_mm"].to_numpy(float)) / d1
+    f["wall_ratio"] = 0.5 * (d1 - f["tube_id_mm"].to_numpy(float)) / d1
+    f["wire_ratio"] = f["wire_mm"].to_numpy(float) / d1
 
 
 @dataclass(frozen=True)

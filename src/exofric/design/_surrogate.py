@@ -37,7 +37,12 @@ import pandas as pd
 import scipy.linalg
 import scipy.spatial.distance
 
-from exofric.design._dimensionless import GROUPS, applicability, sweep_groups
+from exofric.design._dimensionless import (
+    GROUPS,
+    _add_geometric_groups,
+    applicability,
+    sweep_groups,
+)
 from exofric.design._runner import solve_design
 from exofric.design._search import DesignSearch, search_designs
 from exofric.design._spec import Design, SweepSpec
@@ -244,10 +249,7 @@ def _design_groups(designs: pd.DataFrame) -> pd.DataFrame:
     if missing:
         raise InputError(f"surrogate designs need columns {', '.join(missing)}")
     g = designs.copy()
-    d1 = g["tube_od_mm"].to_numpy(float)
-    g["clearance_ratio"] = (g["hole_mm"].to_numpy(float) - d1 - g["wire_mm"].to_numpy(float)) / d1
-    g["wall_ratio"] = 0.5 * (d1 - g["tube_id_mm"].to_numpy(float)) / d1
-    g["wire_ratio"] = g["wire_mm"].to_numpy(float) / d1
+    _add_geometric_groups(g)
     return g
 
 
