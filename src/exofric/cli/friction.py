@@ -332,7 +332,6 @@ def _register_predict(app: typer.Typer) -> None:
             d["plot"] = str(save_figure(plot_predictions(res.predictions, bands=bands or None),
                                         plot))
 
-
         def render() -> None:
             measured_any = any(p.max_relative_error_pct is not None for p in res.predictions)
             cols = ["name", "D/d1/d2 mm", "F N", *([] if use_paper else ["T Nm"]), "dev %",
