@@ -204,6 +204,24 @@ def test_candidates_and_bad_input(training: pd.DataFrame) -> None:
         candidate_designs(spec, -1)
 
 
+def test_failed_fe_confirmation_is_a_solver_failure(training: pd.DataFrame,
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """A confirmation solve that does not converge is reported as a ConvergenceError (the
+    CLI's exit 3) naming the candidate, not recorded as a sweep row nor called bad input."""
+    import exofric.simulate
+    from exofric.errors import ConvergenceError
+
+    def no_convergence(*args, **kwargs):  # type: ignore[no-untyped-def]
+        raise ConvergenceError("squeeze did not converge at 0.45 MPa", reached=0.4)
+
+    spec = load_sweep(ROOT / "examples" / "sweep-small.toml")
+    monkeypatch.setattr(exofric.simulate, "squeeze", no_convergence)
+    with pytest.raises(ConvergenceError, match="FE confirmation of .*0.45 MPa") as info:
+        surrogate_search(fit_surrogate(training, loo=False), spec, 15.0, 0.1, 0.6,
+                         candidates=list(spec.runnable), confirm=1)
+    assert info.value.reached == 0.4
+
+
 def test_cli_design_surrogate_json(cli, tmp_path: Path) -> None:
     """`exofric design ... --surrogate --json`: LOO error, confirmed designs, FE-confirmed best
     at least as good as the swept grid's (the grid's designs are candidates too)."""

@@ -222,8 +222,10 @@ def solve_design(
     material: MaterialSpec,
     solver: SolverSpec,
     solve_fn: SolveFn | None = None,
+    *,
+    raise_errors: bool = False,
 ) -> dict[str, Any]:
-    """Solve one design (runs on a Dask worker); never raises for a failed solve.
+    """Solve one design (runs on a Dask worker); a failed solve is recorded, not raised.
 
     Parameters
     ----------
@@ -235,6 +237,9 @@ def solve_design(
         Shore-to-material options and solver settings.
     solve_fn : callable, optional
         Replacement for :func:`exofric.simulate.squeeze` (same signature; tests).
+    raise_errors : bool
+        Raise the solve's exception (e.g. :class:`~exofric.errors.ConvergenceError`) instead
+        of recording it as ``status="failed"`` (a single design outside a sweep).
 
     Returns
     -------
@@ -276,6 +281,8 @@ def solve_design(
         out.update(contact_onset_pressure_mpa=np.nan if onset is None else float(onset),
                    dofs=int(res.dofs), solve_time_s=float(res.solve_time_s))
     except Exception as exc:  # recorded, never fatal for the sweep
+        if raise_errors:
+            raise
         msg = " ".join(str(exc).split()) or "(no message)"
         out.update(status="failed", error=f"{type(exc).__name__}: {msg}")
     out["task_time_s"] = time.perf_counter() - t0

@@ -43,11 +43,10 @@ from exofric.design._dimensionless import (
     applicability,
     sweep_groups,
 )
-from exofric.design._runner import solve_design
+from exofric.design._runner import _deviation, solve_design
 from exofric.design._search import DesignSearch, search_designs
 from exofric.design._spec import Design, SweepSpec
-from exofric.errors import InputError
-from exofric.friction import deviation
+from exofric.errors import ConvergenceError, InputError
 
 __all__ = ["SqueezeSurrogate", "SurrogateSearch", "fit_surrogate", "surrogate_search",
            "candidate_designs"]
@@ -463,16 +462,14 @@ def _rows(designs: Sequence[Design], spec: SweepSpec, pressures: Sequence[float]
     """Sweep-like rows (what :func:`search_designs` reads) for designs with forces ``n``."""
     rows = []
     for i, d in enumerate(designs):
-        s = d.structure()
-        dev = deviation(s, spec.base, spec.threshold_pct)
-        valid = bool(dev.in_validated_region and abs(d.shore - spec.base_shore) < 1e-9)
+        dev_pct, valid = _deviation(d, spec)
         for j, p in enumerate(pressures):
             rows.append({"key": d.key or f"design-{i}", "design_index": i, "name": d.name,
                          "family": d.family, "status": "ok", "pressure_mpa": float(p),
                          "squeeze_force_n": float(n[i, j]), "hole_mm": d.hole_mm,
                          "tube_od_mm": d.tube_od_mm, "tube_id_mm": d.tube_id_mm,
                          "wire_mm": d.wire_mm, "length_mm": d.length_mm, "shore": d.shore,
-                         "deviation_pct": dev.deviation_pct, "in_validated_region": valid,
+                         "deviation_pct": dev_pct, "in_validated_region": valid,
                          "contact_onset_pressure_mpa": float(onset[i])})
     return pd.DataFrame(rows)
 
@@ -557,9 +554,14 @@ def surrogate_search(
     t1 = time.process_time()
     fe_n, fe_on = [], []
     for i in idx:
-        r = solve_design(cands[i], spec.pressures_mpa, spec.material, spec.solver)
-        if r["status"] != "ok":
-            raise InputError(f"FE confirmation of {cands[i].name} failed: {r['error']}")
+        try:
+            r = solve_design(cands[i], spec.pressures_mpa, spec.material, spec.solver,
+                             raise_errors=True)
+        except ConvergenceError as exc:      # a solver failure stays one (CLI exit 3)
+            raise ConvergenceError(f"FE confirmation of {cands[i].name}: {exc}",
+                                   reached=exc.reached) from None
+        except InputError as exc:
+            raise InputError(f"FE confirmation of {cands[i].name}: {exc}") from None
         fe_n.append(r["squeeze_force_n"])
         fe_on.append(r["contact_onset_pressure_mpa"])
     chosen = [cands[i] for i in idx]
