@@ -133,6 +133,16 @@ def _in_process(fn: Callable[[], Any]) -> tuple[float, float, Any]:
     return time.process_time() - c0, time.perf_counter() - t0, res
 
 
+def _exo_mesh(r: Any) -> str:
+    """exofric's mesh(es) of a result: the solution mesh, the error-estimate mesh if any, and
+    the accuracy level."""
+    est = getattr(r, "estimate_mesh", None)
+    mesh = f"quad9 {r.mesh.n_radial} x {r.mesh.n_circ}"
+    if est is not None:
+        mesh += f" + {est.n_radial} x {est.n_circ}"
+    return f"{mesh} ({r.accuracy or 'explicit'})"
+
+
 # --------------------------------------------------------------------------- squeeze
 def _squeeze_reference() -> np.ndarray | None:
     """Stored converged FElupe N(P) (N/mm) of the base group, if available."""
@@ -159,12 +169,8 @@ def _squeeze_codes(mat: MooneyRivlin, workdir: Path, ccx: str | None,
     def exo_solve() -> dict[str, Any]:
         cpu, wall, r = _in_process(lambda: squeeze(BASE, mat, p, gravity="none",
                                                    keep_fields=False))
-        est = getattr(r, "estimate_mesh", None)
-        mesh = f"quad9 {r.mesh.n_radial} x {r.mesh.n_circ}"
-        if est is not None:
-            mesh += f" + {est.n_radial} x {est.n_circ}"
         return {"cpu": cpu, "wall": wall, "values": np.asarray(r.squeeze_force_n_per_mm),
-                "dofs": int(r.dofs), "mesh": f"{mesh} ({r.accuracy or 'explicit'})"}
+                "dofs": int(r.dofs), "mesh": _exo_mesh(r)}
 
     def exo_whole() -> dict[str, Any]:
         wall, cpu, out = _run_process(_exofric_cli() + ["squeeze", *geo, "--shore", f"{SHORE:g}",
@@ -219,12 +225,8 @@ def _inflate_codes(mat: MooneyRivlin, workdir: Path, ccx: str | None,
 
     def exo_solve() -> dict[str, Any]:
         cpu, wall, r = _in_process(lambda: inflate(OD_MM, ID_MM, mat, p, keep_fields=False))
-        est = getattr(r, "estimate_mesh", None)
-        mesh = f"quad9 {r.mesh.n_radial} x {r.mesh.n_circ}"
-        if est is not None:
-            mesh += f" + {est.n_radial} x {est.n_circ}"
         return {"cpu": cpu, "wall": wall, "values": np.asarray(r.outer_diameter_mm),
-                "dofs": int(r.dofs), "mesh": f"{mesh} ({r.accuracy or 'explicit'})"}
+                "dofs": int(r.dofs), "mesh": _exo_mesh(r)}
 
     def exo_whole() -> dict[str, Any]:
         wall, cpu, out = _run_process(_exofric_cli() + [
