@@ -74,6 +74,12 @@ def register(app: typer.Typer) -> None:
             "model, any other angle the full section (2-3x the CPU time; gravity none only). "
             "N is then the magnitude of the tube's resultant force on the wire; its direction "
             "is reported."),
+        mu_wall: float = typer.Option(
+            0.0, "--mu-wall", help="Coulomb friction coefficient tube-hole wall (silicone on "
+            "aluminium) in the section's plane, [0, 2]; 0: frictionless (the paper)."),
+        mu_wire: float = typer.Option(
+            0.0, "--mu-wire", help="Coulomb friction coefficient tube-wire (silicone on steel) "
+            "in the section's plane, [0, 2]; 0: frictionless (the paper)."),
         plot: Path = typer.Option(None, help="PNG: deformed sections (Fig 6) and N(P) (Fig 7)."),
         vtu: Path = typer.Option(None, help="VTU of the half section at the last pressure."),
         as_json: bool = JSON_OPTION,
@@ -94,7 +100,8 @@ def register(app: typer.Typer) -> None:
                             defaults.SQUEEZE_MESH["n_circ"] if n_circ is None else n_circ,
                             grading=grading)
         res = squeeze(st, mat, p, accuracy=accuracy, mesh=mesh, gravity=gravity,
-                      penalty=penalty, wire_angle_deg=wire_angle)
+                      penalty=penalty, wire_angle_deg=wire_angle, mu_wall=mu_wall,
+                      mu_wire=mu_wire)
         out = res.to_dict()
         if _paper_beside(st, p, res.squeeze_force_n):
             from exofric import paper
@@ -120,6 +127,12 @@ def register(app: typer.Typer) -> None:
             cols = ["P (MPa)", "N (N)", "N (N/mm)", "wall (N)", "wire half-width (mm)"]
             if ndir is not None:
                 cols.append("N dir. (deg)")
+            fric = res.mu_wall > 0.0 or res.mu_wire > 0.0
+            s_wire = res.wire_pressure_integral_n_per_mm
+            if s_wire is not None:
+                cols.append("S_wire (N/mm)")
+            if fric:
+                cols += ["stick wire", "stick wall"]
             if est is not None:
                 cols.append("N error est. (%)")
             for c in cols:
@@ -134,11 +147,21 @@ def register(app: typer.Typer) -> None:
                 ]
                 if ndir is not None:
                     row.append("-" if not math.isfinite(ndir[i]) else f"{ndir[i]:.2f}")
+                if s_wire is not None:
+                    row.append(f"{s_wire[i]:.4f}")
+                if fric:
+                    for sf in (res.stick_fraction_wire, res.stick_fraction_wall):
+                        v = float("nan") if sf is None else float(sf[i])
+                        row.append("-" if not math.isfinite(v) else f"{100 * v:.0f}%")
                 if est is not None:
                     row.append("-" if res.squeeze_force_n_per_mm[i] == 0.0 and est[i] == 0.0
                                else f"{est[i]:.2g}")
                 t.add_row(*row)
             console.print(t)
+            if fric:
+                console.print(f"Coulomb friction in the section: mu_wall {res.mu_wall:g} "
+                              f"(tube-hole), mu_wire {res.mu_wire:g} (tube-wire); S_wire = "
+                              "integral of the tube-wire contact pressure over the arc")
             onset = res.contact_onset_pressure_mpa
             console.print(
                 f"contact onset: {onset:.4f} MPa (bracketed to 2e-4 MPa)"

@@ -6,7 +6,8 @@ are in :mod:`exofric.simulate`.
 * :class:`MeshSpec`, :func:`polar_mesh` -- graded polar quad9/quad4 meshes of the tube section.
 * :class:`InflationProblem`, :class:`SqueezeProblem` -- the two boundary-value problems (mixed
   u/p Mooney-Rivlin, follower pressure as a cavity-area potential, rigid circles as penalty
-  contact).
+  contact, optionally with Coulomb friction: :func:`evaluate_friction`, per interface
+  ``mu_wall`` / ``mu_wire``).
 * :class:`NewtonSettings`, :func:`solve_path` -- Newton with line search along a load path,
   with cutback.
 
@@ -19,7 +20,15 @@ Examples
 24
 """
 
-from exofric.fe._contact import ContactState, RigidCircle, evaluate_contact, nodal_weights
+from exofric.fe._contact import (
+    ContactState,
+    FrictionState,
+    RigidCircle,
+    evaluate_contact,
+    evaluate_friction,
+    nodal_weights,
+    polar_angle,
+)
 from exofric.fe._elements import (
     ReferenceData,
     lagrange_1d,
@@ -44,6 +53,8 @@ from exofric.fe._solver import (
 from exofric.fe._squeeze import (
     GRAVITY_MM_S2,
     GRAVITY_OPTIONS,
+    MU_MAX,
+    MU_WARN,
     SqueezeProblem,
     wall_arc,
     wire_halfwidth,
@@ -52,6 +63,8 @@ from exofric.fe._squeeze import (
 __all__ = [
     "GRAVITY_MM_S2",
     "GRAVITY_OPTIONS",
+    "MU_MAX",
+    "MU_WARN",
     "Assembler",
     "ContactState",
     "HyperelasticBody",
@@ -71,6 +84,9 @@ __all__ = [
     "collect_stats",
     "enclosed_area",
     "evaluate_contact",
+    "evaluate_friction",
+    "FrictionState",
+    "polar_angle",
     "graded_angles",
     "lagrange_1d",
     "mooney_rivlin_plane_strain",

@@ -21,7 +21,8 @@ import numpy as np
 
 from exofric.fe._elements import lagrange_1d
 
-__all__ = ["RigidCircle", "ContactState", "nodal_weights", "evaluate_contact"]
+__all__ = ["RigidCircle", "ContactState", "FrictionState", "nodal_weights", "evaluate_contact",
+           "evaluate_friction", "polar_angle"]
 
 
 @dataclass(frozen=True)
@@ -177,3 +178,185 @@ def evaluate_contact(
             - (ew * phi * hess_sign / dist)[:, None, None] * P
         )
     return ContactState(energy, force, blocks, gap, active)
+
+
+@dataclass
+class FrictionState:
+    """Per-node Coulomb friction of one obstacle at a trial state (nodes = contact candidates).
+
+    Tangential slip is measured on the rigid circle: a node's tangential gap is the arc
+    ``g_t = R (theta - theta_a)`` between the polar angle ``theta`` of its projection on the
+    circle and its anchor ``theta_a`` (where it sticks; carried from load step to load step).
+
+    Parameters
+    ----------
+    energy : float
+        Incremental pseudo-energy of the tangential penalty at the current slip bound (N mm
+        per mm depth): ``eps_t w g_t^2 / 2`` sticking, ``B |g_t| - B^2 / (2 eps_t w)``
+        slipping (``B = mu F_n``); its gradient is the tangential force at a fixed bound.
+    force : ndarray (m, 2)
+        Tangential contact force on the body at each node (N per mm depth).
+    blocks : ndarray (m, 2, 2)
+        Nodal tangent blocks (N/mm per mm depth); not symmetric where a node slips.
+    traction : ndarray (m,)
+        Signed tangential force ``T`` (N per mm depth): the force on the body is
+        ``-T R grad(theta)``, i.e. ``T > 0`` opposes motion toward increasing ``theta``.
+    stick : ndarray of bool (m,)
+        Active nodes that stick (``|T| < mu F_n``; in slip ``|T| = mu F_n``).
+    theta : ndarray (m,)
+        Polar angle of each node seen from the circle's centre (rad).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hole = RigidCircle((0.0, 0.0), 5.0, inside=True)
+    >>> x = np.array([[0.05, -5.01]])          # ~0.01 mm in, 0.05 mm past its anchor
+    >>> n = evaluate_contact(x, np.ones(1), hole, 1e5)
+    >>> f = evaluate_friction(x, np.ones(1), hole, 1e5, 1e5, 0.3, np.array([-np.pi / 2]), n)
+    >>> f.stick.tolist(), round(float(f.force[0, 0]))  # slips: mu F_n = 0.3 x 1025 N/mm
+    ([False], -307)
+    """
+
+    energy: float
+    force: np.ndarray
+    blocks: np.ndarray
+    traction: np.ndarray
+    stick: np.ndarray
+    theta: np.ndarray
+
+
+def polar_angle(x: np.ndarray, circle: RigidCircle) -> np.ndarray:
+    """Polar angle (rad) of points ``x`` (m, 2) seen from the centre of ``circle``.
+
+    Parameters
+    ----------
+    x : ndarray (m, 2)
+        Points (mm).
+    circle : RigidCircle
+        The circle whose centre is the origin of the angles.
+
+    Returns
+    -------
+    ndarray (m,)
+        Angles in (-pi, pi] (rad).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> polar_angle(np.array([[0.0, -1.0]]), RigidCircle((0.0, 0.0), 5.0, True)).tolist()
+    [-1.5707963267948966]
+    """
+    d = x - np.asarray(circle.center)
+    return np.arctan2(d[:, 1], d[:, 0])
+
+
+def evaluate_friction(
+    x: np.ndarray, weights: np.ndarray, circle: RigidCircle, eps: float, eps_t: float,
+    mu: float, anchor: np.ndarray, normal: ContactState, tangent: bool = True,
+    bound: np.ndarray | None = None, coupled: bool = True,
+) -> FrictionState:
+    """Coulomb friction (penalty regularised, return map) of points ``x`` on ``circle``.
+
+    The trial force ``T* = eps_t w g_t`` (``g_t = R (theta - theta_a)``, the arc from the
+    anchor; angles wrapped to (-pi, pi]) is returned to the Coulomb cone ``|T| <= mu F_n``
+    (``F_n = eps w <-g>`` the node's normal force from ``normal``): stick ``T = T*`` if
+    ``|T*| <= mu F_n``, else slip ``T = mu F_n sign(T*)``. The force on the body is
+    ``f = -T R grad(theta)`` with ``grad(theta) = t / r`` (``t`` the unit tangent
+    toward increasing theta, ``r`` the distance from the centre). The tangent blocks
+    ``d(-f)/dx`` are exact (consistent):
+
+    * stick: ``eps_t w R^2 grad(theta) grad(theta)^T + T R H``;
+    * slip: ``mu sign(T*) R grad(theta) dF_n/dx^T + T R H`` (not symmetric),
+
+    with ``H`` the Hessian of theta and ``dF_n/dx = -eps w grad(g)``.
+
+    Parameters
+    ----------
+    x : ndarray (m, 2)
+        Current coordinates of the candidate nodes (mm).
+    weights : ndarray (m,)
+        Tributary lengths (mm).
+    circle : RigidCircle
+        The obstacle.
+    eps : float
+        Normal penalty of ``normal`` (N/mm^3).
+    eps_t : float
+        Tangential penalty (N/mm^3: shear traction MPa per mm of elastic slip), > 0.
+    mu : float
+        Coulomb coefficient (unitless, >= 0).
+    anchor : ndarray (m,)
+        Anchor angles theta_a (rad) carried from the last converged state.
+    normal : ContactState
+        The normal contact of the same nodes (:func:`evaluate_contact` with ``tangent`` as
+        here), giving ``F_n``, the gap gradient and the active set.
+    tangent : bool
+        Also compute the tangent blocks (otherwise zeros).
+    bound : ndarray (m,), optional
+        A given slip bound per node (N per mm depth) instead of ``mu F_n``: the Tresca
+        problem of one fixed-point iteration on the bound. Friction then acts wherever the
+        bound is positive, the energy is an exact potential of the force (convex in the
+        slip) and, unless ``coupled``, the blocks are symmetric (no ``dF_n/dx`` term).
+    coupled : bool
+        Include the ``dF_n/dx`` slip term in the blocks also with a given ``bound``: the
+        Coulomb problem's consistent tangent at a state whose bound is ``mu F_n`` (the
+        solver's base points; see :meth:`exofric.fe.SqueezeProblem.refresh`).
+
+    Returns
+    -------
+    FrictionState
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> wire = RigidCircle((0.0, 4.0), 0.8, inside=False)
+    >>> x = np.array([[0.0, 3.2005]])                # 0.0005 mm into the wire, at its anchor
+    >>> n = evaluate_contact(x, np.ones(1), wire, 1e5)
+    >>> f = evaluate_friction(x, np.ones(1), wire, 1e5, 1e5, 0.3, np.array([-np.pi / 2]), n)
+    >>> f.stick.tolist(), float(f.traction[0])       # no slip yet: sticks without force
+    ([True], 0.0)
+    """
+    d = x - np.asarray(circle.center)
+    r2 = d[:, 0] ** 2 + d[:, 1] ** 2
+    theta = np.arctan2(d[:, 1], d[:, 0])
+    rc = circle.radius
+    dth = np.angle(np.exp(1j * (theta - anchor)))          # wrapped to (-pi, pi]
+    gt = rc * dth
+    kw = eps_t * weights
+    frozen = bound is not None
+    on = normal.active if bound is None else bound > 0.0   # nodes that can carry friction
+    if bound is None:
+        bound = mu * np.linalg.norm(normal.force, axis=1)   # mu eps w <-g>
+    trial = kw * gt
+    stick = on & (np.abs(trial) <= bound)
+    sgn = np.sign(trial)
+    T = np.where(stick, trial, np.where(on, bound * sgn, 0.0))
+    gth = np.column_stack([-d[:, 1], d[:, 0]]) / r2[:, None]  # grad(theta)
+    force = -(T * rc)[:, None] * gth
+    slip = on & ~stick
+    energy = float(np.sum(np.where(stick, 0.5 * kw * gt**2, 0.0))
+                   + np.sum(np.where(slip, bound * np.abs(gt) - bound**2 / (2.0 * kw), 0.0)))
+    blocks = np.zeros((len(x), 2, 2))
+    if tangent:
+        # Hessian of theta = atan2(dy, dx): [[2 dx dy, dy^2 - dx^2], [dy^2 - dx^2, -2 dx dy]]/r^4
+        dx, dy = d[:, 0], d[:, 1]
+        r4 = r2**2
+        H = np.empty((len(x), 2, 2))
+        H[:, 0, 0] = 2.0 * dx * dy / r4
+        H[:, 1, 1] = -H[:, 0, 0]
+        H[:, 0, 1] = H[:, 1, 0] = (dy**2 - dx**2) / r4
+        # F_n = eps w <-g>, so dF_n/dx = -eps w grad(g) on active nodes
+        dfn = -(eps * weights * normal.active)[:, None] * _gap_grad(d, circle)
+        stick_b = (kw * rc**2)[:, None, None] * np.einsum("mi,mj->mij", gth, gth)
+        slip_b = (mu if coupled or not frozen else 0.0) * (sgn * rc)[:, None, None] * np.einsum(
+            "mi,mj->mij", gth, dfn)
+        blocks = (np.where(stick[:, None, None], stick_b, 0.0)
+                  + np.where(slip[:, None, None], slip_b, 0.0)
+                  + (T * rc)[:, None, None] * H)
+    return FrictionState(energy, force, blocks, T, stick, theta)
+
+
+def _gap_grad(d: np.ndarray, circle: RigidCircle) -> np.ndarray:
+    """Gradient of the signed gap (unitless) at points ``d`` relative to the centre."""
+    n = d / np.hypot(d[:, 0], d[:, 1])[:, None]
+    return -n if circle.inside else n
+

@@ -657,6 +657,11 @@ def _spsolve(K: sp.csc_matrix, rhs: np.ndarray) -> np.ndarray:
     return np.asarray(spsolve(K, rhs))
 
 
+#: Fixed-point iterations on the frozen slip bounds of a frictional problem allowed per load
+#: (sub-)step before the attempt counts as failed.
+_MAX_REFRESH = 60
+
+
 def _newton(
     problem: Problem, u: np.ndarray, load: float, s: NewtonSettings
 ) -> tuple[np.ndarray, int] | None:
@@ -688,7 +693,10 @@ def _newton_attempt(
         counter[1] += 1
         return base(A, b)
 
+    refresh = getattr(problem, "refresh", None)
     for it in range(1, s.max_iter + 1):
+        if refresh is not None and refresh(u) > 0.0:
+            cached = None  # friction: slip bounds frozen at u, so the trial's are stale
         # the accepted full-step trial of the previous iteration already has the tangent
         out = cached if cached is not None else problem.evaluate(u, load, True)
         cached = None
@@ -829,6 +837,9 @@ def _follow(
             "finer mesh, or check that the geometry is feasible (tube and wire fit the hole)",
             reached=None)
     u, iters_start = start
+    commit = getattr(problem, "commit", None)  # path-dependent problems (friction) keep state
+    if commit is not None:
+        commit(u)
     for target in loads:
         iters = iters_start
         iters_start = 0
@@ -866,6 +877,8 @@ def _follow(
             nsteps += 1
             cut = 0
             step = min(s.max_step, h * 1.5)
+            if commit is not None:
+                commit(u)
             if on_step is not None:
                 on_step(lam, u)
         out.append(PathPoint(float(target), u.copy(), iters, nsteps))

@@ -56,17 +56,31 @@ import scipy.sparse as sp
 
 from exofric import defaults
 from exofric.errors import InputError, check_positive
-from exofric.fe._contact import ContactState, RigidCircle, evaluate_contact, nodal_weights
+from exofric.fe._contact import (
+    ContactState,
+    FrictionState,
+    RigidCircle,
+    evaluate_contact,
+    evaluate_friction,
+    nodal_weights,
+    polar_angle,
+)
 from exofric.fe._inflation import MeshSpec, PressurizedTube
 from exofric.fe._mesh import polar_mesh
 from exofric.fe._solver import Assembler
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
 
-__all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "GRAVITY_OPTIONS", "ROTATION_SPRING_REL",
+__all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "MU_MAX", "MU_WARN", "GRAVITY_OPTIONS",
+           "ROTATION_SPRING_REL",
            "wire_halfwidth", "wall_arc", "ring_wire_halfwidth", "ring_wall_arc"]
 
 GRAVITY_MM_S2 = 9810.0
+
+#: Largest Coulomb coefficient accepted (unitless); above :data:`MU_WARN` it is implausible
+#: for silicone on metal (a warning where users give it).
+MU_MAX = 2.0
+MU_WARN = 1.5
 
 #: Orientations of gravity in the squeeze: none (regulariser only), toward the hole wall the
 #: tube rests on, or toward the wire (the device upside down).
@@ -112,6 +126,14 @@ class SqueezeProblem(PressurizedTube):
     full : bool, optional
         Force the full model (True, also at angle 0: for checks against the half model) or
         the half one (False: angle 0 only); default: full iff the angle is not 0.
+    mu_wall, mu_wire : float
+        Coulomb coefficients (unitless, [0, 2]) of the tube on the hole wall and on the wire,
+        in the section's plane; 0: frictionless (see :func:`exofric.fe.evaluate_friction`).
+    friction_penalty : float, optional
+        Tangential penalty eps_t (N/mm^3); default: ``penalty``.
+    frictional : bool, optional
+        Run the frictional machinery (anchors, bounds, commits); default: iff a mu > 0
+        (True with mu = 0 checks it against the frictionless solver).
 
     Attributes
     ----------
@@ -146,7 +168,18 @@ class SqueezeProblem(PressurizedTube):
         wire_angle_deg: float = 0.0,
         rotation_rel: float = ROTATION_SPRING_REL,
         full: bool | None = None,
+        mu_wall: float = 0.0,
+        mu_wire: float = 0.0,
+        friction_penalty: float | None = None,
+        frictional: bool | None = None,
     ) -> None:
+        for name, m in (("mu_wall", mu_wall), ("mu_wire", mu_wire)):
+            if not (np.isfinite(m) and 0.0 <= m <= MU_MAX):
+                raise InputError(f"{name} must be a friction coefficient in [0, {MU_MAX:g}], "
+                                 f"got {m:g}", param=name)
+        self.mu = (float(mu_wall), float(mu_wire))
+        self.frictional = (mu_wall > 0.0 or mu_wire > 0.0) if frictional is None \
+            else bool(frictional)
         if gravity not in GRAVITY_OPTIONS:
             raise InputError(
                 f"gravity must be one of {', '.join(GRAVITY_OPTIONS)}, got {gravity!r}",
@@ -160,6 +193,7 @@ class SqueezeProblem(PressurizedTube):
             raise InputError("the half model needs wire_angle_deg = 0", param="wire_angle_deg")
         self.wire_angle_deg = a
         self.rot_k = 0.0
+        self._eps_t = friction_penalty
         if self.full:
             self._init_full(structure, material, spec, penalty, density, gravity, spring_rel,
                             np.radians(a), rotation_rel)
@@ -203,6 +237,7 @@ class SqueezeProblem(PressurizedTube):
         self.hole = RigidCircle((0.0, 0.0), 0.5 * s.hole_mm, inside=True, name="hole")
         self.wire = RigidCircle(s.wire_center_mm, 0.5 * s.wire_mm, inside=False, name="wire")
         self.penalty = float(penalty)
+        self._init_friction(friction_penalty)
         # self-weight: f_a = int N_a b dV with b = (0, -rho g) (N/mm^3)
         r = self.body.ref
         nodal_vol = np.bincount(
@@ -291,6 +326,7 @@ class SqueezeProblem(PressurizedTube):
         self.wire = RigidCircle((float(wc[0]), float(wc[1])), 0.5 * s.wire_mm, inside=False,
                                 name="wire")
         self.penalty = float(penalty)
+        self._init_friction(self._eps_t)
         r = self.body.ref
         nodal_vol = np.bincount(
             mesh.elements.ravel(), weights=np.einsum("eq,qa->ea", r.w, r.N).ravel(), minlength=n
@@ -300,6 +336,118 @@ class SqueezeProblem(PressurizedTube):
         self._weight = density * GRAVITY_MM_S2 * float(nodal_vol.sum())
         if gravity == "none":
             self.f_body[:] = 0.0
+
+    def _init_friction(self, friction_penalty: float | None) -> None:
+        """Tangential penalty and the anchors of the outer nodes (their reference angles)."""
+        eps_t = self.penalty if friction_penalty is None else float(friction_penalty)
+        check_positive("friction_penalty", eps_t)
+        self.penalty_t = eps_t
+        xo = self.X.reshape(-1, 2)[self.outer]
+        self.anchors = (polar_angle(xo, self.hole), polar_angle(xo, self.wire))
+        #: frozen slip bounds mu F_n of the outer nodes (hole, wire) (N per mm depth)
+        self.bounds = (np.zeros(len(xo)), np.zeros(len(xo)))
+        #: frictional dissipation of each committed sub-step (N mm per mm depth, full model's
+        #: section; the half model's is doubled), in order
+        self.dissipation: list[float] = []
+
+    def friction(self, u: np.ndarray, normal: tuple[ContactState, ContactState] | None = None,
+                 tangent: bool = False, frozen: bool = False
+                 ) -> tuple[FrictionState, FrictionState] | None:
+        """Friction states (hole, wire) of the outer nodes at ``u`` (None if frictionless).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        normal : tuple of ContactState, optional
+            The normal contact states at ``u`` (computed if not given).
+        tangent : bool
+            Also compute the tangent blocks.
+        frozen : bool
+            Use the frozen slip bounds :attr:`bounds` (the solver's Tresca iterations; see
+            :meth:`refresh`) instead of ``mu F_n`` at ``u``.
+        """
+        if not self.frictional:
+            return None
+        if normal is None:
+            normal = self.contact(u, tangent)
+        xo = (self.X + u).reshape(-1, 2)[self.outer]
+        bounds = self.bounds if frozen else (None, None)
+        return tuple(  # type: ignore[return-value]
+            evaluate_friction(xo, self.w_outer, c, self.penalty, self.penalty_t, m, a, n,
+                              tangent, b)
+            for c, m, a, n, b in zip((self.hole, self.wire), self.mu, self.anchors, normal,
+                                     bounds, strict=True))
+
+    def refresh(self, u: np.ndarray) -> float:
+        """Set the frozen slip bounds to ``mu F_n`` at ``u``; return their largest change.
+
+        The solver's Newton iterations solve the Tresca problem of the frozen bounds (an
+        exact potential: its energy drives the line search); this fixed point on the bound
+        then makes the converged state satisfy Coulomb's law ``|T| <= mu F_n``.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            A converged state of the frozen-bound problem (mm).
+
+        Returns
+        -------
+        float
+            Largest change of a node's bound (N per mm depth); 0 if frictionless.
+        """
+        if not self.frictional:
+            return 0.0
+        ch, cw = self.contact(u)
+        new = tuple(m * np.linalg.norm(c.force, axis=1) for m, c in zip(self.mu, (ch, cw),
+                                                                            strict=True))
+        change = max(float(np.max(np.abs(n - b))) for n, b in zip(new, self.bounds,
+                                                                   strict=True))
+        self.bounds = (new[0], new[1])
+        return change
+
+    def commit(self, u: np.ndarray) -> None:
+        """Accept the converged state ``u``: move each node's anchor by its slip.
+
+        A sticking node keeps its anchor; a slipping one's moves so that its force is the
+        Coulomb bound (``theta_a = theta - T / (eps_t w R)``); a node out of contact is
+        anchored where it is (where it will touch). The frictional work of the step,
+        ``sum |T| R |delta theta_a|`` (>= 0 by construction of the return map), is appended to
+        :attr:`dissipation`.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Converged nodal displacements (mm).
+        """
+        fr = self.friction(u)
+        if fr is None:
+            return
+        work = 0.0
+        new = []
+        for f, c, a in zip(fr, (self.hole, self.wire), self.anchors, strict=True):
+            na = f.theta - f.traction / (self.penalty_t * self.w_outer * c.radius)
+            slip = c.radius * np.angle(np.exp(1j * (na - a)))
+            work += float(np.sum(f.traction * slip))
+            new.append(na)
+        self.anchors = (new[0], new[1])
+        self.dissipation.append(work if self.full else 2.0 * work)
+
+    def friction_state(self) -> tuple[np.ndarray, ...]:
+        """Anchors (hole, wire; rad) and frozen bounds (hole, wire; N/mm) of the outer nodes:
+        the path's friction memory."""
+        return tuple(a.copy() for a in (*self.anchors, *self.bounds))
+
+    def set_friction_state(self, state: tuple[np.ndarray, ...]) -> None:
+        """Restore a state saved by :meth:`friction_state` (re-solves from a stored state).
+
+        Parameters
+        ----------
+        state : tuple of ndarray
+            Anchors (hole, wire; rad) and bounds (hole, wire; N/mm) of the outer nodes.
+        """
+        self.anchors = (state[0].copy(), state[1].copy())
+        self.bounds = (state[2].copy(), state[3].copy())
 
     def rotation(self, u: np.ndarray) -> float:
         """Full model: rotation (rad) held by the rotation spring (0 for the half model).
@@ -352,6 +500,13 @@ class SqueezeProblem(PressurizedTube):
         ch, cw = self.contact(u, tangent)
         R -= self.f_body
         np.subtract.at(R, self.contact_dofs.ravel(), (ch.force + cw.force).ravel())
+        fr = self.friction(u, (ch, cw), tangent, frozen=True)
+        blocks = ch.blocks + cw.blocks
+        if fr is not None:
+            fh, fw = fr
+            np.subtract.at(R, self.contact_dofs.ravel(), (fh.force + fw.force).ravel())
+            energy += fh.energy + fw.energy
+            blocks = blocks + fh.blocks + fw.blocks
         if self.full:
             sd, rd, c = self.spring_dofs, self.rot_dofs, self.rot_c
             us = u[sd]
@@ -360,13 +515,13 @@ class SqueezeProblem(PressurizedTube):
             R[rd] += self.rot_k * om * c
             energy += (ch.energy + cw.energy - float(self.f_body @ u)
                        + 0.5 * self.spring_k * float(us @ us) + 0.5 * self.rot_k * om**2)
-            K = (self.tangent(st, load, ch.blocks + cw.blocks, np.full(2, self.spring_k),
+            K = (self.tangent(st, load, blocks, np.full(2, self.spring_k),
                               self.rot_k * np.outer(c, c).ravel()) if tangent else None)
             return energy, R, K
         uy = float(u[self.spring_dof])
         R[self.spring_dof] += self.spring_k * uy
         energy += ch.energy + cw.energy - float(self.f_body @ u) + 0.5 * self.spring_k * uy**2
-        K = (self.tangent(st, load, ch.blocks + cw.blocks, np.array([self.spring_k]))
+        K = (self.tangent(st, load, blocks, np.array([self.spring_k]))
              if tangent else None)
         return energy, R, K
 
@@ -522,10 +677,30 @@ class SqueezeProblem(PressurizedTube):
         return (wire_halfwidth(xo, cw.gap, self.wire.center, self.wire.radius),
                 wall_arc(xo, ch.active, self.hole.radius))
 
+    def contact_forces(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Contact force (normal plus friction) of the hole and of the wire on each outer node.
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+
+        Returns
+        -------
+        tuple of ndarray (m, 2)
+            ``(hole, wire)`` forces on the tube's outer nodes (N per mm depth).
+        """
+        ch, cw = self.contact(u)
+        fr = self.friction(u, (ch, cw))
+        if fr is None:
+            return ch.force, cw.force
+        return ch.force + fr[0].force, cw.force + fr[1].force
+
     def resultants(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Force of the tube on the wire and of the hole wall on the tube (N/mm), full section.
 
-        The half model's are vertical by symmetry (twice its half's vertical components).
+        Normal and friction forces. The half model's are vertical by symmetry (twice its
+        half's vertical components).
 
         Parameters
         ----------
@@ -537,11 +712,11 @@ class SqueezeProblem(PressurizedTube):
         tuple of ndarray (2,)
             ``(on_wire, wall_on_tube)``, (x, y) components (N per mm depth).
         """
-        ch, cw = self.contact(u)
+        fh, fw = self.contact_forces(u)
         if self.full:
-            return -cw.force.sum(axis=0) + 0.0, ch.force.sum(axis=0) + 0.0
-        return (np.array([0.0, -2.0 * cw.force[:, 1].sum() + 0.0]),
-                np.array([0.0, 2.0 * ch.force[:, 1].sum() + 0.0]))
+            return -fw.sum(axis=0) + 0.0, fh.sum(axis=0) + 0.0
+        return (np.array([0.0, -2.0 * fw[:, 1].sum() + 0.0]),
+                np.array([0.0, 2.0 * fh[:, 1].sum() + 0.0]))
 
     def bearing_gap(self, u: np.ndarray) -> float:
         """Smallest gap (mm) to the obstacle the tube touches last: where the squeeze begins.

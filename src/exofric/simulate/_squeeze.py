@@ -14,14 +14,24 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric import defaults
-from exofric.errors import ConvergenceError, InputError, check_positive, check_pressures
+from exofric.errors import (
+    ConvergenceError,
+    InputError,
+    check_positive,
+    check_pressures,
+    check_range,
+    warn_implausible,
+)
 from exofric.fe import (
     GRAVITY_OPTIONS,
+    MU_MAX,
+    MU_WARN,
     MeshSpec,
     NewtonSettings,
     SolverStats,
     SqueezeProblem,
     collect_stats,
+    nodal_weights,
     solve_path,
     von_mises,
     wall_arc,
@@ -124,6 +134,29 @@ class SqueezeResult:
     wall_force_direction_deg : ndarray or None
         Direction of the hole wall's resultant force on the tube (deg from +y, positive toward
         +x; NaN where it is 0).
+    mu_wall, mu_wire : float
+        Coulomb coefficients of the tube on the wall and on the wire (unitless; 0:
+        frictionless).
+    friction_penalty : float
+        Tangential penalty (N/mm^3).
+    wire_pressure_integral_n_per_mm, wall_pressure_integral_n_per_mm : ndarray or None
+        Integral of the normal contact pressure over the tube-wire (S_wire) and tube-wall
+        contact arcs per pressure (N per mm of tube), full section.
+    wire_tangential_force_n_per_mm, wall_tangential_force_n_per_mm : ndarray or None
+        Integral of the magnitude of the in-plane friction traction over those arcs (N/mm;
+        0 without friction).
+    stick_fraction_wire, stick_fraction_wall : ndarray or None
+        Share of each contact arc (by length) that sticks (unitless; NaN without contact or
+        without friction).
+    contact : tuple of dict
+        Per pressure, ``{"wire": ..., "wall": ...}``, each with lists along the contact arc
+        (nodes in contact, sorted): ``arc_mm`` and ``angle_deg`` from the arc's centre (the
+        side of the circle facing away from the other obstacle; the half model's x >= 0
+        half), ``pressure_mpa`` (true normal pressure), ``shear_mpa`` (signed friction
+        traction, MPa) and ``stick``.
+    friction_dissipation_n_per_mm : ndarray or None
+        Frictional work of each committed load sub-step (N mm per mm depth, full section;
+        >= 0), None without friction.
 
     Examples
     --------
@@ -168,6 +201,17 @@ class SqueezeResult:
     wire_angle_deg: float = 0.0
     squeeze_force_direction_deg: np.ndarray | None = None
     wall_force_direction_deg: np.ndarray | None = None
+    mu_wall: float = 0.0
+    mu_wire: float = 0.0
+    friction_penalty: float = defaults.CONTACT_PENALTY_N_PER_MM3
+    wire_pressure_integral_n_per_mm: np.ndarray | None = None
+    wall_pressure_integral_n_per_mm: np.ndarray | None = None
+    wire_tangential_force_n_per_mm: np.ndarray | None = None
+    wall_tangential_force_n_per_mm: np.ndarray | None = None
+    stick_fraction_wire: np.ndarray | None = None
+    stick_fraction_wall: np.ndarray | None = None
+    contact: tuple[dict[str, dict[str, list[Any]]], ...] = field(default=(), repr=False)
+    friction_dissipation_n_per_mm: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def length_mm(self) -> float:
@@ -208,6 +252,16 @@ class SqueezeResult:
             "wire_angle_deg": self.wire_angle_deg,
             "squeeze_force_direction_deg": _nan_list(self.squeeze_force_direction_deg),
             "wall_force_direction_deg": _nan_list(self.wall_force_direction_deg),
+            "mu_wall": self.mu_wall,
+            "mu_wire": self.mu_wire,
+            "friction_penalty_n_per_mm3": self.friction_penalty,
+            "wire_pressure_integral_n_per_mm": _nan_list(self.wire_pressure_integral_n_per_mm),
+            "wall_pressure_integral_n_per_mm": _nan_list(self.wall_pressure_integral_n_per_mm),
+            "wire_tangential_force_n_per_mm": _nan_list(self.wire_tangential_force_n_per_mm),
+            "wall_tangential_force_n_per_mm": _nan_list(self.wall_tangential_force_n_per_mm),
+            "stick_fraction_wire": _nan_list(self.stick_fraction_wire),
+            "stick_fraction_wall": _nan_list(self.stick_fraction_wall),
+            "contact": list(self.contact),
         }
 
     def to_frame(self) -> pd.DataFrame:
@@ -248,6 +302,16 @@ class SqueezeResult:
             "max_stretch": self.max_stretch,
             "newton_iterations": np.asarray(self.newton_iterations, dtype=int),
             "n_error_estimate_pct": _opt_col(self.n_error_estimate_pct, self.pressure_mpa),
+            "wire_pressure_integral_n_per_mm": _opt_col(self.wire_pressure_integral_n_per_mm,
+                                                        self.pressure_mpa),
+            "wall_pressure_integral_n_per_mm": _opt_col(self.wall_pressure_integral_n_per_mm,
+                                                        self.pressure_mpa),
+            "wire_tangential_force_n_per_mm": _opt_col(self.wire_tangential_force_n_per_mm,
+                                                       self.pressure_mpa),
+            "wall_tangential_force_n_per_mm": _opt_col(self.wall_tangential_force_n_per_mm,
+                                                       self.pressure_mpa),
+            "stick_fraction_wire": _opt_col(self.stick_fraction_wire, self.pressure_mpa),
+            "stick_fraction_wall": _opt_col(self.stick_fraction_wall, self.pressure_mpa),
         })
 
     def plot(self, ax: Any | None = None) -> Any:
@@ -280,6 +344,32 @@ class SqueezeResult:
         return plot_squeeze_force(self, ax)
 
 
+def check_friction(name: str, value: float) -> float:
+    """A Coulomb coefficient (unitless) in [0, 2]; warns above 1.5 (implausible on metal).
+
+    Parameters
+    ----------
+    name : str
+        Parameter name for the messages (e.g. ``"mu_wall"``).
+    value : float
+        The coefficient.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> check_friction("mu_wall", 0.3)
+    0.3
+    """
+    v = check_range(name, value, 0.0, MU_MAX)
+    if v > MU_WARN:
+        warn_implausible(f"{name} = {v:g} is above {MU_WARN:g}: implausible for silicone on "
+                         "aluminium or steel (measured 0.2-1.2); check the value")
+    return v
+
+
 def _opt_list(a: np.ndarray | None) -> list[float] | None:
     """An optional array as a JSON list (None stays None)."""
     return None if a is None else np.asarray(a, dtype=float).tolist()
@@ -308,19 +398,28 @@ class _MeshSolution:
     """One squeeze solve on one mesh: the per-pressure outputs and the states behind them."""
 
     def __init__(self, prob: SqueezeProblem, p: np.ndarray, states: list[np.ndarray],
-                 iterations: np.ndarray, path: list[tuple[float, np.ndarray]]) -> None:
+                 iterations: np.ndarray, path: list[tuple[float, np.ndarray]],
+                 fstates: list[tuple[np.ndarray, ...]] | None = None,
+                 path_fstates: dict[float, tuple[np.ndarray, ...]] | None = None) -> None:
         self.prob, self.p, self.states, self.iterations = prob, p, states, iterations
         self.path = path
+        self.fstates = fstates
+        self.path_fstates = path_fstates or {}
+        self.interfaces = np.array([self._interfaces(u, k) for k, u in enumerate(states)]
+                                   ).reshape(-1, 6)
+        self.profiles = [self._profiles(u, k) for k, u in enumerate(states)]
         if prob.full:
             self._full_outputs(states)
             return
         rows = []
-        for u in states:
+        for k, u in enumerate(states):
             ch, cw = prob.contact(u)
+            self._use(k)
+            fh, fw = prob.contact_forces(u)
             xo = (prob.X + u).reshape(-1, 2)[prob.outer]
             rows.append((
-                -2.0 * cw.force[:, 1].sum() + 0.0,  # + 0.0: no negative zero
-                2.0 * ch.force[:, 1].sum() + 0.0,
+                -2.0 * fw[:, 1].sum() + 0.0,  # + 0.0: no negative zero
+                2.0 * fh[:, 1].sum() + 0.0,
                 wire_halfwidth(xo, cw.gap, prob.wire.center, prob.wire.radius),
                 wall_arc(xo, ch.active, prob.hole.radius),
                 max(0.0, -float(ch.gap.min()), -float(cw.gap.min())),
@@ -330,11 +429,69 @@ class _MeshSolution:
         self.n_dir = np.where(self.arr[:, 0] > 0.0, 0.0, np.nan)
         self.wall_dir = np.where(self.arr[:, 1] > 0.0, 0.0, np.nan)
 
+    def _use(self, k: int) -> None:
+        """Give the problem the friction state of output ``k`` (its anchors and bounds)."""
+        if self.fstates is not None:
+            self.prob.set_friction_state(self.fstates[k])
+
+    def _interfaces(self, u: np.ndarray, k: int) -> tuple[float, ...]:
+        """Per-interface integrals at output ``k`` (full section, N/mm; stick fractions).
+
+        ``(S_wire, S_wall, T_wire, T_wall, stick_wire, stick_wall)``: the integrals of the
+        normal contact pressure over the wire's and the wall's contact arcs, those of the
+        magnitude of the tangential traction, and the share of each contact arc (by
+        tributary length) that sticks (NaN without contact or without friction).
+        """
+        prob = self.prob
+        self._use(k)
+        ch, cw = prob.contact(u)
+        fr = prob.friction(u, (ch, cw))
+        half = 1.0 if prob.full else 2.0
+        out = [half * float(np.linalg.norm(c.force, axis=1).sum()) for c in (cw, ch)]
+        if fr is None:
+            return (*out, 0.0, 0.0, np.nan, np.nan)
+        out += [half * float(np.abs(f.traction).sum()) for f in (fr[1], fr[0])]
+        for f, c in ((fr[1], cw), (fr[0], ch)):
+            w = prob.w_outer * c.active
+            out.append(float((w * f.stick).sum() / w.sum()) if w.sum() > 0 else np.nan)
+        return tuple(out)
+
+    def _profiles(self, u: np.ndarray, k: int) -> dict[str, dict[str, list[float]]]:
+        """Contact profiles of output ``k`` along each arc (see :attr:`SqueezeResult.contact`)."""
+        prob = self.prob
+        self._use(k)
+        ch, cw = prob.contact(u)
+        fr = prob.friction(u, (ch, cw))
+        xo = (prob.X + u).reshape(-1, 2)[prob.outer]
+        wc, hc = np.asarray(prob.wire.center), np.asarray(prob.hole.center)
+        e = (wc - hc) / np.hypot(*(wc - hc))
+        ref = float(np.arctan2(-e[1], -e[0]))       # both arcs centre on the side facing away
+        # current tributary lengths: pressures are true (deformed-surface) tractions
+        xa = (prob.X + u).reshape(-1, 2)
+        w_now = nodal_weights(prob.mesh.boundary_edges("outer"), xa, len(xa))[prob.outer]
+        out = {}
+        for name, c, f in (("wire", cw, None if fr is None else fr[1]),
+                           ("wall", ch, None if fr is None else fr[0])):
+            circ = prob.wire if name == "wire" else prob.hole
+            d = xo - np.asarray(circ.center)
+            ang = np.angle(np.exp(1j * (np.arctan2(d[:, 1], d[:, 0]) - ref)))
+            i = np.flatnonzero(c.active)
+            i = i[np.argsort(ang[i])]
+            w = w_now[i]
+            t = np.zeros(len(i)) if f is None else f.traction[i] / w
+            st = np.zeros(len(i), bool) if f is None else f.stick[i]
+            out[name] = {"arc_mm": (circ.radius * ang[i]).tolist(),
+                         "angle_deg": np.degrees(ang[i]).tolist(),
+                         "pressure_mpa": (np.linalg.norm(c.force[i], axis=1) / w).tolist(),
+                         "shear_mpa": t.tolist(), "stick": st.astype(bool).tolist()}
+        return out
+
     def _full_outputs(self, states: list[np.ndarray]) -> None:
         """Outputs of the full model: resultant magnitudes and directions."""
         prob = self.prob
         rows, on_wire, on_tube = [], [], []
-        for u in states:
+        for k, u in enumerate(states):
+            self._use(k)
             fw, fh = prob.resultants(u)
             ch, cw = prob.contact(u)
             on_wire.append(fw)
@@ -358,7 +515,8 @@ def _newton_at(prob: SqueezeProblem, u: np.ndarray, p: float, lam0: float,
     return solve_path(prob, [p], s, u0=u, load0=lam0)[0].u
 
 
-def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings) -> np.ndarray:
+def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings,
+             fstate: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
     """gravity "none": the equilibrium at ``p`` (MPa) without the floating-mode spring.
 
     Before the tube bears on both the wall and the wire the spring's force is zero at
@@ -368,6 +526,8 @@ def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings) -
     if prob.spring_k == 0.0 or prob.bearing_gap(u) > 0.0:
         return u
     k = prob.spring_k
+    if fstate is not None:
+        prob.set_friction_state(fstate)
     try:
         prob.spring_k = 0.0
         return _newton_at(prob, u, p, p, s)
@@ -379,7 +539,8 @@ def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spe
                 penalty: float, density: float, gravity: str, settings: NewtonSettings,
                 spring_rel: float, release: bool = True, wire_angle_deg: float = 0.0,
                 rotation_rel: float = defaults.ROTATION_SPRING_REL,
-                full: bool | None = None) -> _MeshSolution:
+                full: bool | None = None, mu: tuple[float, float] = (0.0, 0.0),
+                friction_penalty: float | None = None) -> _MeshSolution:
     """Follow the load path on one mesh; release the regulariser at each output (gravity none).
 
     With ``release``, the floating-mode spring is also taken out of the path itself at the
@@ -388,14 +549,21 @@ def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spe
     release solve (one Newton attempt each; they were ~15% of a default squeeze's attempts).
     """
     prob = SqueezeProblem(structure, material, spec, penalty, density, gravity, spring_rel,
-                          wire_angle_deg, rotation_rel, full)
+                          wire_angle_deg, rotation_rel, full, mu_wall=mu[0], mu_wire=mu[1],
+                          friction_penalty=friction_penalty)
     path: list[tuple[float, np.ndarray]] = []
     spring = prob.spring_k
     freed_at = np.inf  # the load (MPa) of the sub-step after which the spring is out
+    fric = prob.frictional
+    path_fstates: dict[float, tuple[np.ndarray, ...]] = {}
+    if fric:
+        path_fstates[0.0] = prob.friction_state()
 
     def record(lam: float, u: np.ndarray) -> None:
         nonlocal freed_at
         path.append((lam, u.copy()))
+        if fric:
+            path_fstates[lam] = prob.friction_state()
         if release and prob.spring_k != 0.0 and prob.bearing_gap(u) <= 0.0:
             prob.spring_k, freed_at = 0.0, lam
 
@@ -406,10 +574,26 @@ def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spe
     if p[0] == 0.0:
         path.insert(0, (0.0, pts[0].u.copy()))
     states = [pt.u for pt in pts]
+    fstates = [_nearest(path_fstates, float(pt.load)) for pt in pts] if fric else None
     if gravity == "none" and release:
-        states = [_release(prob, pt.u, float(pt.load), settings)
-                  if pt.load <= freed_at + 1e-12 else pt.u for pt in pts]
-    return _MeshSolution(prob, p, states, np.array([pt.iterations for pt in pts]), path)
+        out = []
+        for k, pt in enumerate(pts):
+            if pt.load <= freed_at + 1e-12:
+                out.append(_release(prob, pt.u, float(pt.load), settings,
+                                    None if fstates is None else fstates[k]))
+                if fstates is not None:
+                    fstates[k] = prob.friction_state()
+            else:
+                out.append(pt.u)
+        states = out
+    return _MeshSolution(prob, p, states, np.array([pt.iterations for pt in pts]), path,
+                         fstates, path_fstates)
+
+
+def _nearest(states: dict[float, tuple[np.ndarray, ...]], lam: float) -> tuple[np.ndarray, ...]:
+    """The friction state recorded at the sub-step nearest to the load ``lam`` (MPa)."""
+    key = min(states, key=lambda k: abs(k - lam))
+    return states[key]
 
 
 def _start_state(prob: SqueezeProblem, s: NewtonSettings) -> np.ndarray:
@@ -444,13 +628,19 @@ def _bracket_onset(sol: _MeshSolution, s: NewtonSettings, tol_mpa: float) -> flo
     lam_b, u_b = path[k]
     ends = {lam_a: prob.bearing_gap(u_a), lam_b: prob.bearing_gap(u_b)}
 
+    start = _nearest(sol.path_fstates, lam_a) if prob.frictional else None
+
     def g(lam: float) -> float:
         if lam in ends:
             return ends[lam]
         guess = u_a + (lam - lam_a) / (lam_b - lam_a) * (u_b - u_a)
+        if start is not None:  # friction: the probe continues the path from lam_a
+            prob.set_friction_state(start)
         try:
             u = _newton_at(prob, guess, lam, lam, s)
         except ConvergenceError:  # along the path from the last state below
+            if start is not None:
+                prob.set_friction_state(start)
             u = _newton_at(prob, u_a, lam, lam_a, s)
         return prob.bearing_gap(u)
 
@@ -511,11 +701,13 @@ def _solve_levels(
     coarse_spec: MeshSpec | None, penalty: float, density: float, gravity: str,
     s: NewtonSettings, regulariser: float, onset_tol_mpa: float, wire_angle_deg: float = 0.0,
     rotation_rel: float = defaults.ROTATION_SPRING_REL, full: bool | None = None,
+    mu: tuple[float, float] = (0.0, 0.0), friction_penalty: float | None = None,
 ) -> tuple[_MeshSolution, float | None, np.ndarray | None, np.ndarray | None,
            np.ndarray | None]:
     """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm) of :func:`squeeze`."""
     sol = _solve_mesh(structure, material, p, spec, penalty, density, gravity, s, regulariser,
-                      wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full)
+                      wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full,
+                      mu=mu, friction_penalty=friction_penalty)
     est_pct: np.ndarray | None = None
     est_abs: np.ndarray | None = None
     coarse_n: np.ndarray | None = None
@@ -530,7 +722,8 @@ def _solve_levels(
         loose = replace(s, tol_r=max(s.tol_r, 1e-7), tol_u=max(s.tol_u, 1e-8))
         coarse = _solve_mesh(structure, material, p, coarse_spec, penalty, density, gravity,
                              loose, regulariser, release=False,
-                             wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full)
+                             wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full,
+                             mu=mu, friction_penalty=friction_penalty)
         onset = _bracket_onset(coarse, s, onset_tol_mpa)
         coarse_n = coarse.n.copy()
         fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
@@ -557,6 +750,9 @@ def squeeze(
     wire_angle_deg: float = 0.0,
     rotation_regulariser: float = defaults.ROTATION_SPRING_REL,
     full_model: bool = False,
+    mu_wall: float = 0.0,
+    mu_wire: float = 0.0,
+    friction_penalty: float | None = None,
 ) -> SqueezeResult:
     """Squeezing force N(P) between the inflated tube and the wire (paper §3.4, Figs 6-7).
 
@@ -617,6 +813,14 @@ def squeeze(
         Solve the full section also at angle 0 (a check against the half model; the mesh is
         the half model's and its mirror image, ``2 n_circ`` elements around).
 
+    mu_wall, mu_wire : float
+        Coulomb friction coefficients (unitless, [0, 2]; a warning above 1.5) of the tube on
+        the hole wall and on the wire, in the plane of the section (issue 15; see
+        ``docs/formulation.md`` 4a). 0 (default): frictionless, as in the paper.
+    friction_penalty : float, optional
+        Tangential penalty (N/mm^3: MPa of shear traction per mm of elastic slip); default:
+        ``penalty``.
+
     Returns
     -------
     SqueezeResult
@@ -646,6 +850,9 @@ def squeeze(
     check_positive("onset_tol_mpa", onset_tol_mpa, "MPa")
     check_positive("regulariser", regulariser)
     check_positive("rotation_regulariser", rotation_regulariser)
+    mu = (check_friction("mu_wall", mu_wall), check_friction("mu_wire", mu_wire))
+    if friction_penalty is not None:
+        check_positive("friction_penalty", friction_penalty, "N/mm^3")
     try:
         angle = float(wire_angle_deg)
     except (TypeError, ValueError):
@@ -670,7 +877,7 @@ def squeeze(
         sol, onset, coarse_n, est_pct, est_abs = _solve_levels(
             structure, material, p, spec, coarse_spec, penalty, density, gravity, s,
             regulariser, onset_tol_mpa, angle, rotation_regulariser,
-            True if full_model else None)
+            True if full_model else None, mu, friction_penalty)
     dt = time.perf_counter() - t0
     prob = sol.prob
     L = structure.length_mm
@@ -719,4 +926,16 @@ def squeeze(
         wire_angle_deg=angle,
         squeeze_force_direction_deg=sol.n_dir,
         wall_force_direction_deg=sol.wall_dir,
+        mu_wall=mu[0],
+        mu_wire=mu[1],
+        friction_penalty=prob.penalty_t,
+        wire_pressure_integral_n_per_mm=sol.interfaces[:, 0],
+        wall_pressure_integral_n_per_mm=sol.interfaces[:, 1],
+        wire_tangential_force_n_per_mm=sol.interfaces[:, 2],
+        wall_tangential_force_n_per_mm=sol.interfaces[:, 3],
+        stick_fraction_wire=sol.interfaces[:, 4],
+        stick_fraction_wall=sol.interfaces[:, 5],
+        contact=tuple(sol.profiles),
+        friction_dissipation_n_per_mm=(np.asarray(prob.dissipation, float)
+                                       if prob.frictional else None),
     )
