@@ -20,7 +20,7 @@ Model (units mm, N, MPa, s; plane strain with thickness 1 mm, so forces are per 
   elements whose nodes are all fixed (``*BOUNDARY``), i.e. rigid and immobile (for bodies that
   do not move this is what ``*RIGID BODY`` with a fixed reference node gives, and the summed
   nodal reactions are the contact forces), their contact faces meshed finer than the tube's
-  edges there. Frictionless ``*CONTACT PAIR`` (node to surface by default, or surface to
+  edges there. ``*CONTACT PAIR`` (frictionless by default; node to surface, or surface to
   surface; ``PRESSURE-OVERCLOSURE=LINEAR`` penalty; slave = the tube's outer surface). The tube
   (d1, ID) starts touching the wall at the bottom; its bottom outer node on the symmetry
   line gets ``u_y = 0``. That node stays in contact with the wall (the tube only ever
@@ -29,11 +29,24 @@ Model (units mm, N, MPa, s; plane strain with thickness 1 mm, so forces are per 
   ``N = 2 x`` the y-reaction on the wire's nodes (full section, N/mm), the wall's reaction
   likewise (rigid hole plus the bottom node), and the horizontal extent 2 max(x) of the
   deformed section.
+* Friction (issue 15; ``squeeze_deck(..., mu_wall=, mu_wire=, stick_slope=)``): each contact
+  pair gets its own interaction (``SIWALL`` tube-hole, ``SIWIRE`` tube-wire, the same normal
+  penalty) with ``*FRICTION`` = ``mu, stick slope`` where mu > 0 (mu = 0 on both writes the
+  frictionless deck above unchanged). CalculiX's node-to-surface friction is a tangential
+  penalty (stick slope, MPa/mm, times the slave node's area) with a Coulomb return map on
+  the slip accumulated over the increments, so the result follows the load path: the
+  pressure ramps monotonically from 0, at most ``max_increment_mpa`` per increment. The
+  stiffness matrix is then unsymmetric; ccx picks its unsymmetric SPOOLES solver itself.
+  The bottom node's ``u_y = 0`` stays valid: by symmetry it does not slip. With
+  ``node_forces=True`` :func:`read_squeeze` also splits each rigid circle's nodal
+  reactions into normal and tangential contact force integrals. ``bench_friction_ccx.py``
+  runs the cases and the convergence studies.
 
 Runner and parser: :func:`run_ccx` writes the deck to a folder, runs ``ccx -i job`` with one
 thread (``OMP_NUM_THREADS=1``, ``CCX_NPROC_EQUATION_SOLVER=1``) and returns its wall and CPU
-time, the ``.dat`` text and the number of equations; :func:`parse_dat` reads the ``.dat``
-tables (``*NODE PRINT``) by set and time.
+time, the ``.dat`` and ``.sta`` texts and the number of equations; :func:`parse_dat` reads
+the ``.dat`` tables (``*NODE PRINT``) by set and time, :func:`increments` summarises the
+``.sta`` (increments, cutbacks, increment sizes).
 
 Example
 -------
@@ -65,6 +78,7 @@ __all__ = [
     "ccx_available",
     "ccx_inflate",
     "ccx_squeeze",
+    "increments",
     "inflate_deck",
     "parse_dat",
     "polar_quad8",
@@ -230,6 +244,9 @@ class CcxDeck:
         inflation; ``bottom`` for the squeeze).
     initial_xy : dict
         Node number -> initial (x, y) of the probe and outer-surface nodes (mm).
+    rigid : dict
+        Squeeze only: ``"wire"``/``"hole"`` -> ``{"center": (x, y), "xy": {node: (x, y)}}``,
+        the rigid circles' centres and nodes (mm).
     """
 
     text: str
@@ -239,6 +256,7 @@ class CcxDeck:
     tube_dofs_2d: int
     probes: dict[str, int] = field(default_factory=dict)
     initial_xy: dict[int, tuple[float, float]] = field(default_factory=dict)
+    rigid: dict[str, Any] = field(default_factory=dict)
 
 
 def inflate_deck(
@@ -304,6 +322,37 @@ def inflate_deck(
                    {k: nodes[k] for k in probes.values()})
 
 
+#: Default stick slope of ``*FRICTION`` (MPa/mm): a tenth of the default normal penalty
+#: (1e4 MPa/mm); see :func:`squeeze_deck` and ``bench_friction_ccx.py`` (its convergence).
+STICK_SLOPE = 1.0e3
+
+
+def _interactions(penalty: float, contact: str, mu_wall: float, mu_wire: float,
+                  stick_slope: float) -> str:
+    """``*SURFACE INTERACTION`` and ``*CONTACT PAIR`` cards of the squeeze.
+
+    Frictionless (both mu 0): one interaction ``SI`` for both pairs (the deck as before
+    friction existed). Otherwise one interaction per pair, ``SIWALL`` (tube-hole) and
+    ``SIWIRE`` (tube-wire), the same linear penalty, and ``*FRICTION`` (mu, stick slope)
+    where mu > 0 (CalculiX rejects mu = 0 in ``*FRICTION``).
+    """
+    def behavior(name: str, mu: float) -> str:
+        out = (f"*SURFACE INTERACTION, NAME={name}\n"
+               "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+               f"{penalty:.6g}\n")
+        if mu > 0.0:
+            out += f"*FRICTION\n{mu:.6g}, {stick_slope:.6g}\n"
+        return out
+
+    if mu_wall == 0.0 and mu_wire == 0.0:
+        return (behavior("SI", 0.0)
+                + f"*CONTACT PAIR, INTERACTION=SI, TYPE={contact}\nSTUBE, SHOLE\n"
+                + f"*CONTACT PAIR, INTERACTION=SI, TYPE={contact}\nSTUBE, SWIRE\n")
+    return (behavior("SIWALL", mu_wall) + behavior("SIWIRE", mu_wire)
+            + f"*CONTACT PAIR, INTERACTION=SIWALL, TYPE={contact}\nSTUBE, SHOLE\n"
+            + f"*CONTACT PAIR, INTERACTION=SIWIRE, TYPE={contact}\nSTUBE, SWIRE\n")
+
+
 def squeeze_deck(
     pressures_mpa: np.ndarray | list[float],
     material: Any,
@@ -321,6 +370,10 @@ def squeeze_deck(
     rigid_elements: int = 32,
     contact: str = "NODE TO SURFACE",
     controls: tuple[float, float] | None = None,
+    mu_wall: float = 0.0,
+    mu_wire: float = 0.0,
+    stick_slope: float = STICK_SLOPE,
+    node_forces: bool = False,
 ) -> CcxDeck:
     """Deck of the tube-wire-hole squeeze, half model x >= 0, rigid hole and wire.
 
@@ -346,6 +399,22 @@ def squeeze_deck(
         Elements over the half circle of the hole and of the wire (their contact faces).
     contact : str
         ``NODE TO SURFACE`` (3-5x faster here) or ``SURFACE TO SURFACE``.
+    controls : (float, float), optional
+        CalculiX's Newton criteria (residual, correction; default 0.005, 0.01).
+    mu_wall, mu_wire : float
+        Coulomb friction coefficients of the tube-hole wall and the tube-wire contact
+        (>= 0). Both 0 (default): the frictionless deck (one interaction ``SI`` for both
+        pairs). Otherwise each pair gets its own interaction (``SIWALL``, ``SIWIRE``: the
+        same penalty) and a pair with mu > 0 a ``*FRICTION`` card ``mu, stick_slope``.
+    stick_slope : float
+        CalculiX's stick slope: shear stress per tangential elastic slip (MPa/mm), used
+        where mu > 0.
+    node_forces : bool
+        Also print the reaction of every hole and wire node (``*NODE PRINT ... RF``), from
+        which :func:`read_squeeze` splits each contact into its normal and tangential parts
+        (radial and circumferential about the circle's centre). (``*CONTACT PRINT`` does
+        not give them for node-to-surface contact: its ``CF`` statistics are zero there and
+        ccx 2.20 crashed after four outputs; ``CSTR`` gives stresses without areas.)
 
     Returns
     -------
@@ -353,6 +422,12 @@ def squeeze_deck(
     """
     c10, c01, d = _constants(material)
     p = np.asarray(pressures_mpa, dtype=float)
+    for name, mu in (("mu_wall", mu_wall), ("mu_wire", mu_wire)):
+        if not (np.isfinite(mu) and mu >= 0.0):
+            raise ValueError(f"{name} must be a finite number >= 0, got {mu!r}")
+    if (mu_wall > 0.0 or mu_wire > 0.0) and not (np.isfinite(stick_slope)
+                                                   and stick_slope > 0.0):
+        raise ValueError(f"stick_slope must be a finite number > 0, got {stick_slope!r}")
     a, b = 0.5 * tube_id_mm, 0.5 * tube_od_mm
     yc = -(0.5 * hole_mm - b)
     half = 0.5 * np.pi
@@ -382,17 +457,15 @@ def squeeze_deck(
                      + "".join(f"{e}, S4\n" for e in he)
                      + "*SURFACE, NAME=SWIRE, TYPE=ELEMENT\n"
                      + "".join(f"{e}, S2\n" for e in we)
-                     + "*SURFACE INTERACTION, NAME=SI\n"
-                     + "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-                     + f"{penalty:.6g}\n"
-                     + f"*CONTACT PAIR, INTERACTION=SI, TYPE={contact}\nSTUBE, SHOLE\n"
-                     + f"*CONTACT PAIR, INTERACTION=SI, TYPE={contact}\nSTUBE, SWIRE\n")
+                     + _interactions(penalty, contact, mu_wall, mu_wire, stick_slope))
     body = ("*BOUNDARY\nNSYM, 1, 1\nNBOTTOM, 2, 2\nNHOLE, 1, 2\nNWIRE, 1, 2\n"
             + _ramp_pressure(inner_elems, 4, float(p[-1]))
             + "*NODE PRINT, NSET=NWIRE, TOTALS=ONLY, TIME POINTS=OUT\nRF\n"
             + "*NODE PRINT, NSET=NHOLE, TOTALS=ONLY, TIME POINTS=OUT\nRF\n"
             + "*NODE PRINT, NSET=NBOTTOM, TIME POINTS=OUT\nRF\n"
-            + "*NODE PRINT, NSET=NOUTER, TIME POINTS=OUT\nU\n")
+            + "*NODE PRINT, NSET=NOUTER, TIME POINTS=OUT\nU\n"
+            + ("*NODE PRINT, NSET=NWIRE, TIME POINTS=OUT\nRF\n"
+               "*NODE PRINT, NSET=NHOLE, TIME POINTS=OUT\nRF\n" if node_forces else ""))
     text = ("** exofric benchmark: tube-wire-hole squeeze, half model (mm, N, MPa)\n"
             "*NODE, NSET=NALL\n" + _fmt_nodes(nodes) + _fmt_nodes(hn) + _fmt_nodes(wn)
             + f"*ELEMENT, TYPE={element}, ELSET=TUBE\n" + _fmt_elements(elems)
@@ -412,8 +485,12 @@ def squeeze_deck(
     mesh = {"element": element, "n_radial": n_radial, "n_circ": n_circ, "grading": grading,
             "penalty": penalty, "rigid_elements": rigid_elements, "contact": contact,
             "controls": controls}
+    if mu_wall > 0.0 or mu_wire > 0.0:
+        mesh.update(mu_wall=float(mu_wall), mu_wire=float(mu_wire),
+                    stick_slope=float(stick_slope))
+    rigid = {"wire": {"center": wc, "xy": wn}, "hole": {"center": (0.0, 0.0), "xy": hn}}
     return CcxDeck(text, p, mesh, len(nodes) + len(hn) + len(wn), 2 * len(nodes),
-                   {"bottom": bottom}, {k: nodes[k] for k in sorted(outer_set)})
+                   {"bottom": bottom}, {k: nodes[k] for k in sorted(outer_set)}, rigid)
 
 
 # ------------------------------------------------------------------------ run and parse
@@ -434,6 +511,8 @@ class CcxRun:
     stdout : str
         Its standard output.
     returncode : int
+    sta : str
+        The ``.sta`` file (one line per increment attempt; see :func:`increments`).
     """
 
     wall_time_s: float
@@ -443,6 +522,7 @@ class CcxRun:
     dat: str
     stdout: str
     returncode: int
+    sta: str = ""
 
 
 def run_ccx(deck: CcxDeck | str, workdir: str | Path | None = None, *, ccx: str = "ccx",
@@ -485,6 +565,8 @@ def run_ccx(deck: CcxDeck | str, workdir: str | Path | None = None, *, ccx: str 
         cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
         dat_path = wd / f"{jobname}.dat"
         dat = dat_path.read_text() if dat_path.exists() else ""
+        sta_path = wd / f"{jobname}.sta"
+        sta = sta_path.read_text() if sta_path.exists() else ""
     finally:
         if tmp is not None:
             tmp.cleanup()
@@ -492,7 +574,33 @@ def run_ccx(deck: CcxDeck | str, workdir: str | Path | None = None, *, ccx: str 
     m = re.search(r"Total CalculiX Time:\s*([0-9.eE+-]+)", out)
     eq = re.findall(r"number of equations\s*\n?\s*(\d+)", out)
     return CcxRun(wall, cpu, float(m.group(1)) if m else None,
-                  int(eq[-1]) if eq else None, dat, out + proc.stderr, proc.returncode)
+                  int(eq[-1]) if eq else None, dat, out + proc.stderr, proc.returncode, sta)
+
+
+def increments(sta: str) -> dict[str, Any]:
+    """Summary of CalculiX's automatic incrementation from a ``.sta`` file.
+
+    Returns
+    -------
+    dict
+        ``increments`` (converged), ``cutbacks`` (attempts that did not converge, marked
+        ``U``), ``iterations`` (Newton iterations of all attempts), ``min_increment`` and
+        ``max_increment`` (step time of the converged increments = MPa in the squeeze).
+    """
+    done: list[float] = []
+    cut = iters = 0
+    for line in sta.splitlines():
+        parts = line.split()
+        if len(parts) != 7 or not parts[0].isdigit():
+            continue
+        iters += int(parts[3])
+        if parts[2].endswith("U"):
+            cut += 1
+        else:
+            done.append(float(parts[6]))
+    return {"increments": len(done), "cutbacks": cut, "iterations": iters,
+            "min_increment": min(done) if done else None,
+            "max_increment": max(done) if done else None}
 
 
 _HEADER = re.compile(r"^\s*(.+?)\s*\(([^)]*)\)\s*for set\s+(\S+)\s+and time\s+(\S+)")
@@ -601,6 +709,18 @@ class CalculixSqueeze:
         Times and raw output.
     mesh : dict
         Mesh and contact description.
+    contact_integrals : dict or None
+        With ``squeeze_deck(..., node_forces=True)``: per interface (``"wire"``, ``"wall"``)
+        ``{"normal_n_per_mm": ndarray, "tangential_n_per_mm": ndarray}``: the sums over the
+        rigid circle's nodes of the normal (radial, pressing on the tube: > 0) and tangential
+        (circumferential, > 0 counter-clockwise about the circle's centre, i.e. on the half
+        x >= 0 pushing the tube away from the symmetry line at the bottom of the circle)
+        parts of its nodal force on the tube, full section (2 x the half model; the wall's
+        normal sum includes the bottom node's support). The normal sum is the integral of
+        the contact pressure over the contact arc (N/mm), the tangential one that of the
+        friction stress (0 up to discretisation when frictionless). Signed sums, because
+        the quadratic master faces share a slave node's force among their three nodes with
+        weights that can be negative.
     """
 
     pressure_mpa: np.ndarray
@@ -611,6 +731,7 @@ class CalculixSqueeze:
     tube_dofs_2d: int
     run: CcxRun = field(repr=False)
     mesh: dict[str, Any] = field(default_factory=dict)
+    contact_integrals: dict[str, dict[str, np.ndarray]] | None = None
 
 
 def _check(run: CcxRun) -> dict[tuple[str, str, float], dict[int | str, np.ndarray]]:
@@ -647,7 +768,27 @@ def read_squeeze(deck: CcxDeck, run: CcxRun) -> CalculixSqueeze:
                      for hr, br in zip(hole, bottom, strict=True)])
     od = np.array([2.0 * max(deck.initial_xy[k][0] + r[k][0] for k in deck.initial_xy)
                    for r in outer])
-    return CalculixSqueeze(p, n, wall, od, run.equations, deck.tube_dofs_2d, run, deck.mesh)
+    integrals = None
+    if deck.rigid and any(q == "forces" and s == "NWIRE" for (q, s, _) in tables):
+        integrals = {}
+        for name, nset in (("wire", "NWIRE"), ("hole", "NHOLE")):
+            rows = _at(tables, "forces", nset, p)
+            rig = deck.rigid[name]
+            ids = sorted(rig["xy"])
+            er = np.array([rig["xy"][k] for k in ids]) - np.asarray(rig["center"])
+            er /= np.linalg.norm(er, axis=1)[:, None]
+            et = np.column_stack([-er[:, 1], er[:, 0]])
+            f = np.array([[r[k][:2] for k in ids] for r in rows])  # (pressures, nodes, 2)
+            # the wire pushes the tube away from its centre, the hole toward its centre
+            sign = 1.0 if name == "wire" else -1.0
+            normal = 2.0 * sign * np.einsum("pnj,nj->p", f, er)
+            tangential = 2.0 * np.einsum("pnj,nj->p", f, et)
+            if name == "hole":
+                name = "wall"
+                normal = normal + 2.0 * np.array([br[b][1] for br in bottom])
+            integrals[name] = {"normal_n_per_mm": normal, "tangential_n_per_mm": tangential}
+    return CalculixSqueeze(p, n, wall, od, run.equations, deck.tube_dofs_2d, run, deck.mesh,
+                           integrals)
 
 
 def ccx_inflate(tube_od_mm: float, tube_id_mm: float, material: Any,

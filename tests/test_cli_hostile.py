@@ -63,6 +63,7 @@ def _base(tmp: Path) -> dict[str, list[str]]:
         "inflate": ["--tube-od", "8.3", "--tube-id", "4.97", "--shore", "62.5", "--pressures",
                     "0.1", "--n-radial", "1", "--n-circ", "2"],
         "material": ["--shore", "62.5"],
+        "torque": ["--friction", "180.49"],
         "paper": [],
         "reproduce": ["--out", str(tmp / "never-written")],
         "squeeze": ["--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire", "1.6",

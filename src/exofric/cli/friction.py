@@ -101,14 +101,123 @@ def _choice(name: str, value: str, allowed: tuple[str, ...]) -> str:
     return value
 
 
+def _interface_curves(path: str, used: set[str]) -> Any:
+    """A structure's FE curves S_wire(P), N(P) from an ``exofric squeeze --json`` file."""
+    from exofric.errors import InputError
+    from exofric.friction import InterfaceCurves
+    from exofric.io import read_json
+
+    p = Path(path)
+    if not p.is_file():
+        raise InputError(f"{path}: file not found", param="squeeze")
+    if p.suffix.lower() != ".json":
+        raise InputError(f"{p.name}: the interface law needs the JSON of `exofric squeeze ... "
+                         "--json` (with 'wire_pressure_integral_n_per_mm'); a CSV holds N(P) "
+                         "only", param="squeeze")
+    obj = read_json(p)
+    if not isinstance(obj, dict):
+        raise InputError(f"{p.name}: expected the JSON object of `exofric squeeze --json`",
+                         param="squeeze")
+    name = p.stem
+    k = 2
+    while name in used:
+        name, k = f"{p.stem}#{k}", k + 1
+    used.add(name)
+    try:
+        return InterfaceCurves.from_squeeze(obj, name=name)
+    except InputError as exc:
+        raise InputError(f"{p.name}: {exc}", param=exc.param) from None
+
+
+def _fit_interfaces_cmd(squeeze: list[str], friction: list[str], model: str, ci: str,
+                        columns: str | None, plot: str | None, as_json: bool) -> None:
+    """``fit-friction --law interfaces``: mu_tube, mu_wall from one or more structures."""
+    import numpy as np
+
+    from exofric.errors import InputError
+    from exofric.friction import InterfaceTest, fit_interfaces
+
+    if ci not in ("auto", "analytic", "ols", "cluster"):
+        raise InputError(f"ci must be auto, analytic, ols or cluster with --law interfaces, "
+                         f"got {ci!r} (bootstrap and odr are for --law gamma)", param="ci")
+    used: set[str] = set()
+    tests, kinds, synthetic, n_tests = [], [], False, 0
+    for sq, fr in zip(squeeze, friction, strict=True):
+        curves = _interface_curves(sq, used)
+        data = _fit_inputs(fr, columns)
+        tests.append(InterfaceTest(curves, data["pressure"], data["friction"],
+                                   groups=data["groups"]))
+        kinds.append(data["kind"])
+        synthetic = synthetic or data["synthetic"]
+        n_tests += int(np.unique(data["tests"]).size)
+    fit = fit_interfaces(tests, model=model, ci=ci)  # type: ignore[arg-type]
+    d = fit.to_dict()
+    d.update({"synthetic": synthetic, "n_tests": n_tests, "data_kind": kinds,
+              "squeeze_files": list(squeeze), "friction_files": list(friction)})
+    if plot:
+        from exofric.plots import plot_interface_fit
+
+        title = ("SYNTHETIC rig data" if synthetic else
+                 ", ".join(Path(f).name for f in friction))
+        d["plot"] = str(save_figure(plot_interface_fit(
+            fit, title, data_label="synthetic" if synthetic else "measured"), plot))
+
+    def render() -> None:
+        ci_t, ci_w = fit.mu_tube_ci, fit.mu_wall_ci
+        rows = [
+            ("model", f"interfaces, {fit.kind}", ""),
+            ("mu_tube (wire on tube)", f"{fit.mu_tube:.5f}", ""),
+            ("mu_tube 95% CI", f"[{ci_t[0]:.5f}, {ci_t[1]:.5f}]", fit.ci_method),
+            ("mu_wall (wire on wall)", f"{fit.mu_wall:.5f}", ""),
+            ("mu_wall 95% CI", f"[{ci_w[0]:.5f}, {ci_w[1]:.5f}]", fit.ci_method),
+            ("correlation of estimates", f"{fit.correlation:.4f}", ""),
+            ("condition number", f"{fit.condition_number:.3g}",
+             f"max {fit.condition_number_max:g}"),
+            ("identifiable", "yes" if fit.identifiable else "NO", ""),
+        ]
+        if fit.kind == "affine":
+            rows.append(("F0", f"{fit.f0_n:.3f}", "N"))
+        rows += [
+            ("mean |rel. error|", f"{fit.relative_error_pct:.2f}", "%"),
+            ("pooled gamma", f"{fit.gamma_pooled:.5f}", ""),
+            ("pooled gamma |rel. error|", f"{fit.gamma_relative_error_pct:.2f}", "%"),
+            ("structures / points", f"{len(fit.structures)} / {fit.n_points}", ""),
+            ("points dropped", str(fit.n_dropped), ""),
+        ]
+        title = "Interface friction law" + (" (SYNTHETIC data)" if synthetic else "")
+        console.print(kv_table(title, rows))
+        t = narrow_table("Per structure (mean |relative error|)",
+                         ["structure", "points", "S/N", "interfaces %", "gamma %"])
+        for e in fit.per_structure():
+            lo, hi = e["wrap_ratio_min"], e["wrap_ratio_max"]
+            t.add_row(e["name"], str(e["n_points"]),
+                      "-" if lo is None else f"{lo:.3f}-{hi:.3f}",
+                      "-" if e["relative_error_pct"] is None
+                      else f"{e['relative_error_pct']:.2f}",
+                      "-" if e["gamma_relative_error_pct"] is None
+                      else f"{e['gamma_relative_error_pct']:.2f}")
+        console.print(t)
+        console.print(f"identifiability: {fit.identifiability_reason}")
+        console.print(f"CI: {fit.ci_note}")
+
+    emit(d, as_json, render)
+
+
 def _register_fit(app: typer.Typer) -> None:
     @app.command("fit-friction")
     def fit_friction(
-        squeeze: str = typer.Option(..., help="Squeeze curve N(P): JSON from `exofric squeeze "
-                                    "--json` or CSV pressure_mpa,squeeze_force_n."),
-        friction: str = typer.Option(..., help="Friction data: CSV pressure_mpa,friction_n"
-                                     "[,test] (replicates allowed), the per-pull table of "
-                                     "`exofric reduce --out`, or a raw rig log (reduced first)."),
+        squeeze: list[str] = typer.Option(..., help="Squeeze curve N(P): JSON from `exofric "
+                                          "squeeze --json` or CSV pressure_mpa,squeeze_force_n. "
+                                          "--law interfaces: one JSON per structure, repeated "
+                                          "(paired in order with --friction)."),
+        friction: list[str] = typer.Option(..., help="Friction data: CSV pressure_mpa,"
+                                           "friction_n[,test] (replicates allowed), the per-pull "
+                                           "table of `exofric reduce --out`, or a raw rig log "
+                                           "(reduced first). Repeat with --squeeze for several "
+                                           "structures (--law interfaces)."),
+        law: str = typer.Option("gamma", help="gamma (F = gamma N, paper Eq 7; one structure) "
+                                "or interfaces (F = mu_tube S_wire + mu_wall N, one or more "
+                                "structures)."),
         model: str = typer.Option("proportional", help="proportional (F = gamma N, paper) or "
                                   "affine (F = gamma N + F0)."),
         ci: str = typer.Option("auto", help="95% CI: auto (cluster with replicates, else "
@@ -126,12 +235,18 @@ def _register_fit(app: typer.Typer) -> None:
         plot: str | None = typer.Option(None, help="Write a PNG of the fit and residuals."),
         as_json: bool = JSON_OPTION,
     ) -> None:
-        """Fit the equivalent coefficient gamma (Eq 7) to friction data. MPa, N."""
+        """Fit the equivalent coefficient gamma (Eq 7) to friction data. MPa, N.
+
+        With --law interfaces: mu_tube and mu_wall of F = mu_tube S_wire + mu_wall N from one
+        or more structures (repeat --squeeze S.json --friction F.csv per structure), with CIs,
+        their correlation and whether the data can separate them.
+        """
         import numpy as np
 
         from exofric.errors import InputError, check_seed
         from exofric.friction import fit_gamma
 
+        _choice("--law", law, ("gamma", "interfaces"))
         _choice("--model", model, ("proportional", "affine"))
         _choice("--ci", ci, ("auto", "analytic", "ols", "bootstrap", "cluster", "odr"))
         check_seed("seed", seed)
@@ -140,8 +255,20 @@ def _register_fit(app: typer.Typer) -> None:
         if ci != "odr" and (pressure_sd is not None or friction_sd is not None):
             raise InputError("pressure_sd and friction_sd are for --ci odr only",
                              param="pressure_sd")
-        ps, ns = _squeeze_curve(squeeze)
-        data = _fit_inputs(friction, columns)
+        if len(squeeze) != len(friction):
+            raise InputError(f"squeeze and friction must come in pairs (one per structure), "
+                             f"got {len(squeeze)} --squeeze and {len(friction)} --friction",
+                             param="squeeze")
+        if law == "interfaces":
+            _fit_interfaces_cmd(squeeze, friction, model, ci, columns, plot, as_json)
+            return
+        if len(squeeze) != 1:
+            raise InputError(f"law gamma fits one structure: give one --squeeze and one "
+                             f"--friction, got {len(squeeze)} pairs (several structures: --law "
+                             "interfaces)", param="squeeze")
+        squeeze_file, friction_file = squeeze[0], friction[0]
+        ps, ns = _squeeze_curve(squeeze_file)
+        data = _fit_inputs(friction_file, columns)
         kw: dict[str, Any] = {}
         if ci == "odr":
             psd = pressure_sd if pressure_sd is not None else data["pressure_sd"]
@@ -160,12 +287,13 @@ def _register_fit(app: typer.Typer) -> None:
         d["synthetic"] = synthetic
         d["n_tests"] = int(np.unique(data["tests"]).size)
         d["data_kind"] = data["kind"]
+        d["law"] = "gamma"
         if data["reduction"] is not None:
             d["reduction"] = data["reduction"]
         if plot:
             from exofric.plots import plot_gamma_fit
 
-            title = "SYNTHETIC rig data" if synthetic else Path(friction).name
+            title = "SYNTHETIC rig data" if synthetic else Path(friction_file).name
             d["plot"] = str(save_figure(plot_gamma_fit(
                 fit, title, data_label="synthetic (virtual rig)" if synthetic else "measured"),
                 plot))
@@ -222,8 +350,17 @@ def _measured_map(path: str, names: list[str]) -> dict[str, Any]:
 def _register_predict(app: typer.Typer) -> None:
     @app.command("predict")
     def predict_cmd(
-        gamma: float = typer.Option(..., help="Equivalent coefficient gamma (paper: 0.7168)."),
+        gamma: float | None = typer.Option(None, help="Equivalent coefficient gamma (paper: "
+                                           "0.7168); needed by --law gamma, compared with "
+                                           "--law interfaces."),
         f0: float = typer.Option(0.0, "--f0", help="Affine offset F0 in N (0: paper's model)."),
+        law: str = typer.Option("gamma", help="gamma (F = gamma N, the paper's model) or "
+                                "interfaces (F = mu_tube S_wire + mu_wall N; needs "
+                                "--mu-tube, --mu-wall)."),
+        mu_tube: float | None = typer.Option(None, "--mu-tube", help="Wire-on-tube friction "
+                                             "coefficient (unitless) of the interface law."),
+        mu_wall: float | None = typer.Option(None, "--mu-wall", help="Wire-on-wall friction "
+                                             "coefficient (unitless) of the interface law."),
         structures: str | None = typer.Option(None, help="Structures TOML file "
                                               "(see examples/structures-paper.toml)."),
         use_paper: bool = typer.Option(False, "--paper", help="The 7 structures of Table 3."),
@@ -257,12 +394,14 @@ def _register_predict(app: typer.Typer) -> None:
     ) -> None:
         """Predict friction F = gamma N(P) for other structures via the FE (Sec. 4). MPa, N.
 
-        With --clearance-sd or --clearance-profile the clearance varies along the tube; with
+        With --law interfaces: F = mu_tube S_wire(P) + mu_wall N(P) (+ F0); giving both
+        --gamma and the mu's compares the two laws side by side (JSON: law_comparison). With
+        --clearance-sd or --clearance-profile the clearance varies along the tube; with
         --tolerance the answers get 5/50/95 % bands (JSON: friction_n_p05, _p50, _p95).
         """
         from exofric import paper
         from exofric.errors import InputError
-        from exofric.friction import FrictionModel, paper_structures, predict, structures_from_dict
+        from exofric.friction import paper_structures, predict, structures_from_dict
         from exofric.geometry import BASE
         from exofric.io import read_toml
         from exofric.material import MooneyRivlin
@@ -273,7 +412,10 @@ def _register_predict(app: typer.Typer) -> None:
         if sum([use_paper, structures is not None, any(v is not None for v in one)]) != 1:
             raise InputError("give exactly one of --paper, --structures FILE.toml or one "
                              "structure (--hole --tube-od --tube-id --wire)")
-        model = FrictionModel(gamma, f0)
+        model, other = _predict_laws(law, gamma, mu_tube, mu_wall, f0)
+        if tolerance and law == "interfaces":
+            raise InputError("tolerance bands are for --law gamma only (the tolerance study "
+                             "samples N, not S_wire)", param="tolerance")
         grid = parse_floats("--pressures", pressures)
         base = BASE
         if use_paper:
@@ -296,7 +438,8 @@ def _register_predict(app: typer.Typer) -> None:
         material = MooneyRivlin.from_shore(shore)
         res = predict(structs, model, material, grid, measured=meas, base=base,
                       threshold_pct=threshold, arm_radius_m=arm_radius,
-                      required_torque_nm=(0.0, torque_max), alpha=alpha, squeeze_fn=solver)
+                      required_torque_nm=(0.0, torque_max), alpha=alpha, squeeze_fn=solver,
+                      compare=other)
         printed = {f"test {r['test']}": r for r in paper.table3()} if use_paper else {}
         p4 = paper.table4() if use_paper else {}
         errs = paper.load()["max_relative_error"] if use_paper else {"test": [],
@@ -314,7 +457,8 @@ def _register_predict(app: typer.Typer) -> None:
                                         samples=samples, solver=solver)
                 for q, v in tr.percentiles_n.items():
                     entry[f"squeeze_force_n_p{q:02d}"] = list(v)
-                    entry[f"friction_n_p{q:02d}"] = [float(model.friction(x)) for x in v]
+                    entry[f"friction_n_p{q:02d}"] = [float(model.friction(x))
+                                                     for x in v]
                 entry["sensitivity"] = tr.to_dict()["sensitivity"]
                 entry["tolerance_samples_failed"] = tr.failed
         if clearance_sd is not None or clearance_profile is not None:
@@ -340,7 +484,9 @@ def _register_predict(app: typer.Typer) -> None:
                 cols.append("err %")
             if use_paper:
                 cols += ["F8-10 %", "T4 p"]
-            t = narrow_table(f"Friction at {grid[-1]:g} MPa, gamma = {gamma:g}; base: "
+            law_text = (f"gamma = {gamma:g}" if law == "gamma" else
+                        f"mu_tube = {mu_tube:g}, mu_wall = {mu_wall:g}")
+            t = narrow_table(f"Friction at {grid[-1]:g} MPa, {law_text}; base: "
                              f"{base.name or 'the base group'}", cols)
             for p in res.predictions:
                 s = p.structure
@@ -375,6 +521,13 @@ def _register_predict(app: typer.Typer) -> None:
                    "its ANOVA p-value (Table 4)" if use_paper else "") + ".")
             for a in res.anova:
                 console.print(f"ANOVA {a.name}: F = {a.f_stat:.3f}, {a.verdict}")
+            if "law_comparison" in d:
+                parts = []
+                for name, v in d["law_comparison"].items():
+                    e = v["mean_abs_relative_error_pct"]
+                    parts.append(f"{name} " + ("-" if e is None else f"{e:.2f} %"))
+                console.print("laws compared, mean |relative error| over the measured points: "
+                              + ", ".join(parts) + " (per structure: --json law_comparison)")
             if "clearance" in d:
                 console.print(f"clearance varies along the tube: {d['clearance']}")
             for entry in d["structures"]:
@@ -388,6 +541,29 @@ def _register_predict(app: typer.Typer) -> None:
                         f"{100 * top['variance_share'][-1]:.0f} %")
 
         emit(d, as_json, render)
+
+
+def _predict_laws(law: str, gamma: float | None, mu_tube: float | None,
+                  mu_wall: float | None, f0: float) -> tuple[Any, Any]:
+    """The law used by ``predict`` and the other law to compare with (or None)."""
+    from exofric.errors import InputError
+    from exofric.friction import FrictionModel, InterfaceFrictionModel
+
+    _choice("--law", law, ("gamma", "interfaces"))
+    if (mu_tube is None) != (mu_wall is None):
+        missing = "mu_wall" if mu_wall is None else "mu_tube"
+        raise InputError(f"{missing} is needed too: the interface law takes both --mu-tube "
+                         "and --mu-wall", param=missing)
+    inter = (None if mu_tube is None or mu_wall is None
+             else InterfaceFrictionModel(mu_tube, mu_wall, f0))
+    if law == "gamma":
+        if gamma is None:
+            raise InputError("gamma is required with --law gamma (paper: 0.7168)", param="gamma")
+        return FrictionModel(gamma, f0), inter
+    if inter is None:
+        raise InputError("mu_tube and mu_wall are required with --law interfaces",
+                         param="mu_tube")
+    return inter, None if gamma is None else FrictionModel(gamma, f0)
 
 
 def _scatter_options(clearance_sd: float | None, clearance_profile: str | None,
@@ -509,8 +685,16 @@ def _register_invert(app: typer.Typer) -> None:
 def _register_rig(app: typer.Typer) -> None:
     @app.command("rig")
     def rig(
-        squeeze: str = typer.Option(..., help="Squeeze curve N(P) (JSON or CSV)."),
-        gamma_true: float = typer.Option(..., help="Planted equivalent coefficient gamma."),
+        squeeze: str = typer.Option(..., help="Squeeze curve N(P) (JSON or CSV; --law "
+                                    "interfaces: the JSON of `exofric squeeze --json`)."),
+        gamma_true: float | None = typer.Option(None, help="Planted equivalent coefficient "
+                                                "gamma (--law gamma)."),
+        law: str = typer.Option("gamma", help="Planted law: gamma (F = gamma_true N) or "
+                                "interfaces (F = mu_tube S_wire + mu_wall N; not with --raw)."),
+        mu_tube: float | None = typer.Option(None, "--mu-tube", help="Planted wire-on-tube "
+                                             "coefficient (unitless), --law interfaces."),
+        mu_wall: float | None = typer.Option(None, "--mu-wall", help="Planted wire-on-wall "
+                                             "coefficient (unitless), --law interfaces."),
         out: str = typer.Option(..., help="Output: friction CSV, or with --raw a raw log "
                                 "(.csv or .parquet) plus OUT-stem.truth.json (labelled "
                                 "SYNTHETIC)."),
@@ -553,14 +737,39 @@ def _register_rig(app: typer.Typer) -> None:
         seed: int = typer.Option(0, help="RNG seed (deterministic output)."),
         as_json: bool = JSON_OPTION,
     ) -> None:
-        """Virtual friction rig: SYNTHETIC friction data F = gamma_true N(P) + errors. MPa, N."""
+        """Virtual friction rig: SYNTHETIC friction data F = gamma_true N(P) + errors. MPa, N.
+
+        With --law interfaces the planted friction is F = mu_tube S_wire(P) + mu_wall N(P).
+        """
         from exofric.errors import InputError, check_seed
         from exofric.friction import RawRigConfig, RigConfig, simulate_raw_log, simulate_rig
         from exofric.io import write_json, write_raw_log, write_text
 
         check_seed("seed", seed)
+        _choice("--law", law, ("gamma", "interfaces"))
         op = out_file("out", out)
-        ps, ns = _squeeze_curve(squeeze)
+        curves = None
+        if law == "interfaces":
+            from exofric.friction import InterfaceFrictionModel
+
+            if gamma_true is not None:
+                raise InputError("gamma_true is for --law gamma; --law interfaces plants "
+                                 "--mu-tube and --mu-wall", param="gamma_true")
+            if mu_tube is None or mu_wall is None:
+                raise InputError("mu_tube and mu_wall are required with --law interfaces",
+                                 param="mu_tube" if mu_tube is None else "mu_wall")
+            planted = InterfaceFrictionModel(mu_tube, mu_wall)
+            if raw:
+                raise InputError("raw logs plant gamma only; drop --raw for --law interfaces",
+                                 param="raw")
+            curves = _interface_curves(squeeze, set())
+        else:
+            if gamma_true is None:
+                raise InputError("gamma_true is required with --law gamma", param="gamma_true")
+            if mu_tube is not None or mu_wall is not None:
+                raise InputError("mu_tube and mu_wall go with --law interfaces",
+                                 param="mu_tube")
+        ps, ns = (None, None) if curves is not None else _squeeze_curve(squeeze)
         sp = parse_floats("--pressures", pressures) if pressures else None
         given: dict[str, Any] = {k: v for k, v in {
             "noise_pct": noise_pct, "noise_n": noise_n, "drift_n_per_s": drift,
@@ -581,7 +790,8 @@ def _register_rig(app: typer.Typer) -> None:
                 drag_n=drag_n, hysteresis_pct=hysteresis_pct, noise_tau_s=noise_tau,
                 pull_scatter_pct=pull_scatter_pct, plateau_scatter_pct=plateau_scatter_pct,
                 **given)
-            log = simulate_raw_log(ps, ns, gamma_true, sp, config=rcfg, seed=seed)
+            log = simulate_raw_log(ps, ns, gamma_true, sp, config=rcfg,  # type: ignore[arg-type]
+                                   seed=seed)
             truth_path = op.with_name(op.stem + ".truth.json")
             try:
                 write_raw_log(op, log.to_frame(), log.metadata())
@@ -606,19 +816,30 @@ def _register_rig(app: typer.Typer) -> None:
         if offset_n is not None:
             given["offset_n"] = offset_n
         cfg = RigConfig(drag_n=drag_n, pull_speed_mm_per_s=pull_speed, **given)
-        run = simulate_rig(ps, ns, gamma_true, sp, config=cfg, seed=seed,
-                           repeats=1 if repeats is None else repeats)
+        if curves is not None:
+            from exofric.friction import simulate_interface_rig
+
+            irun = simulate_interface_rig(curves, planted.mu_tube, planted.mu_wall, sp,
+                                          config=cfg, seed=seed,
+                                          repeats=1 if repeats is None else repeats)
+            run, text, d = irun.run, irun.to_csv_text(), irun.to_dict()
+            what = ("mu_tube, mu_wall", f"{planted.mu_tube:g}, {planted.mu_wall:g}")
+        else:
+            run = simulate_rig(ps, ns, gamma_true, sp, config=cfg,  # type: ignore[arg-type]
+                               seed=seed, repeats=1 if repeats is None else repeats)
+            text, d = run.to_csv_text(), run.to_dict()
+            what = ("gamma_true", f"{gamma_true:g}")
         try:
-            write_text(op, run.to_csv_text())
+            write_text(op, text)
         except OSError as exc:
             why = " ".join(str(exc.strerror or exc).split())
             raise InputError(f"--out {out}: cannot write ({why})") from None
-        d = run.to_dict()
         d["out"] = str(op)
+        d["law"] = law
 
         def render() -> None:
             console.print(kv_table("Virtual rig (SYNTHETIC)", [
-                ("gamma_true", f"{gamma_true:g}", ""),
+                (what[0], what[1], ""),
                 ("points", str(len(run.pressure_mpa)), ""),
                 ("samples logged", str(d["n_samples"]), ""),
                 ("written", str(op), "")]))

@@ -130,7 +130,8 @@ class SqueezeProblem(PressurizedTube):
         Coulomb coefficients (unitless, [0, 2]) of the tube on the hole wall and on the wire,
         in the section's plane; 0: frictionless (see :func:`exofric.fe.evaluate_friction`).
     friction_penalty : float, optional
-        Tangential penalty eps_t (N/mm^3); default: ``penalty``.
+        Tangential penalty eps_t (N/mm^3); default:
+        :data:`exofric.defaults.FRICTION_PENALTY_REL` x ``penalty``.
     frictional : bool, optional
         Run the frictional machinery (anchors, bounds, commits); default: iff a mu > 0
         (True with mu = 0 checks it against the frictionless solver).
@@ -339,7 +340,8 @@ class SqueezeProblem(PressurizedTube):
 
     def _init_friction(self, friction_penalty: float | None) -> None:
         """Tangential penalty and the anchors of the outer nodes (their reference angles)."""
-        eps_t = self.penalty if friction_penalty is None else float(friction_penalty)
+        eps_t = (defaults.FRICTION_PENALTY_REL * self.penalty if friction_penalty is None
+                 else float(friction_penalty))
         check_positive("friction_penalty", eps_t)
         self.penalty_t = eps_t
         xo = self.X.reshape(-1, 2)[self.outer]

@@ -16,7 +16,13 @@ torque in Nm, arm radius in m.
   with replicate pulls, or errors-in-variables) and a :class:`LackOfFit` F test.
 * :func:`predict` -> :class:`PredictionSet` -- friction of other structures (Table 3) and the
   applicability check; :func:`anova_vs_base` (Table 4).
-* :func:`torque` -- T = F R and a requirement check (knee 0-40 Nm).
+* :class:`InterfaceFrictionModel` -- the interface-resolved law F = mu_tube S_wire +
+  mu_wall N_wall (+ F0) (issue 15); :class:`InterfaceCurves` (a structure's FE S_wire(P),
+  N(P)), :class:`InterfaceTest`, :func:`fit_interfaces` -> :class:`InterfaceFit` (both
+  coefficients with CIs, their correlation and an identifiability verdict);
+  :func:`simulate_interface_rig` -> :class:`InterfaceRigRun` (the virtual rig planting it).
+* :func:`torque` -- T = F R, optionally through a capstan wrap over the knee arc
+  (exp(+-mu_arc theta), by the direction of motion), and a requirement check (knee 0-40 Nm).
 * :func:`simulate_rig` -- the virtual friction rig (synthetic, labelled as such);
   :func:`simulate_raw_log` -- the same rig writing raw time-series logs with planted truths.
 * :func:`reduce_log` -> :class:`RigReduction` -- a raw rig log (time, pressure, force,
@@ -48,6 +54,16 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         match_squeeze,
         relative_errors,
     )
+    from exofric.friction._interfaces import (
+        IdentifiabilityWarning,
+        InterfaceCurves,
+        InterfaceFit,
+        InterfaceFrictionModel,
+        InterfaceRigRun,
+        InterfaceTest,
+        fit_interfaces,
+        simulate_interface_rig,
+    )
     from exofric.friction._inverse import CurveInverse
     from exofric.friction._model import CubicFit, FrictionModel, pressure_for_friction
     from exofric.friction._predict import (
@@ -72,13 +88,17 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from exofric.friction._rig import RigConfig, RigRun, simulate_rig
     from exofric.friction._stats import AnovaResult, anova_vs_base, one_way_anova
-    from exofric.friction._torque import TorqueCheck, torque
+    from exofric.friction._torque import TorqueCheck, capstan_factor, torque
 
 # Lazy facade (PEP 562): importing one name does not load the whole stage; each name is loaded
 # from its module on first use (exofric/__init__.py does the same one level up).
 _MODULES: dict[str, tuple[str, ...]] = {
     "_curve": ("SqueezeCurve",),
     "_fit": ("GammaFit", "LackOfFit", "fit_gamma", "match_squeeze", "relative_errors"),
+    "_interfaces": (
+        "IdentifiabilityWarning", "InterfaceCurves", "InterfaceFit", "InterfaceFrictionModel",
+        "InterfaceRigRun", "InterfaceTest", "fit_interfaces", "simulate_interface_rig",
+    ),
     "_inverse": ("CurveInverse",),
     "_model": ("CubicFit", "FrictionModel", "pressure_for_friction"),
     "_predict": (
@@ -92,20 +112,22 @@ _MODULES: dict[str, tuple[str, ...]] = {
     ),
     "_rig": ("RigConfig", "RigRun", "simulate_rig"),
     "_stats": ("AnovaResult", "anova_vs_base", "one_way_anova"),
-    "_torque": ("TorqueCheck", "torque"),
+    "_torque": ("TorqueCheck", "capstan_factor", "torque"),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
-    "anova_vs_base", "AnovaResult", "ApplicabilityWarning", "CubicFit", "CurveInverse",
-    "Deviation", "deviation", "fit_gamma", "FrictionModel", "GammaFit", "LackOfFit",
-    "match_squeeze",
+    "anova_vs_base", "AnovaResult", "ApplicabilityWarning", "capstan_factor", "CubicFit",
+    "CurveInverse",
+    "Deviation", "deviation", "fit_gamma", "fit_interfaces", "FrictionModel", "GammaFit",
+    "IdentifiabilityWarning", "InterfaceCurves", "InterfaceFit", "InterfaceFrictionModel",
+    "InterfaceRigRun", "InterfaceTest", "LackOfFit", "match_squeeze",
     "MeasuredCurve", "one_way_anova", "paper_structures", "predict", "Prediction", "PredictionSet",
     "pressure_for_friction", "RawRigConfig", "RawRigLog", "ReduceSettings", "reduce_log",
     "friction_curve", "integrated_autocorr_time", "pool_pulls", "relative_errors", "RigConfig",
     "RigReduction",
     "RigRun",
-    "simulate_raw_log", "simulate_rig",
+    "simulate_interface_rig", "simulate_raw_log", "simulate_rig",
     "SqueezeCurve", "structures_from_dict", "torque", "TorqueCheck",
 ]
 

@@ -23,6 +23,13 @@ model valid) emits :class:`ApplicabilityWarning`.
 
 Table 3 prints no tube inner diameters: :func:`paper_structures` takes the base ID scaled
 with d1, ID_i = ID_base d1_i / d1_base (the same wall-to-diameter ratio), and L = 116 mm.
+
+Two laws. ``gamma`` (a float or :class:`FrictionModel`) is the paper's F = gamma N + F0;
+an :class:`~exofric.friction.InterfaceFrictionModel` is the interface-resolved law
+F = mu_tube S_wire + mu_wall N + F0 (issue 15), which needs each squeeze result's
+``wire_pressure_integral_n_per_mm`` (S_wire = that x L). ``compare`` evaluates the other law
+beside it: each :class:`Prediction` then lists both (:class:`LawPrediction`) with their
+errors against the measured curve, side by side.
 """
 
 from __future__ import annotations
@@ -34,10 +41,11 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from exofric.errors import InputError, check_positive, check_pressures, check_series
 from exofric.friction._fit import relative_errors
+from exofric.friction._interfaces import WIRE_KEY, InterfaceFrictionModel
 from exofric.friction._model import FrictionModel
 from exofric.friction._stats import AnovaResult, anova_vs_base
 from exofric.friction._torque import TorqueCheck, torque
@@ -50,6 +58,7 @@ __all__ = [
     "ApplicabilityWarning",
     "Deviation",
     "deviation",
+    "LawPrediction",
     "MeasuredCurve",
     "Prediction",
     "PredictionSet",
@@ -361,6 +370,66 @@ class MeasuredCurve:
         return cls(tuple(p[o].tolist()), tuple(f[o].tolist()))
 
 
+AnyLaw = FrictionModel | InterfaceFrictionModel
+
+
+def _law_name(model: AnyLaw) -> str:
+    return "interfaces" if isinstance(model, InterfaceFrictionModel) else "gamma"
+
+
+@dataclass(frozen=True)
+class LawPrediction:
+    """One law's predicted friction for one structure, and its errors (N, %).
+
+    Attributes
+    ----------
+    law : {"gamma", "interfaces"}
+        Which law: F = gamma N + F0, or F = mu_tube S_wire + mu_wall N + F0.
+    model : FrictionModel or InterfaceFrictionModel
+        Its coefficients (unitless) and F0 (N).
+    predicted_friction_n : tuple of float
+        Friction in N at the prediction's pressures.
+    relative_error_pct : tuple of float
+        Signed relative error in % at each measured point (empty without a measurement).
+
+    Examples
+    --------
+    >>> lp = LawPrediction("gamma", FrictionModel(0.5), (60.0, 120.0), (9.09, -4.0))
+    >>> round(lp.max_relative_error_pct, 2), round(lp.mean_abs_relative_error_pct, 3)
+    (9.09, 6.545)
+    """
+
+    law: str
+    model: AnyLaw
+    predicted_friction_n: tuple[float, ...]
+    relative_error_pct: tuple[float, ...] = ()
+
+    @property
+    def max_relative_error_pct(self) -> float | None:
+        """Signed relative error of largest magnitude (%), None without a measurement."""
+        e = np.asarray(self.relative_error_pct, dtype=float)
+        e = e[np.isfinite(e)]
+        return float(e[np.argmax(np.abs(e))]) if e.size else None
+
+    @property
+    def mean_abs_relative_error_pct(self) -> float | None:
+        """Mean |relative error| (%), None without a measurement."""
+        e = np.asarray(self.relative_error_pct, dtype=float)
+        e = e[np.isfinite(e)]
+        return float(np.mean(np.abs(e))) if e.size else None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: law, coefficients (unitless), F (N), errors (%)."""
+        return {
+            "law": self.law,
+            **{k: v for k, v in self.model.to_dict().items() if k != "law"},
+            "predicted_friction_n": list(self.predicted_friction_n),
+            "relative_error_pct": list(self.relative_error_pct),
+            "max_relative_error_pct": self.max_relative_error_pct,
+            "mean_abs_relative_error_pct": self.mean_abs_relative_error_pct,
+        }
+
+
 @dataclass(frozen=True)
 class Prediction:
     """Predicted friction for one structure (MPa, N, %, Nm).
@@ -371,8 +440,8 @@ class Prediction:
     ----------
     structure : Structure
         The structure (sizes in mm).
-    model : FrictionModel
-        gamma (unitless) and F0 (N) used.
+    model : FrictionModel or InterfaceFrictionModel
+        The law used: gamma (unitless), or mu_tube and mu_wall (unitless); and F0 (N).
     pressure_mpa : tuple of float
         Pressures of the predicted curve in MPa (the requested ones plus any measured ones).
     squeeze_force_n : tuple of float
@@ -389,6 +458,12 @@ class Prediction:
         The measured curve (MPa, N), if one was given.
     relative_error_pct : tuple of float
         Signed relative error in % at each measured pressure (empty without a measurement).
+    wire_pressure_integral_n : tuple of float
+        S_wire in N per pressure (the tube-wire contact pressure integrated over the arc and
+        the length), when the squeeze reported it; else empty.
+    laws : tuple of LawPrediction
+        Every law evaluated, the one used first (two with ``compare``); empty when built by
+        hand.
 
     Examples
     --------
@@ -402,7 +477,7 @@ class Prediction:
     """
 
     structure: Structure
-    model: FrictionModel
+    model: AnyLaw
     pressure_mpa: tuple[float, ...]
     squeeze_force_n: tuple[float, ...]
     predicted_friction_n: tuple[float, ...]
@@ -411,6 +486,13 @@ class Prediction:
     torque: TorqueCheck
     measured: MeasuredCurve | None = None
     relative_error_pct: tuple[float, ...] = ()
+    wire_pressure_integral_n: tuple[float, ...] = ()
+    laws: tuple[LawPrediction, ...] = ()
+
+    @property
+    def law(self) -> str:
+        """The law used: ``"gamma"`` or ``"interfaces"``."""
+        return _law_name(self.model)
 
     @property
     def max_relative_error_pct(self) -> float | None:
@@ -421,10 +503,11 @@ class Prediction:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: curves (MPa, N), errors (%), deviation (%), torque (Nm)."""
+        interfaces = isinstance(self.model, InterfaceFrictionModel)
         d: dict[str, Any] = {
             "name": self.structure.name,
             "structure": self.structure.to_dict(),
-            "gamma": self.model.gamma,
+            "gamma": None if interfaces else self.model.gamma,   # type: ignore[union-attr]
             "f0_n": self.model.f0_n,
             "pressure_mpa": list(self.pressure_mpa),
             "squeeze_force_n": list(self.squeeze_force_n),
@@ -437,12 +520,20 @@ class Prediction:
             "max_friction_n": self.torque.friction_n,
             "max_torque_nm": self.torque.torque_nm,
             "meets_torque_requirement": self.torque.meets_max,
+            "law": self.law,
         }
+        if isinstance(self.model, InterfaceFrictionModel):
+            d["mu_tube"] = self.model.mu_tube
+            d["mu_wall"] = self.model.mu_wall
+        if self.wire_pressure_integral_n:
+            d["wire_pressure_integral_n"] = list(self.wire_pressure_integral_n)
         if self.measured is not None:
             d["measured_pressure_mpa"] = list(self.measured.pressure_mpa)
             d["measured_friction_n"] = list(self.measured.friction_n)
             d["relative_error_pct"] = list(self.relative_error_pct)
             d["max_relative_error_pct"] = self.max_relative_error_pct
+        if len(self.laws) > 1:
+            d["law_comparison"] = {lp.law: lp.to_dict() for lp in self.laws}
         return d
 
     def to_frame(self) -> pd.DataFrame:
@@ -452,6 +543,9 @@ class Prediction:
         ``predicted_friction_n``, and with a measured curve ``measured_friction_n`` and
         ``relative_error_pct`` (means over replicates; NaN at pressures without a
         measurement; the measured pressures are among the predicted ones) and ``n_measured``.
+        With S_wire known, ``wire_pressure_integral_n``; with two laws compared, per law
+        ``<law>_friction_n`` and, when measured, ``<law>_relative_error_pct`` (law ``gamma``
+        or ``interfaces``).
 
         Returns
         -------
@@ -474,15 +568,28 @@ class Prediction:
             "squeeze_force_n": np.asarray(self.squeeze_force_n, dtype=float),
             "predicted_friction_n": np.asarray(self.predicted_friction_n, dtype=float),
         }
+        if self.wire_pressure_integral_n:
+            cols["wire_pressure_integral_n"] = np.asarray(self.wire_pressure_integral_n,
+                                                          dtype=float)
+        compare = len(self.laws) > 1
+        if compare:
+            for lp in self.laws:
+                cols[f"{lp.law}_friction_n"] = np.asarray(lp.predicted_friction_n, dtype=float)
         if self.measured is not None:
             at = np.searchsorted(p, np.asarray(self.measured.pressure_mpa, dtype=float))
             count = np.bincount(at, minlength=p.size).astype(float)
-            with np.errstate(invalid="ignore", divide="ignore"):
-                meas = np.bincount(at, weights=self.measured.friction_n, minlength=p.size) / count
-                err = np.bincount(at, weights=self.relative_error_pct, minlength=p.size) / count
-            cols["measured_friction_n"] = np.where(count > 0, meas, np.nan)
-            cols["relative_error_pct"] = np.where(count > 0, err, np.nan)
+
+            def per_pressure(values: Any) -> Any:
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    v = np.bincount(at, weights=values, minlength=p.size) / count
+                return np.where(count > 0, v, np.nan)
+
+            cols["measured_friction_n"] = per_pressure(self.measured.friction_n)
+            cols["relative_error_pct"] = per_pressure(self.relative_error_pct)
             cols["n_measured"] = count.astype(int)
+            if compare:
+                for lp in self.laws:
+                    cols[f"{lp.law}_relative_error_pct"] = per_pressure(lp.relative_error_pct)
         return pd.DataFrame(cols)
 
 
@@ -516,13 +623,38 @@ class PredictionSet:
     anova: tuple[AnovaResult, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict with ``structures`` (list) and ``anova`` (list)."""
-        return {
-            "gamma": self.predictions[0].model.gamma if self.predictions else None,
+        """JSON-ready dict with ``structures`` (list) and ``anova`` (list).
+
+        Also ``law`` (``"gamma"`` or ``"interfaces"``; ``gamma`` is None for the latter, which
+        adds ``mu_tube`` and ``mu_wall``) and, with two laws compared, ``law_comparison``:
+        per law the mean and largest |relative error| (%) over every measured point.
+        """
+        first = self.predictions[0] if self.predictions else None
+        model = None if first is None else first.model
+        d: dict[str, Any] = {
+            "gamma": model.gamma if isinstance(model, FrictionModel) else None,
             "base": self.base.to_dict(),
             "structures": [p.to_dict() for p in self.predictions],
             "anova": [a.to_dict() for a in self.anova],
+            "law": "gamma" if model is None else _law_name(model),
         }
+        if isinstance(model, InterfaceFrictionModel):
+            d["mu_tube"], d["mu_wall"] = model.mu_tube, model.mu_wall
+        if first is not None and len(first.laws) > 1:
+            summary: dict[str, Any] = {}
+            for i, lp in enumerate(first.laws):
+                e = np.concatenate([np.asarray(p.laws[i].relative_error_pct, dtype=float)
+                                    for p in self.predictions] + [np.empty(0)])
+                e = e[np.isfinite(e)]
+                summary[lp.law] = {
+                    **{k: v for k, v in lp.model.to_dict().items() if k != "law"},
+                    "n_measured": int(e.size),
+                    "mean_abs_relative_error_pct": float(np.mean(np.abs(e))) if e.size
+                    else None,
+                    "max_abs_relative_error_pct": float(np.max(np.abs(e))) if e.size else None,
+                }
+            d["law_comparison"] = summary
+        return d
 
     def to_frame(self) -> pd.DataFrame:
         """All predicted curves as one DataFrame: one row per structure and pressure.
@@ -589,9 +721,51 @@ def _same_geometry(a: Structure, b: Structure) -> bool:
                ((a.hole_mm, b.hole_mm), (a.tube_od_mm, b.tube_od_mm), (a.wire_mm, b.wire_mm)))
 
 
+def _wire_integral(res: Any, structure: Structure) -> NDArray[np.float64]:
+    """S_wire (N) per pressure of a squeeze result, or InputError naming the missing key."""
+    per_mm = getattr(res, WIRE_KEY, None)
+    if per_mm is None and isinstance(res, Mapping):
+        per_mm = res.get(WIRE_KEY)
+    if per_mm is None:
+        raise InputError(
+            f"{structure.name}: the squeeze result has no {WIRE_KEY!r} (the tube-wire contact "
+            "pressure integral the interface law needs); make it with `exofric squeeze ... "
+            "--json` from a version with contact outputs", param=WIRE_KEY)
+    length = getattr(res, "length_mm", None) or structure.length_mm
+    return np.asarray(per_mm, dtype=float).ravel() * float(length)
+
+
+def _as_law(name: str, value: Any) -> AnyLaw:
+    if isinstance(value, (FrictionModel, InterfaceFrictionModel)):
+        return value
+    try:
+        g = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a gamma (number), a FrictionModel or an "
+                         f"InterfaceFrictionModel, got {type(value).__name__}",
+                         param=name) from None
+    return FrictionModel(g)
+
+
+def _law_friction(model: AnyLaw, s: NDArray[np.float64] | None,
+                  n: NDArray[np.float64]) -> NDArray[np.float64]:
+    if isinstance(model, InterfaceFrictionModel):
+        assert s is not None
+        return np.asarray(model.friction_n(s, n), dtype=float)
+    return np.asarray(model.friction(n), dtype=float)
+
+
+def _errors_at(f: NDArray[np.float64], at: NDArray[np.intp] | None,
+               meas: MeasuredCurve | None) -> tuple[float, ...]:
+    """Relative errors (%) of predicted F (N) at the measured points (empty without them)."""
+    if at is None or meas is None:
+        return ()
+    return tuple(relative_errors(f[at], meas.friction_n).tolist())
+
+
 def predict(
     structures: Sequence[Structure],
-    gamma: float | FrictionModel,
+    gamma: float | FrictionModel | InterfaceFrictionModel,
     material: Any,
     pressures_mpa: ArrayLike,
     *,
@@ -602,23 +776,31 @@ def predict(
     arm_radius_m: float = 0.10,
     required_torque_nm: tuple[float, float] = (0.0, 40.0),
     alpha: float = 0.05,
+    compare: float | FrictionModel | InterfaceFrictionModel | None = None,
 ) -> PredictionSet:
     """Predict F = gamma N(P) + F0 for each structure and compare with measured curves.
+
+    Or, given an :class:`~exofric.friction.InterfaceFrictionModel`, the interface-resolved
+    F = mu_tube S_wire(P) + mu_wall N(P) + F0.
 
     Parameters
     ----------
     structures : sequence of Structure
         Structures (mm); names must be unique (they key ``measured``).
-    gamma : float or FrictionModel
-        Equivalent coefficient (unitless) or a full model with offset F0 (N).
+    gamma : float or FrictionModel or InterfaceFrictionModel
+        The law used: an equivalent coefficient (unitless), a full gamma model with offset F0
+        (N), or the interface law (mu_tube, mu_wall unitless; F0 in N), which needs the
+        squeeze results' ``wire_pressure_integral_n_per_mm``.
     material : MooneyRivlin
         Tube material passed to the squeeze simulation.
     pressures_mpa : array_like
         Strictly increasing pressures (MPa) for the predicted curves.
     squeeze_fn : callable, optional
         ``squeeze(structure, material, pressures_mpa)`` returning an object with arrays
-        ``pressure_mpa`` and ``squeeze_force_n`` (total N) and optionally
-        ``contact_onset_pressure_mpa``; default :func:`exofric.simulate.squeeze`.
+        ``pressure_mpa`` and ``squeeze_force_n`` (total N), optionally
+        ``contact_onset_pressure_mpa``, and for the interface law
+        ``wire_pressure_integral_n_per_mm`` (N/mm; times ``length_mm``, or the structure's
+        length, for S_wire in N); default :func:`exofric.simulate.squeeze`.
     measured : mapping name -> MeasuredCurve, optional
         Measured friction per structure name; the measured pressures are simulated too.
     base : Structure, optional
@@ -630,6 +812,9 @@ def predict(
         Lever arm (m) and required torque range (Nm) for the torque check at max pressure.
     alpha : float
         ANOVA significance level.
+    compare : float or FrictionModel or InterfaceFrictionModel, optional
+        A second law evaluated beside the first (e.g. the interface law beside gamma): each
+        prediction's ``laws`` then holds both, with their errors against the measured curve.
 
     Returns
     -------
@@ -651,8 +836,25 @@ def predict(
     [56.0, 112.0, 168.0]
     >>> round(r.predictions[1].deviation.deviation_pct, 1)
     9.1
+
+    The interface law beside gamma (the stand-in adds S_wire = 1.1 N per mm of tube):
+
+    >>> from exofric.friction import InterfaceFrictionModel
+    >>> fake2 = lambda s, m, p: SimpleNamespace(pressure_mpa=p, squeeze_force_n=400 * p,
+    ...     wire_pressure_integral_n_per_mm=440 * p / 116.0, length_mm=116.0)
+    >>> r = predict(paper_structures()[:1], InterfaceFrictionModel(0.5, 0.15), None, [0.6],
+    ...             squeeze_fn=fake2, compare=0.7)
+    >>> [round(f, 6) for f in r.predictions[0].predicted_friction_n], r.to_dict()["law"]
+    ([168.0], 'interfaces')
+    >>> [lp.law for lp in r.predictions[0].laws]
+    ['interfaces', 'gamma']
     """
-    model = gamma if isinstance(gamma, FrictionModel) else FrictionModel(float(gamma))
+    model = _as_law("gamma", gamma)
+    other = None if compare is None else _as_law("compare", compare)
+    if other is not None and _law_name(other) == _law_name(model):
+        raise InputError(f"compare must be the other law than {_law_name(model)!r} (got the "
+                         "same law twice)", param="compare")
+    needs_s = any(isinstance(m, InterfaceFrictionModel) for m in (model, other))
     grid = check_pressures("pressures_mpa", np.asarray(pressures_mpa, dtype=float).ravel())
     if not structures:
         raise InputError("predict needs at least one structure")
@@ -683,7 +885,15 @@ def predict(
         if p_out.shape != p_eval.shape or n_out.shape != p_eval.shape:
             raise InputError(f"{s.name}: squeeze returned {n_out.size} forces for "
                              f"{p_eval.size} pressures")
-        f_out = model.friction(n_out)
+        s_out = _wire_integral(res, s) if needs_s else None
+        if s_out is not None and s_out.shape != p_eval.shape:
+            raise InputError(f"{s.name}: squeeze returned {s_out.size} {WIRE_KEY} values for "
+                             f"{p_eval.size} pressures")
+        if s_out is None:
+            maybe = getattr(res, WIRE_KEY, None)
+            if maybe is not None and np.size(maybe) == p_eval.size:
+                s_out = _wire_integral(res, s)
+        f_out = _law_friction(model, s_out, n_out)
         dev = deviation(s, base, threshold_pct)
         if not dev.in_validated_region:
             warnings.warn(
@@ -691,10 +901,13 @@ def predict(
                 f"{threshold_pct:g}%, outside the region where the paper validated the model",
                 ApplicabilityWarning, stacklevel=2,
             )
-        rel: tuple[float, ...] = ()
-        if meas is not None:
-            at = np.searchsorted(p_out, np.asarray(meas.pressure_mpa))
-            rel = tuple(relative_errors(f_out[at], meas.friction_n).tolist())
+        at = None if meas is None else np.searchsorted(p_out, np.asarray(meas.pressure_mpa))
+        rel = _errors_at(f_out, at, meas)
+        laws = [LawPrediction(_law_name(model), model, tuple(f_out.tolist()), rel)]
+        if other is not None:
+            f_other = _law_friction(other, s_out, n_out)
+            laws.append(LawPrediction(_law_name(other), other, tuple(f_other.tolist()),
+                                      _errors_at(f_other, at, meas)))
         onset = getattr(res, "contact_onset_pressure_mpa", None)
         preds.append(Prediction(
             structure=s, model=model, pressure_mpa=tuple(p_out.tolist()),
@@ -703,6 +916,8 @@ def predict(
             deviation=dev,
             torque=torque(float(f_out[-1]), arm_radius_m, required_torque_nm),
             measured=meas, relative_error_pct=rel,
+            wire_pressure_integral_n=() if s_out is None else tuple(s_out.tolist()),
+            laws=tuple(laws),
         ))
     anova: tuple[AnovaResult, ...] = ()
     base_pred = next((p for p in preds if p.measured is not None

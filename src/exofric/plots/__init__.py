@@ -12,7 +12,8 @@ methods delegate here.
   :func:`draw_section`, :func:`section_polygons`.
 * Calibration: :func:`plot_calibration` (Fig 5b), :func:`plot_table1`.
 * Friction: :func:`plot_gamma_fit` (Fig 4), :func:`plot_predictions` (Figs 8-10),
-  :func:`plot_cubic_fit` (Fig 11), :func:`plot_torque`.
+  :func:`plot_cubic_fit` (Fig 11), :func:`plot_torque`, :func:`plot_interface_fit` (the
+  two-interface law against the pooled gamma).
 * Raw rig logs: :func:`plot_reduction` (plateaus, pulls and averaging windows).
 * Control: :func:`plot_simulation`, :func:`plot_control_cases` (Fig 12).
 * Design: :func:`plot_design_map`, :func:`map_axes`.
@@ -56,6 +57,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         plot_predictions,
         plot_torque,
     )
+    from exofric.plots._interfaces import plot_interface_fit
     from exofric.plots._rig import plot_reduction
 
 # Lazy facade (PEP 562): ``save`` or one figure does not load every plotting module; each name is
@@ -70,6 +72,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "plot_squeeze_curves", "plot_squeeze_force", "section_polygons",
     ),
     "_friction": ("plot_cubic_fit", "plot_gamma_fit", "plot_predictions", "plot_torque"),
+    "_interfaces": ("plot_interface_fit",),
     "_rig": ("plot_reduction",),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
@@ -77,7 +80,8 @@ _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 __all__ = [
     "draw_section", "map_axes", "plot_calibration", "plot_control_cases", "plot_cubic_fit",
     "plot_design_map", "plot_gamma_fit", "plot_inflation", "plot_inflation_curve",
-    "plot_predictions", "plot_reduction", "plot_simulation", "plot_squeeze", "plot_squeeze_curves",
+    "plot_interface_fit", "plot_predictions", "plot_reduction", "plot_simulation", "plot_squeeze",
+    "plot_squeeze_curves",
     "plot_squeeze_force", "plot_table1", "plot_torque", "save", "section_polygons",
 ]
 

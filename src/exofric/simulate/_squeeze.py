@@ -203,7 +203,7 @@ class SqueezeResult:
     wall_force_direction_deg: np.ndarray | None = None
     mu_wall: float = 0.0
     mu_wire: float = 0.0
-    friction_penalty: float = defaults.CONTACT_PENALTY_N_PER_MM3
+    friction_penalty: float = defaults.CONTACT_PENALTY_N_PER_MM3 * defaults.FRICTION_PENALTY_REL
     wire_pressure_integral_n_per_mm: np.ndarray | None = None
     wall_pressure_integral_n_per_mm: np.ndarray | None = None
     wire_tangential_force_n_per_mm: np.ndarray | None = None
@@ -819,7 +819,7 @@ def squeeze(
         ``docs/formulation.md`` 4a). 0 (default): frictionless, as in the paper.
     friction_penalty : float, optional
         Tangential penalty (N/mm^3: MPa of shear traction per mm of elastic slip); default:
-        ``penalty``.
+        :data:`exofric.defaults.FRICTION_PENALTY_REL` x ``penalty`` (1e3 N/mm^3).
 
     Returns
     -------
