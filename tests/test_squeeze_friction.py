@@ -229,3 +229,35 @@ class _nullcontext:
 
     def __exit__(self, *a: object) -> None:
         return None
+
+
+def test_vtu_point_data_and_contact_plot(tmp_path) -> None:
+    """--vtu carries the contact pressures as point data (the same values as the profiles) and
+    --contact-plot draws pressure vs arc position for both interfaces."""
+    import meshio
+
+    g = ["--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire", "1.6",
+         "--shore", "62.5", "--pressures", "0.6", "--n-radial", "2", "--n-circ", "16"]
+    vtu, png = tmp_path / "s.vtu", tmp_path / "c.png"
+    run = subprocess.run([sys.executable, "-m", "exofric", "squeeze", *g, "--mu-wall", "0.3",
+                          "--vtu", str(vtu), "--contact-plot", str(png), "--json"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    d = json.loads(run.stdout)
+    m = meshio.read(vtu)
+    wire = d["contact"][0]["wire"]
+    got = m.point_data["contact_pressure_wire_mpa"][np.asarray(wire["node"])]
+    np.testing.assert_allclose(got, wire["pressure_mpa"], rtol=1e-12)
+    assert m.point_data["contact_pressure_wall_mpa"].max() > 0.1
+    assert png.stat().st_size > 10_000
+
+
+def test_plot_contact_pressure_draws_both_arcs() -> None:
+    from matplotlib.figure import Figure
+
+    from exofric.plots import plot_contact_pressure
+
+    r = squeeze(BASE, MAT, [0.6], mesh=MeshSpec(2, 16), mu_wall=0.3, mu_wire=0.3)
+    ax = plot_contact_pressure(r, Figure().add_subplot())
+    labels = [line.get_label() for line in ax.get_lines()]
+    assert "wire: pressure" in labels and "wall: friction traction" in labels

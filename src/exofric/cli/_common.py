@@ -165,6 +165,7 @@ def write_outputs(
                 res.elements,
                 res.displacements[-1],
                 {"von_mises_mpa": res.von_mises_mpa[-1]},
+                res.contact_point_data() if hasattr(res, "contact_point_data") else None,
             )
         )
     return out

@@ -16,6 +16,7 @@ from exofric.cli._common import (
     out_file,
     parse_floats,
     plot_path,
+    save_figure,
     write_outputs,
 )
 from exofric.cli.inflate import material_from_options
@@ -81,7 +82,11 @@ def register(app: typer.Typer) -> None:
             0.0, "--mu-wire", help="Coulomb friction coefficient tube-wire (silicone on steel) "
             "in the section's plane, [0, 2]; 0: frictionless (the paper)."),
         plot: Path = typer.Option(None, help="PNG: deformed sections (Fig 6) and N(P) (Fig 7)."),
-        vtu: Path = typer.Option(None, help="VTU of the half section at the last pressure."),
+        contact_plot: Path = typer.Option(
+            None, "--contact-plot", help="PNG: contact pressure (and friction traction) along "
+            "the wire's and the wall's contact arcs at the last pressure (MPa vs mm)."),
+        vtu: Path = typer.Option(None, help="VTU of the half section at the last pressure "
+                                 "(with contact pressures as point data)."),
         as_json: bool = JSON_OPTION,
     ) -> None:
         """Squeezing force between tube and wire vs pressure (N, N/mm, MPa, mm)."""
@@ -90,6 +95,7 @@ def register(app: typer.Typer) -> None:
         from exofric.simulate import squeeze
 
         plot = None if plot is None else plot_path(plot)
+        contact_plot = None if contact_plot is None else plot_path(contact_plot)
         vtu = None if vtu is None else out_file("vtu", vtu)
         mat = material_from_options(shore, c10, c01, d)
         st = Structure(hole, tube_od, tube_id, wire, length)
@@ -111,6 +117,11 @@ def register(app: typer.Typer) -> None:
         from exofric.plots import plot_squeeze
 
         out.update(write_outputs(res, plot, vtu, plot_squeeze))
+        if contact_plot is not None:
+            from exofric.plots import plot_contact_pressure
+
+            out["contact_plot"] = str(save_figure(plot_contact_pressure(res).figure,
+                                                  contact_plot))
 
         def render() -> None:
             from rich.table import Table
@@ -176,7 +187,7 @@ def register(app: typer.Typer) -> None:
                 assert cm is not None
                 console.print(f"[dim]error estimate: 3 x |N - N({cm.n_radial} x {cm.n_circ} "
                               "nested mesh)| (two-grid GCI); --accuracy fine for less.[/dim]")
-            for k in ("plot", "vtu"):
+            for k in ("plot", "contact_plot", "vtu"):
                 if k in out:
                     console.print(f"wrote {out[k]}")
 

@@ -21,6 +21,7 @@ def write_vtu(
     elements: np.ndarray,
     displacement: np.ndarray,
     cell_fields: dict[str, np.ndarray] | None = None,
+    point_fields: dict[str, np.ndarray] | None = None,
 ) -> Path:
     """Write the deformed mesh (mm) with point displacement and cell fields to ``path``.
 
@@ -39,6 +40,8 @@ def write_vtu(
         Node displacements, shape (n, 2), in mm; written as ``displacement_mm``.
     cell_fields : dict of str to numpy.ndarray, optional
         Per-element values (name them with their unit, e.g. ``von_mises_mpa``).
+    point_fields : dict of str to numpy.ndarray, optional
+        Per-node values, shape (n,) (e.g. ``contact_pressure_wire_mpa``).
 
     Examples
     --------
@@ -57,9 +60,9 @@ def write_vtu(
     pts = np.column_stack([nodes + displacement, np.zeros(len(nodes))])
     disp3 = np.column_stack([displacement, np.zeros(len(nodes))])
     cd = {k: [np.asarray(v)] for k, v in (cell_fields or {}).items()}
-    mesh = meshio.Mesh(
-        pts, [(kind, elements[:, perm])], point_data={"displacement_mm": disp3}, cell_data=cd
-    )
+    pd = {"displacement_mm": disp3, **{k: np.asarray(v, dtype=float)
+                                        for k, v in (point_fields or {}).items()}}
+    mesh = meshio.Mesh(pts, [(kind, elements[:, perm])], point_data=pd, cell_data=cd)
     p = Path(path)
     fmt = meshio.extension_to_filetypes.get(p.suffix.lower(), ["vtu"])[0]
     with atomic_path(p) as tmp:

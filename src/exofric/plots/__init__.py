@@ -8,6 +8,7 @@ backend: the CLI sets ``MPLBACKEND=Agg`` once at start-up. The result objects' `
 methods delegate here.
 
 * FE: :func:`plot_squeeze` (Figs 6-7), :func:`plot_squeeze_force` (Fig 7),
+  :func:`plot_contact_pressure` (pressure and friction along the contact arcs),
   :func:`plot_squeeze_curves`, :func:`plot_inflation`, :func:`plot_inflation_curve`,
   :func:`draw_section`, :func:`section_polygons`.
 * Calibration: :func:`plot_calibration` (Fig 5b), :func:`plot_table1`.
@@ -44,6 +45,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.plots._design import map_axes, plot_design_map
     from exofric.plots._fe import (
         draw_section,
+        plot_contact_pressure,
         plot_inflation,
         plot_inflation_curve,
         plot_squeeze,
@@ -68,7 +70,8 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "_control": ("plot_control_cases", "plot_simulation"),
     "_design": ("map_axes", "plot_design_map"),
     "_fe": (
-        "draw_section", "plot_inflation", "plot_inflation_curve", "plot_squeeze",
+        "draw_section", "plot_contact_pressure", "plot_inflation", "plot_inflation_curve",
+        "plot_squeeze",
         "plot_squeeze_curves", "plot_squeeze_force", "section_polygons",
     ),
     "_friction": ("plot_cubic_fit", "plot_gamma_fit", "plot_predictions", "plot_torque"),
@@ -78,7 +81,8 @@ _MODULES: dict[str, tuple[str, ...]] = {
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
-    "draw_section", "map_axes", "plot_calibration", "plot_control_cases", "plot_cubic_fit",
+    "draw_section", "map_axes", "plot_calibration", "plot_contact_pressure",
+    "plot_control_cases", "plot_cubic_fit",
     "plot_design_map", "plot_gamma_fit", "plot_inflation", "plot_inflation_curve",
     "plot_interface_fit", "plot_predictions", "plot_reduction", "plot_simulation", "plot_squeeze",
     "plot_squeeze_curves",

@@ -439,3 +439,71 @@ def plot_squeeze(
     if created and pc is None:
         fig.tight_layout()
     return fig
+
+
+def plot_contact_pressure(result: SqueezeResult, ax: Any | None = None, *,
+                          index: int = -1) -> Any:
+    """Contact pressure (and friction traction) along the wire's and the wall's contact arcs.
+
+    True normal pressure (MPa, solid, markers at the contact nodes) against the arc position
+    (mm) from each arc's centre, for the wire (dark) and the hole wall (light); with friction
+    the signed friction traction is dashed and sticking nodes are filled. The title gives the
+    pressure and the integrals S_wire and S_wall (N/mm).
+
+    Parameters
+    ----------
+    result : SqueezeResult
+        From :func:`exofric.simulate.squeeze` (its ``contact`` profiles).
+    ax : matplotlib Axes, optional
+        Where to draw (default a new figure, 6.4 x 4.2 in).
+    index : int
+        Which pressure of ``result.pressure_mpa`` (default the last).
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.fe import MeshSpec
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> from exofric.simulate import squeeze
+    >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.6], mesh=MeshSpec(2, 12))
+    >>> plot_contact_pressure(r, Figure().add_subplot()).get_xlabel()
+    'arc position from the contact centre (mm)'
+    """
+    ax, created = new_axes(ax, (6.4, 4.2))
+    p = float(result.pressure_mpa[index])
+    prof = result.contact[index] if result.contact else {}
+    fric = result.mu_wall > 0.0 or result.mu_wire > 0.0
+    for name, color in (("wire", "#1f4e79"), ("wall", "#e08a2c")):
+        arc = prof.get(name)
+        if not arc or not arc["arc_mm"]:
+            continue
+        s = np.asarray(arc["arc_mm"])
+        stick = np.asarray(arc["stick"], dtype=bool)
+        ax.plot(s, arc["pressure_mpa"], "-", color=color, lw=1.8,
+                label=f"{name}: pressure")
+        ax.plot(s[~stick], np.asarray(arc["pressure_mpa"])[~stick], "o", mfc="white",
+                color=color, ms=4)
+        ax.plot(s[stick], np.asarray(arc["pressure_mpa"])[stick], "o", color=color, ms=4)
+        if fric:
+            ax.plot(s, arc["shear_mpa"], "--", color=color, lw=1.2,
+                    label=f"{name}: friction traction")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel("arc position from the contact centre (mm)")
+    ax.set_ylabel("contact traction (MPa)")
+    sw = result.wire_pressure_integral_n_per_mm
+    sl = result.wall_pressure_integral_n_per_mm
+    title = f"P = {p:g} MPa"
+    if sw is not None and sl is not None:
+        title += f": S_wire {sw[index]:.3f}, S_wall {sl[index]:.3f} N/mm"
+    if fric:
+        title += f" (mu wall {result.mu_wall:g}, wire {result.mu_wire:g}; filled: stick)"
+    ax.set_title(title, fontsize=SMALL)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=SMALL, loc="upper right")
+    finish(ax.figure, created)
+    return ax

@@ -150,7 +150,8 @@ class SqueezeResult:
         without friction).
     contact : tuple of dict
         Per pressure, ``{"wire": ..., "wall": ...}``, each with lists along the contact arc
-        (nodes in contact, sorted): ``arc_mm`` and ``angle_deg`` from the arc's centre (the
+        (nodes in contact, sorted): ``node`` (mesh node index), ``arc_mm`` and
+        ``angle_deg`` from the arc's centre (the
         side of the circle facing away from the other obstacle; the half model's x >= 0
         half), ``pressure_mpa`` (true normal pressure), ``shear_mpa`` (signed friction
         traction, MPa) and ``stick``.
@@ -212,6 +213,47 @@ class SqueezeResult:
     stick_fraction_wall: np.ndarray | None = None
     contact: tuple[dict[str, dict[str, list[Any]]], ...] = field(default=(), repr=False)
     friction_dissipation_n_per_mm: np.ndarray | None = field(default=None, repr=False)
+
+    def contact_point_data(self, index: int = -1) -> dict[str, np.ndarray]:
+        """Per-node contact fields of one pressure, for VTU point data (0 off the arcs).
+
+        Parameters
+        ----------
+        index : int
+            Position in :attr:`pressure_mpa` (default the last).
+
+        Returns
+        -------
+        dict of str to ndarray (n_nodes,)
+            ``contact_pressure_wire_mpa``, ``contact_pressure_wall_mpa`` (true normal
+            pressure), ``contact_shear_wire_mpa``, ``contact_shear_wall_mpa`` (signed friction
+            traction) and ``contact_stick`` (1 where a contact node sticks).
+
+        Examples
+        --------
+        >>> from exofric.fe import MeshSpec
+        >>> from exofric.geometry import BASE
+        >>> from exofric.material import MooneyRivlin
+        >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.6], mesh=MeshSpec(2, 12))
+        >>> d = r.contact_point_data()
+        >>> float(d["contact_pressure_wire_mpa"].max()) > 1.0
+        True
+        """
+        n = len(self.nodes)
+        out = {k: np.zeros(n) for k in ("contact_pressure_wire_mpa", "contact_pressure_wall_mpa",
+                                        "contact_shear_wire_mpa", "contact_shear_wall_mpa",
+                                        "contact_stick")}
+        if not self.contact:
+            return out
+        prof = self.contact[index]
+        for name in ("wire", "wall"):
+            arc = prof[name]
+            idx = np.asarray(arc["node"], dtype=int)
+            out[f"contact_pressure_{name}_mpa"][idx] = arc["pressure_mpa"]
+            out[f"contact_shear_{name}_mpa"][idx] = arc["shear_mpa"]
+            out["contact_stick"][idx] = np.maximum(out["contact_stick"][idx],
+                                                   np.asarray(arc["stick"], dtype=float))
+        return out
 
     @property
     def length_mm(self) -> float:
@@ -480,7 +522,8 @@ class _MeshSolution:
             w = w_now[i]
             t = np.zeros(len(i)) if f is None else f.traction[i] / w
             st = np.zeros(len(i), bool) if f is None else f.stick[i]
-            out[name] = {"arc_mm": (circ.radius * ang[i]).tolist(),
+            out[name] = {"node": prob.outer[i].tolist(),
+                         "arc_mm": (circ.radius * ang[i]).tolist(),
                          "angle_deg": np.degrees(ang[i]).tolist(),
                          "pressure_mpa": (np.linalg.norm(c.force[i], axis=1) / w).tolist(),
                          "shear_mpa": t.tolist(), "stick": st.astype(bool).tolist()}
