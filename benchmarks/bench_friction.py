@@ -5,10 +5,20 @@ iterations, and N(0.6 MPa).
 
 Run: ``.venv/bin/python benchmarks/bench_friction.py [--repeats 3] [--json]``.
 
-Measured (2026-11-23, one core of the shared 2-core machine): frictionless ~0.55 s; mu 0.3 on
-both interfaces ~3-4 s (ratio ~5-7x, the target of 3x is NOT met): the coupled Coulomb Newton
-needs ~2x the iterations, solves a non-symmetric band LU instead of a Cholesky, and an edge node
-of the contact arcs that flips in and out of contact costs cut-backs (~30 % failed attempts).
+Measured (2026-11-23, one core of the shared 2-core machine, medians of 5; CPU s, ratio):
+
+=================  ==================  ===========================================
+case               sweep 2 x 24 mesh   squeeze standard (4 x 32 + 2 x 16 estimate)
+=================  ==================  ===========================================
+frictionless       0.17                0.42
+wall 0.3           0.55 (3.2x)         1.09 (2.6x)
+wire 0.3           0.29 (1.7x)         0.86 (2.1x)
+both 0.3           0.57 (3.4x)         1.47 (3.5x)
+=================  ==================  ===========================================
+
+The issue's target (3x) is met with the wire's friction alone and missed by ~15 % with the
+wall's: 10-20 % of the Newton attempts fail (an edge node of the wall's contact arc enters
+while the arc slides) and cut the step back; iterations are ~2x the frictionless ones.
 """
 
 from __future__ import annotations
@@ -26,6 +36,8 @@ from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from exofric import defaults  # noqa: E402
+from exofric.fe import MeshSpec  # noqa: E402
 from exofric.geometry import BASE  # noqa: E402
 from exofric.material import MooneyRivlin  # noqa: E402
 from exofric.simulate import squeeze  # noqa: E402
@@ -43,27 +55,37 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     mat = MooneyRivlin.from_shore(62.5)
     p = np.round(np.arange(1, 13) * 0.05, 2)
     out: dict[str, Any] = {}
-    for name, (mw, mr) in CASES.items():
-        times = []
-        for _ in range(args.repeats):
-            t0 = time.process_time()
-            r = squeeze(BASE, mat, p, mu_wall=mw, mu_wire=mr)
-            times.append(time.process_time() - t0)
-        st = r.solver_stats.to_dict()
-        out[name] = {"cpu_s_median": statistics.median(times),
-                     "attempts": st.get("attempts"), "failed_attempts": st.get("failed_attempts"),
-                     "iterations": st.get("iterations"),
-                     "n_at_0_6_mpa_n_per_mm": float(r.squeeze_force_n_per_mm[-1])}
-    base = out["frictionless"]["cpu_s_median"]
-    for v in out.values():
-        v["ratio_to_frictionless"] = v["cpu_s_median"] / base
+    settings = {
+        "sweep (2 x 24 mesh)": {"mesh": MeshSpec(**defaults.SQUEEZE_MESH), "keep_fields": False},
+        "squeeze standard (4 x 32 + 2 x 16 estimate)": {},
+    }
+    for label, kw in settings.items():
+        rows: dict[str, Any] = {}
+        for name, (mw, mr) in CASES.items():
+            times = []
+            for _ in range(args.repeats):
+                t0 = time.process_time()
+                r = squeeze(BASE, mat, p, mu_wall=mw, mu_wire=mr, **kw)
+                times.append(time.process_time() - t0)
+            st = r.solver_stats.to_dict()
+            rows[name] = {"cpu_s_median": statistics.median(times),
+                          "attempts": st.get("attempts"),
+                          "failed_attempts": st.get("failed_attempts"),
+                          "iterations": st.get("iterations"),
+                          "n_at_0_6_mpa_n_per_mm": float(r.squeeze_force_n_per_mm[-1])}
+        base = rows["frictionless"]["cpu_s_median"]
+        for v in rows.values():
+            v["ratio_to_frictionless"] = v["cpu_s_median"] / base
+        out[label] = rows
     if args.json:
         print(json.dumps(out, indent=2))
-    else:
-        print(f"{'case':14s} {'CPU s':>7s} {'ratio':>6s} {'attempts':>9s} {'failed':>7s} "
+        return out
+    for label, rows in out.items():
+        print(label)
+        print(f"  {'case':14s} {'CPU s':>7s} {'ratio':>6s} {'attempts':>9s} {'failed':>7s} "
               f"{'iters':>6s} {'N(0.6) N/mm':>12s}")
-        for k, v in out.items():
-            print(f"{k:14s} {v['cpu_s_median']:7.2f} {v['ratio_to_frictionless']:6.1f} "
+        for k, v in rows.items():
+            print(f"  {k:14s} {v['cpu_s_median']:7.2f} {v['ratio_to_frictionless']:6.1f} "
                   f"{v['attempts']:9d} {v['failed_attempts']:7d} {v['iterations']:6d} "
                   f"{v['n_at_0_6_mpa_n_per_mm']:12.4f}")
     return out

@@ -225,6 +225,14 @@ class FrictionState:
     theta: np.ndarray
 
 
+#: A node whose trial force is within this fraction of the Coulomb bound counts as slipping:
+#: a node that slid in the last step sits exactly on the bound at the start of the next one
+#: (its anchor is moved so), and the slip branch of the tangent lets it keep sliding where the
+#: stick branch (a stiff spring) would make Newton oscillate between the two (set on the base
+#: group: failed attempts and iterations fall by half).
+_SLIP_TOL = 1e-6
+
+
 def polar_angle(x: np.ndarray, circle: RigidCircle) -> np.ndarray:
     """Polar angle (rad) of points ``x`` (m, 2) seen from the centre of ``circle``.
 
@@ -327,7 +335,7 @@ def evaluate_friction(
     if bound is None:
         bound = mu * np.linalg.norm(normal.force, axis=1)   # mu eps w <-g>
     trial = kw * gt
-    stick = on & (np.abs(trial) <= bound)
+    stick = on & (np.abs(trial) < (1.0 - _SLIP_TOL) * bound)
     sgn = np.sign(trial)
     T = np.where(stick, trial, np.where(on, bound * sgn, 0.0))
     gth = np.column_stack([-d[:, 1], d[:, 0]]) / r2[:, None]  # grad(theta)

@@ -563,6 +563,9 @@ def _line_search(
     """
     free = problem.free
     d = step[free]
+    # the full step's tangent is kept for the next iteration, unless the problem re-freezes its
+    # friction bounds there (the next iteration re-evaluates anyway)
+    reuse = not getattr(problem, "frictional", False)
     noise = 1e-13 * max(1.0, abs(energy))
     descent = s0 < 0.0 and abs(s0) > noise
     evals = 0
@@ -580,7 +583,7 @@ def _line_search(
 
     alpha = 1.0
     while True:
-        t, r_t, s_hi = trial(alpha, alpha == 1.0)
+        t, r_t, s_hi = trial(alpha, alpha == 1.0 and reuse)
         if t is not None and np.isfinite(r_t):
             if _accept(t[0], r_t, energy, rnorm, alpha * s0, r_tol):
                 return alpha, t

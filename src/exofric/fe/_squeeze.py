@@ -578,6 +578,18 @@ class SqueezeProblem(PressurizedTube):
             n = vec / dist[:, None]
             lin.append((c.radius - dist, -n) if c.inside else (dist - c.radius, n))
         kw = self.penalty * self.w_outer
+        # friction of nodes entering contact: mu and s R grad(theta) (s: the sense of the
+        # node's trial slip from its anchor), or None without friction on that obstacle
+        fric: list[tuple[float | None, np.ndarray]] = []
+        for c, m, a in zip((self.hole, self.wire), self.mu, self.anchors, strict=True):
+            if not (self.frictional and m > 0.0):
+                fric.append((None, np.zeros((len(kw), 2))))
+                continue
+            v = xo - np.asarray(c.center)
+            r2 = v[:, 0] ** 2 + v[:, 1] ** 2
+            sense = np.sign(np.angle(np.exp(1j * (np.arctan2(v[:, 1], v[:, 0]) - a))))
+            gth = np.column_stack([-v[:, 1], v[:, 0]]) / r2[:, None]
+            fric.append((m, (sense * c.radius)[:, None] * gth))
         free = self.free
         step = np.zeros(self.n_dofs)
         plain = d
@@ -593,10 +605,16 @@ class SqueezeProblem(PressurizedTube):
             used = nxt
             blocks = np.zeros((len(kw), 2, 2))
             extra = np.zeros(self.n_dofs)
-            for (g, grad), e in zip(lin, used, strict=True):
+            for (g, grad), e, (m, slip_dir) in zip(lin, used, fric, strict=True):
                 ke = np.where(e, kw, 0.0)
                 blocks += ke[:, None, None] * np.einsum("mi,mj->mij", grad, grad)
                 np.add.at(extra, cd.ravel(), (-(ke * g)[:, None] * grad).ravel())
+                if m is not None:
+                    # friction of an entering node, sliding (its bound starts at 0): residual
+                    # mu s R F_n grad(theta) with F_n = -eps w (g + grad g . d), linearised
+                    fk = m * ke
+                    blocks -= fk[:, None, None] * np.einsum("mi,mj->mij", slip_dir, grad)
+                    np.add.at(extra, cd.ravel(), ((fk * g)[:, None] * slip_dir).ravel())
             d = solve(self.assembler.add(K, 2, blocks), rhs + extra[free])
             if not np.all(np.isfinite(d)):
                 return plain
