@@ -605,14 +605,14 @@ class SqueezeProblem(PressurizedTube):
             used = nxt
             blocks = np.zeros((len(kw), 2, 2))
             extra = np.zeros(self.n_dofs)
-            for (g, grad), e, (m, slip_dir) in zip(lin, used, fric, strict=True):
+            for (g, grad), e, (mf, slip_dir) in zip(lin, used, fric, strict=True):
                 ke = np.where(e, kw, 0.0)
                 blocks += ke[:, None, None] * np.einsum("mi,mj->mij", grad, grad)
                 np.add.at(extra, cd.ravel(), (-(ke * g)[:, None] * grad).ravel())
-                if m is not None:
+                if mf is not None:
                     # friction of an entering node, sliding (its bound starts at 0): residual
                     # mu s R F_n grad(theta) with F_n = -eps w (g + grad g . d), linearised
-                    fk = m * ke
+                    fk = mf * ke
                     blocks -= fk[:, None, None] * np.einsum("mi,mj->mij", slip_dir, grad)
                     np.add.at(extra, cd.ravel(), ((fk * g)[:, None] * slip_dir).ravel())
             d = solve(self.assembler.add(K, 2, blocks), rhs + extra[free])
