@@ -852,7 +852,11 @@ def _follow(
             h = min(step, target - lam)
             trial_lam = lam + h
             guess = u
-            if s.extrapolate and u_prev is not None and lam > lam_prev:
+            # no secant predictor for frictional problems: it extrapolates the displacements
+            # but not the slip state, and the sliding wall arc is predicted past its edge
+            # (base group, mu 0.3: failed attempts 16 -> 4 of ~80, iterations -20 %)
+            if (s.extrapolate and not getattr(problem, "frictional", False)
+                    and u_prev is not None and lam > lam_prev):
                 # secant predictor (a Newton failure from it is retried from the last state)
                 guess = u + (u - u_prev) * (h / (lam - lam_prev))
                 limit = getattr(problem, "limit_predictor", None)
