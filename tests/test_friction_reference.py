@@ -11,10 +11,11 @@ in the file. Nothing of exofric is used to make it (only the material constants 
 
 Tolerance: the issue's 1 % from 0.2 MPa for N. Measured (largest from 0.2 MPa, at 0.25 MPa,
 where the two codes' frictionless models also differ by 0.36 %): both interfaces 0.27 %, the
-wall alone 0.31 %, the wire alone 0.32 %; from 0.3 MPa at most 0.12 %. The wire alone moves N by only 0.3 %, below that tolerance, so
-the tube-wire tangential force (the friction the wire feels in the section's plane) and the
-normal-pressure integrals are compared as well (CalculiX's are nodal reactions of the rigid
-faces split into radial and circumferential parts, on a different contact discretisation).
+wall alone 0.31 %, the wire alone 0.32 %; from 0.3 MPa at most 0.12 %. The wire alone moves N by
+only 0.3 %, below that tolerance, so the tube-wire tangential force (the friction the wire feels
+in the section's plane) and the normal-pressure integrals are compared as well (CalculiX's are
+nodal reactions of the rigid faces split into radial and circumferential parts, on a different
+contact discretisation).
 """
 
 from __future__ import annotations
