@@ -307,3 +307,34 @@ def test_structures_example_equals_paper_option(cli):
     # the file prints the scaled tube IDs to 4 decimals (e.g. 3.7125 for 3.712530...), which
     # moves N by ~5e-5 relative (dN/dID ~ 94 N/mm at 0.6 MPa); hence 1e-3
     assert fa == pytest.approx(fb, rel=1e-3)
+
+
+# --- treloar_fit.py --------------------------------------------------------------------------
+
+
+def test_treloar_fit_against_linear_least_squares():
+    """Yeoh is linear in (C10, C20, C30): numpy's lstsq on hand-built columns (I1 per mode)
+    is an independent solution of the same absolute-residual problem (1e-6 relative). The
+    Mooney-Rivlin refusal follows from the sign of C01 in the same linear solve (C01 < 0
+    makes the equibiaxial stress 2(l - l^-5)(C10 + C01 l^2) turn over)."""
+    from exofric.material import treloar_1944
+
+    ex = example("treloar_fit")
+    data = treloar_1944()
+    rows, mr_rows, ys = [], [], []
+    for mode, (lam, p) in data.items():
+        i1 = {"uniaxial": lam**2 + 2 / lam, "biaxial": 2 * lam**2 + lam**-4,
+              "planar": lam**2 + 1 + lam**-2}[mode]
+        g = 2 * (lam - lam ** {"uniaxial": -2.0, "biaxial": -5.0, "planar": -3.0}[mode])
+        rows.append(np.column_stack([g, 2 * g * (i1 - 3), 3 * g * (i1 - 3) ** 2]))
+        c01 = {"uniaxial": 1 / lam, "biaxial": lam**2, "planar": np.ones_like(lam)}[mode]
+        mr_rows.append(np.column_stack([g, g * c01]))
+        ys.append(p)
+    beta = np.linalg.lstsq(np.vstack(rows), np.concatenate(ys), rcond=None)[0]
+    np.testing.assert_allclose(list(ex.params["yeoh"].values()), beta, rtol=1e-6)
+    mr = np.linalg.lstsq(np.vstack(mr_rows), np.concatenate(ys), rcond=None)[0]
+    assert mr[1] < 0 and ex.mooney_rivlin_refused
+    assert all(ex.stable.values())
+    assert ex.n_points == {"uniaxial": 24, "biaxial": 16, "planar": 13}
+    # the six-parameter Ogden model beats the one-parameter neo-Hookean in every mode
+    assert all(ex.rms_mpa["ogden3"][m] < ex.rms_mpa["neo-hookean"][m] for m in data)

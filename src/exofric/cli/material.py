@@ -1,4 +1,5 @@
-"""``exofric material``: Shore A hardness to Mooney-Rivlin constants (Eqs 3-6)."""
+"""``exofric material``: Shore A hardness to Mooney-Rivlin constants (Eqs 3-6), or a
+hyperelastic model fitted to test data (``--fit``, ``--treloar``)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,15 @@ from typing import Any
 
 import typer
 
-from exofric.cli._common import JSON_OPTION, console, emit, kv_table, narrow_table
+from exofric.cli._common import (
+    JSON_OPTION,
+    console,
+    emit,
+    kv_table,
+    narrow_table,
+    plot_path,
+    save_figure,
+)
 
 
 def register(app: typer.Typer) -> None:
@@ -14,16 +23,57 @@ def register(app: typer.Typer) -> None:
 
     @app.command("material")
     def material(
-        shore: float = typer.Option(..., help="Shore A hardness, in (0, 100)."),
+        shore: float | None = typer.Option(
+            None, help="Shore A hardness, in (0, 100) (Mooney-Rivlin by Eqs 3-6)."),
         correlation: str = typer.Option(
             "paper", help="Shore -> E0 correlation: paper (Eq 3), gent, qi, astm-log10."
         ),
         c01_ratio: float = typer.Option(0.05, help="C01/C10 ratio (Eq 5), in [0, 1]."),
         poisson: float = typer.Option(0.498, help="Poisson's ratio nu (Eq 6), in (0, 0.5)."),
+        model: str | None = typer.Option(
+            None, help="With --fit/--treloar: neo-hookean, mooney-rivlin, yeoh, ogden1, ogden2, "
+            "ogden3."),
+        fit: str | None = typer.Option(
+            None, help="Uniaxial test CSV: stretch (or strain) and stress_mpa columns."),
+        fit_biaxial: str | None = typer.Option(None, help="Equibiaxial test CSV (same columns)."),
+        fit_planar: str | None = typer.Option(
+            None, help="Planar (pure shear) test CSV (same columns)."),
+        treloar: bool = typer.Option(
+            False, "--treloar", help="Fit Treloar's 1944 natural rubber data (all three modes)."),
+        stress_kind: str | None = typer.Option(
+            None, help="engineering or true stress in the CSVs; wins over a file's "
+            "'# stress_kind:' line (default engineering)."),
+        residuals: str = typer.Option(
+            "absolute", help="absolute (MPa) or relative residuals in the least squares."),
+        allow_unstable: bool = typer.Option(
+            False, "--allow-unstable",
+            help="Accept a fit that is Drucker-unstable in the data's range (warns)."),
+        plot: str | None = typer.Option(None, help="Write the fit figure here (.png/.svg/.pdf)."),
         as_json: bool = JSON_OPTION,
     ) -> None:
-        """Mooney-Rivlin constants from Shore A hardness (paper Eqs 3-6). MPa, 1/MPa."""
+        """Mooney-Rivlin constants from Shore A hardness (paper Eqs 3-6), or a hyperelastic
+        model fitted to uniaxial/biaxial/planar test data (--fit, --treloar). MPa, 1/MPa."""
+        from exofric.errors import InputError
         from exofric.material import MooneyRivlin
+
+        fitting = treloar or any(f is not None for f in (fit, fit_biaxial, fit_planar))
+        if fitting:
+            if shore is not None:
+                raise InputError("shore gives Mooney-Rivlin by Eqs 3-6; it does not combine "
+                                 "with fit or treloar", param="shore")
+            _fit_command(model, fit, fit_biaxial, fit_planar, treloar, stress_kind, residuals,
+                         allow_unstable, plot, as_json)
+            return
+        for name, value in (("model", model), ("stress_kind", stress_kind), ("plot", plot)):
+            if value is not None:
+                raise InputError(f"{name} applies only with fit, fit_biaxial, fit_planar or "
+                                 "treloar", param=name)
+        if allow_unstable or residuals != "absolute":
+            raise InputError("residuals and allow_unstable apply only with fit or treloar",
+                             param="residuals" if residuals != "absolute" else "allow_unstable")
+        if shore is None:
+            raise InputError("shore is required (Shore A, in (0, 100)), or fit a model to test "
+                             "data with fit / treloar", param="shore")
 
         m = MooneyRivlin.from_shore(shore, correlation, c01_ratio=c01_ratio, poisson=poisson)
         d: dict[str, Any] = dict(m.to_dict())
@@ -64,3 +114,79 @@ def _paper_table2(shore: float, correlation: str, c01_ratio: float,
             or abs(poisson - t2["poisson"]) > 1e-12):
         return {}
     return {k: float(v) for k, v in t2.items() if k.endswith(("_mpa", "_per_mpa"))}
+
+
+def _fit_command(model: str | None, fit: str | None, fit_biaxial: str | None,
+                 fit_planar: str | None, treloar: bool, stress_kind: str | None,
+                 residuals: str, allow_unstable: bool, plot: str | None, as_json: bool) -> None:
+    """``--fit`` / ``--treloar``: least-squares fit, JSON or a table, optional figure."""
+    from exofric.errors import InputError
+    from exofric.material import HYPERELASTIC_MODELS, TRELOAR_SOURCE, fit_material, treloar_1944
+
+    if model is None:
+        raise InputError(f"model is required with fit or treloar: one of "
+                         f"{', '.join(HYPERELASTIC_MODELS)}", param="model")
+    if model not in HYPERELASTIC_MODELS:
+        raise InputError(f"model must be one of {', '.join(HYPERELASTIC_MODELS)}, got {model!r}",
+                         param="model")
+    if stress_kind is not None and stress_kind not in ("engineering", "true"):
+        raise InputError(f"stress_kind must be engineering or true, got {stress_kind!r}",
+                         param="stress_kind")
+    if residuals not in ("absolute", "relative"):
+        raise InputError(f"residuals must be absolute or relative, got {residuals!r}",
+                         param="residuals")
+    out = plot_path(plot) if plot is not None else None
+    data: dict[str, Any] = {}
+    kinds: dict[str, str] = {}
+    sources: dict[str, str] = {}
+    if treloar:
+        if any(f is not None for f in (fit, fit_biaxial, fit_planar)):
+            raise InputError("treloar fits the shipped data; it does not combine with fit, "
+                             "fit_biaxial or fit_planar", param="treloar")
+        data = dict(treloar_1944())
+        kinds = dict.fromkeys(data, "engineering")
+        sources = dict.fromkeys(data, "Treloar 1944 (shipped)")
+    else:
+        from exofric.io import read_stress_stretch
+
+        for mode, opt, path in (("uniaxial", "fit", fit), ("biaxial", "fit_biaxial", fit_biaxial),
+                                ("planar", "fit_planar", fit_planar)):
+            if path is None:
+                continue
+            if not str(path).strip():
+                raise InputError(f"{opt} must name a CSV file, got ''", param=opt)
+            df = read_stress_stretch(path, stress_kind)
+            data[mode] = (df["stretch"].to_numpy(), df["stress_mpa"].to_numpy())
+            kinds[mode] = df.attrs["stress_kind"]
+            sources[mode] = df.attrs["source"]
+    res = fit_material(model, **data, stress_kind=kinds, residuals=residuals,
+                       allow_unstable=allow_unstable)
+    d: dict[str, Any] = res.to_dict()
+    for mode, src in sources.items():
+        d["modes"][mode]["source"] = src
+    if treloar:
+        d["data_source"] = TRELOAR_SOURCE
+    if out is not None:
+        d["plot"] = str(save_figure(res.plot(), out))
+
+    def render() -> None:
+        t = narrow_table(f"{model} fitted ({residuals} residuals)",
+                         ["parameter", "value", "std. error", "unit"])
+        for n, v in d["params"].items():
+            t.add_row(n, f"{v:.6g}", f"{d['stderr'][n]:.3g}", d["param_units"][n])
+        t.add_row("shear modulus mu", f"{d['shear_modulus_mpa']:.6g}", "", "MPa")
+        t.add_row("d", f"{d['d_per_mpa']:.6g}", "", "1/MPa")
+        console.print(t)
+        m = narrow_table("per mode", ["mode", "points", "stretch", "R^2", "RMS (MPa)"])
+        for k, v in d["modes"].items():
+            m.add_row(k, str(v["n_points"]), f"{v['stretch_min']:.3g}-{v['stretch_max']:.3g}",
+                      f"{v['r2']:.4f}", f"{v['rms_mpa']:.4f}")
+        console.print(m)
+        st = d["stability"]
+        console.print(f"Drucker stability ({st['criterion']}) over stretch "
+                      f"{st['stretch_min']:.3g}-{st['stretch_max']:.3g}: "
+                      f"{'stable' if st['stable'] else 'UNSTABLE'}")
+        if "plot" in d:
+            console.print(f"figure: {d['plot']}")
+
+    emit(d, as_json, render)

@@ -8,6 +8,8 @@
 * :func:`read_raw_log`, :func:`write_raw_log`, :func:`parse_column_map` -- raw rig logs (CSV,
   Parquet, NI TDMS) converted to s, MPa, N, mm with pint (:data:`RAW_QUANTITIES`), checked for
   NaN bursts, time going back and gaps; ``--columns`` maps other headers.
+* :func:`read_stress_stretch` -- a material test curve (stretch or strain, stress in MPa, an
+  optional ``# stress_kind:`` line) for :func:`exofric.material.fit_material`.
 * :func:`read_toml`, :func:`read_json` -- a dict, or one line naming the file, line and column.
 * :func:`jsonable`, :func:`write_json`, :func:`write_text`, :func:`atomic_path` -- JSON-ready
   values (NaN -> null) and atomic writes (temporary file in the same directory, then
@@ -46,6 +48,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         write_json,
         write_text,
     )
+    from exofric.io._material import read_stress_stretch
     from exofric.io._rawlog import (
         RAW_QUANTITIES,
         parse_column_map,
@@ -69,6 +72,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "UNIT_SUFFIXES", "atomic_path", "jsonable", "read_json", "read_table", "read_toml",
         "write_json", "write_text",
     ),
+    "_material": ("read_stress_stretch",),
     "_rawlog": ("RAW_QUANTITIES", "parse_column_map", "read_raw_log", "write_raw_log"),
     "_rig": (
         "read_friction_table", "read_inflation_table", "read_squeeze_curve", "read_step_response",
@@ -81,8 +85,9 @@ _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 __all__ = [
     "atomic_path", "jsonable", "parse_column_map", "ParquetStore", "QUAD9_TO_VTK",
     "QuarantinedFile", "RAW_QUANTITIES", "read_friction_table", "read_inflation_table",
-    "read_json", "read_raw_log", "read_squeeze_curve", "read_step_response", "read_table",
-    "read_toml", "UNIT_SUFFIXES", "write_json", "write_raw_log", "write_text", "write_vtu",
+    "read_json", "read_raw_log", "read_squeeze_curve", "read_step_response",
+    "read_stress_stretch", "read_table", "read_toml", "UNIT_SUFFIXES", "write_json",
+    "write_raw_log", "write_text", "write_vtu",
 ]
 
 __getattr__, __dir__ = facade(__name__, _HOME, __all__)

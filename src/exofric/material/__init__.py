@@ -1,19 +1,38 @@
-"""Silicone material: Shore A hardness to Mooney-Rivlin constants (paper Eqs 2-6).
+"""Materials: Shore A hardness to Mooney-Rivlin (paper Eqs 2-6), other hyperelastic models, fits.
 
 * :class:`MooneyRivlin` -- the two-parameter, nearly incompressible model (ANSYS convention),
   built from constants or from a Shore A hardness (:meth:`MooneyRivlin.from_shore`).
 * :func:`shore_to_modulus` and :data:`CORRELATIONS` -- Eq 3 and other published Shore-to-modulus
   correlations.
+* :func:`material_model` and :class:`HyperelasticModel` -- neo-Hookean, Mooney-Rivlin, Yeoh and
+  Ogden (N = 1-3), all with Eq 2's volumetric term ``(J - 1)^2 / d``; closed-form uniaxial,
+  equibiaxial and planar stresses (engineering or true) and a Drucker check
+  (:class:`StabilityCheck`).
+* :func:`fit_material` -> :class:`MaterialFit` (per mode :class:`ModeFit`) -- least-squares fit
+  to one or several test modes, with standard errors, correlations and the stability check;
+  :func:`treloar_1944` -- Treloar's natural rubber data as a reference set.
 
-Units: moduli and C10, C01 in MPa; d in 1/MPa; hardness in Shore A.
+Units: moduli, stresses and C10, C01, ... in MPa; d in 1/MPa; stretches and Ogden exponents
+unitless; hardness in Shore A. ``docs/materials.md`` has the conventions and the checks.
 
 Examples
 --------
->>> from exofric.material import MooneyRivlin
+>>> from exofric.material import MooneyRivlin, fit_material, treloar_1944
 >>> round(MooneyRivlin.from_shore(62.5).c10_mpa, 4)
 0.6354
+>>> fit = fit_material("neo-hookean", **treloar_1944())
+>>> fit.model.name, fit.stability.stable
+('neo-hookean', True)
 """
 
+from exofric.material._fit import MaterialFit, ModeFit, fit_material
+from exofric.material._hyperelastic import (
+    HYPERELASTIC_MODELS,
+    MODES,
+    HyperelasticModel,
+    StabilityCheck,
+    material_model,
+)
 from exofric.material._models import (
     CORRELATIONS,
     Correlation,
@@ -21,6 +40,9 @@ from exofric.material._models import (
     MooneyRivlin,
     shore_to_modulus,
 )
+from exofric.material._treloar import TRELOAR_SOURCE, treloar_1944
 
-__all__ = ["CORRELATIONS", "Correlation", "MaterialRangeWarning", "MooneyRivlin",
-           "shore_to_modulus"]
+__all__ = ["CORRELATIONS", "Correlation", "HYPERELASTIC_MODELS", "HyperelasticModel", "MODES",
+           "MaterialFit", "MaterialRangeWarning", "ModeFit", "MooneyRivlin", "StabilityCheck",
+           "TRELOAR_SOURCE", "fit_material", "material_model", "shore_to_modulus",
+           "treloar_1944"]

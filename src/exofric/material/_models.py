@@ -22,6 +22,7 @@ import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from statistics import NormalDist
+from typing import TYPE_CHECKING
 
 from exofric import defaults
 from exofric.errors import (
@@ -31,6 +32,9 @@ from exofric.errors import (
     check_range,
     warn_implausible,
 )
+
+if TYPE_CHECKING:
+    from exofric.material._hyperelastic import HyperelasticModel
 
 __all__ = [
     "CORRELATIONS",
@@ -370,6 +374,21 @@ class MooneyRivlin:
         f = check_positive("bulk factor", factor)
         return MooneyRivlin(self.c10_mpa, self.c01_mpa, self.d_per_mpa / f, self.shore,
                             self.correlation)
+
+    def to_model(self) -> HyperelasticModel:
+        """The same material as a :class:`HyperelasticModel` (``mooney-rivlin``).
+
+        Gives the homogeneous stresses, the strain energy and the stability check of the
+        common model interface; the FE solver keeps taking this class.
+
+        Returns
+        -------
+        HyperelasticModel
+            ``params = (c10_mpa, c01_mpa)``, same ``d_per_mpa``.
+        """
+        from exofric.material._hyperelastic import HyperelasticModel
+
+        return HyperelasticModel("mooney-rivlin", (self.c10_mpa, self.c01_mpa), self.d_per_mpa)
 
     def to_dict(self) -> dict[str, float | str | None]:
         """JSON-ready dict with unit-suffixed keys (MPa, 1/MPa)."""

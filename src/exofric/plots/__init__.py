@@ -18,6 +18,7 @@ methods delegate here.
 * Raw rig logs: :func:`plot_reduction` (plateaus, pulls and averaging windows).
 * Control: :func:`plot_simulation`, :func:`plot_control_cases` (Fig 12).
 * Design: :func:`plot_design_map`, :func:`map_axes`.
+* Materials: :func:`plot_material_fit` (hyperelastic fit per test mode, with residuals).
 
 Units: as the axes say (mm, N, MPa, s, Nm).
 
@@ -60,6 +61,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         plot_torque,
     )
     from exofric.plots._interfaces import plot_interface_fit
+    from exofric.plots._material import plot_material_fit
     from exofric.plots._rig import plot_reduction
 
 # Lazy facade (PEP 562): ``save`` or one figure does not load every plotting module; each name is
@@ -76,6 +78,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
     ),
     "_friction": ("plot_cubic_fit", "plot_gamma_fit", "plot_predictions", "plot_torque"),
     "_interfaces": ("plot_interface_fit",),
+    "_material": ("plot_material_fit",),
     "_rig": ("plot_reduction",),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
@@ -84,7 +87,8 @@ __all__ = [
     "draw_section", "map_axes", "plot_calibration", "plot_contact_pressure",
     "plot_control_cases", "plot_cubic_fit",
     "plot_design_map", "plot_gamma_fit", "plot_inflation", "plot_inflation_curve",
-    "plot_interface_fit", "plot_predictions", "plot_reduction", "plot_simulation", "plot_squeeze",
+    "plot_interface_fit", "plot_material_fit", "plot_predictions", "plot_reduction",
+    "plot_simulation", "plot_squeeze",
     "plot_squeeze_curves",
     "plot_squeeze_force", "plot_table1", "plot_torque", "save", "section_polygons",
 ]
