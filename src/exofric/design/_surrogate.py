@@ -6,18 +6,49 @@ The surrogate (:func:`fit_surrogate`) is trained on the rows of a sweep
 (:func:`exofric.design.run_sweep` ``.frame``) and works in the groups of
 :mod:`exofric.design._dimensionless`, so that it is exact for geometrically similar designs
 and a design's size and tube length only scale its output. It has two stages, both radial
-basis function interpolants (polyharmonic kernel -r^5 plus a quadratic polynomial, the
-inputs scaled to the training box):
+basis function interpolants (polyharmonic kernel -r^5 plus a quadratic polynomial, each
+input scaled to its training range):
 
-1. the contact onset, q_on = P_on / G, over (c/d1, t/d1, d2/d1);
-2. after onset, the squeeze number N / (P L d2) over (c/d1, t/d1, d2/d1, s) with
-   s = P/G - q_on (weighted by ``pressure_weight``); N = 0 for P <= P_on.
+1. the contact onset q_on = P_on / G, interpolated as the onset per unit clearance
+   h = q_on / (c/d1) over (c/d1, t/d1, d2/d1); q_on = (c/d1) h;
+2. after onset, the secant contact stiffness k = N / (G L d2 s) with s = P/G - q_on,
+   interpolated over (q_on, t/d1, d2/d1, sqrt(s)) (the last weighted by
+   :data:`PRESSURE_WEIGHT`); N = k s G L d2, and N = 0 for P <= P_on.
 
-Shifting the pressure by the onset removes the kink of N(P) at first contact, which a
-smooth interpolant cannot follow (a single interpolant over P/G has ~10x the error).
+Why these variables (held-out error of ``benchmarks/bench_surrogate.py``, % of each design's
+FE N(0.6 MPa), largest over the designs at 256 / 400 / 512 designs; 2.04 / 1.83 / 2.71 with
+q_on and N / (P L d2) over (c/d1, t/d1, d2/d1, s), 1.28 / 0.93 / 1.30 with these):
+
+* Shifting the pressure by the onset removes the kink of N(P) at first contact, which a
+  smooth interpolant cannot follow (a single interpolant over P/G has ~10x the error).
+* A tube with no clearance touches the wire at P = 0: q_on -> 0 as c -> 0 while the onset per
+  clearance h stays finite (1.3-5.7 over the benchmark's box), so h needs no bend at the box's
+  edge. Largest held-out onset error 0.27-0.50 kPa instead of 1.4-3.1 kPa (the FE brackets
+  the onset to 0.2 kPa).
+* N grows like s from contact on, so k is finite at the onset and N = 0 there exactly; and an
+  error of k is the same fraction of N at every pressure, the measure the design search
+  needs. N / (P L d2) = k s / (q_on + s) carries the steep factor s / (q_on + s), so a given
+  error of it is a large fraction of the small N of a design that touches late.
+* k rises steeply over the first ~0.01 of s (the contact patch forming on the wire) and
+  slowly after; sqrt(s) spreads that start over more of the input range.
+* After contact the clearance acts through how far the tube had inflated to touch: designs of
+  equal q_on and t/d1, d2/d1 have close stiffnesses, so the curve stage takes q_on (the
+  training designs' FE onset; the predicted one for a new design) in place of c/d1.
+  Each matters: with c/d1 in place of q_on 1.28 / 1.06 / 2.69, with s in place of sqrt(s)
+  1.92 / 5.01 / 3.53, with N / (P L d2) in place of k 1.40 / 0.98 / 3.12 (the onset itself
+  interpolated: 1.14 / 0.78 / 1.55).
+* Rows with s below :data:`ONSET_GAP` s_max are left out of the curve stage: there N / s is
+  mostly the error of the FE onset.
+
+What remains is mostly the FE's own: on the default mesh (2 x 24 quad9) k within ~0.01 of
+s after onset moves by up to ~10 % as contact reaches the next node (against a 3 x 48 mesh),
+which no smooth surrogate follows; it counts in % of N(0.6) for designs touching after
+~0.55 MPa.
+
 Leave-one-design-out errors are exact and cheap: removing a design's rows from an
 interpolant is a rank update of the inverse of its system (Rippa's formula per block), and
-the updated coefficients predict the left-out design's whole curve at its left-out onset.
+the updated coefficients predict the left-out design's whole curve at its left-out onset
+(input scalings: those of the full fit).
 
 :func:`surrogate_search` explores thousands of candidate designs (quasi-random in the
 sweep's box, or a given list) with the surrogate in about a second, ranks them with
@@ -51,10 +82,19 @@ from exofric.errors import ConvergenceError, InputError
 __all__ = ["SqueezeSurrogate", "SurrogateSearch", "fit_surrogate", "surrogate_search",
            "candidate_designs"]
 
-#: Weight of the pressure coordinate s = P/G - q_on relative to the geometric groups (each
-#: scaled to [0, 1]): chosen on ``benchmarks/bench_surrogate.py`` (held-out error 2-4x lower
-#: than with weight 1, flat between 3 and 6).
+#: Weight of the pressure coordinate sqrt(s / s_max) of the curve stage, s = P/G - q_on and
+#: s_max its largest training value, relative to q_on, t/d1 and d2/d1 (each scaled to
+#: [0, 1]): chosen on ``benchmarks/bench_surrogate.py`` (4-fold held-out error at 256, 400 and
+#: 512 designs, 4 draws of the folds: mean of the largest errors 1.46 / 1.48 / 1.49 % at
+#: weight 3.5 / 4 / 5; the benchmark's draw 2.8 % at 2, 13 % at 1).
 PRESSURE_WEIGHT = 4.0
+#: Rows of the curve stage closer to the onset than this fraction of s_max (~1e-3 MPa / G) are
+#: left out: the FE onset is bracketed to 2e-4 MPa (:func:`exofric.simulate.squeeze`
+#: ``onset_tol_mpa``), so N / s there is mostly that error.
+ONSET_GAP = 1e-3
+#: Clearance ratio c/d1 below which the onset per clearance is taken per this clearance (a
+#: design built with no clearance touches at ~0).
+CLEARANCE_FLOOR = 1e-4
 #: Candidates drawn by :func:`surrogate_search` when none are given, and designs confirmed.
 N_CANDIDATES = 4096
 N_CONFIRM = 5
@@ -73,7 +113,7 @@ class _RBF:
         self.z = z
         self.exps = [e for d in range(self.degree + 1)
                      for e in itertools.product(range(d + 1), repeat=k) if sum(e) == d]
-        a = self._kernel(z)
+        a = self.sign * self._kernel(z)
         p = self._poly(z)
         m = p.shape[1]
         mat = np.zeros((n + m, n + m))
@@ -89,18 +129,25 @@ class _RBF:
         self._blocks = blocks
 
     def _kernel(self, z: np.ndarray) -> np.ndarray:
+        """r^power to the centres (the sign is applied by the callers), by products in place."""
         r = scipy.spatial.distance.cdist(z, self.z)
-        return self.sign * r ** self.power
+        k = r * r
+        if self.power == 5:
+            k *= k
+        k *= r
+        return k
 
     def _poly(self, z: np.ndarray) -> np.ndarray:
         return np.column_stack([np.prod(z ** np.array(e), axis=1) for e in self.exps])
 
     def __call__(self, z: np.ndarray, coef: np.ndarray | None = None) -> np.ndarray:
         c = self.coef if coef is None else coef
+        w = self.sign * c[:self.n]
         out = np.empty(len(z))
-        for i in range(0, len(z), 2048):           # chunks: memory n_eval x n_centres
-            zz = z[i:i + 2048]
-            out[i:i + 2048] = self._kernel(zz) @ c[:self.n] + self._poly(zz) @ c[self.n:]
+        step = max(64, (1 << 20) // max(self.n, 1))  # chunks of ~8 MB: n_eval x n_centres
+        for i in range(0, len(z), step):
+            zz = z[i:i + step]
+            out[i:i + step] = self._kernel(zz) @ w + self._poly(zz) @ c[self.n:]
         return out
 
     def loo_coefficients(self, rows: np.ndarray) -> np.ndarray:
@@ -146,10 +193,10 @@ class SqueezeSurrogate:
     fit_time_s : float
         CPU time of the fit including the LOO errors (s).
     _onset, _curve : object
-        The fitted interpolants of the onset and of the squeeze number (internal; unitless
-        inputs and outputs).
+        The fitted interpolants of the onset per clearance and of the contact stiffness
+        (internal; unitless inputs and outputs).
     _scales : dict
-        The scaling of their inputs to the training box (internal, unitless).
+        The scaling of their inputs to the training ranges (internal, unitless).
 
     Examples
     --------
@@ -215,6 +262,7 @@ class SqueezeSurrogate:
         return self._predict(designs, pressures_mpa)[0]
 
     def _geo(self, g: pd.DataFrame) -> np.ndarray:
+        """The onset stage's inputs: (c/d1, t/d1, d2/d1) scaled to the training box."""
         s = self._scales
         x = g[list(GROUPS)].to_numpy(float)
         return ((x - s["geo_lo"]) / s["geo_span"])[:, s["geo_keep"]]
@@ -226,20 +274,40 @@ class SqueezeSurrogate:
         if np.any(~(p > 0)):
             raise InputError("pressures_mpa must be > 0 MPa for the surrogate")
         g = _design_groups(designs)
-        zg = self._geo(g)
-        q_on = self._onset(zg, onset_coef) if self._onset is not None else np.zeros(len(g))
-        q_on = np.maximum(q_on, 0.0)
+        if self._onset is not None:
+            per_c = self._onset(self._geo(g), onset_coef)
+            q_on = np.maximum(per_c * _clearance(g), 0.0)
+        else:
+            q_on = np.zeros(len(g))
         gm = g["shear_modulus_mpa"].to_numpy(float)
         s = p[None, :] / gm[:, None] - q_on[:, None]
         n = np.zeros_like(s)
         hit = s > 0
         if hit.any():
             i, j = np.nonzero(hit)
-            z = np.column_stack([zg[i], PRESSURE_WEIGHT * s[i, j] / self._scales["s_max"]])
-            r = np.maximum(self._curve(z, curve_coef), 0.0)
+            zd = _curve_design(q_on, g, self._scales)
+            z = np.column_stack([zd[i], _pressure_coord(s[i, j], self._scales["s_max"])])
+            k = np.maximum(self._curve(z, curve_coef), 0.0)
             lw = g["length_mm"].to_numpy(float) * g["wire_mm"].to_numpy(float)
-            n[i, j] = r * p[j] * lw[i]
+            n[i, j] = k * s[i, j] * gm[i] * lw[i]
         return n, q_on * gm
+
+
+def _clearance(g: pd.DataFrame) -> np.ndarray:
+    """c/d1 of each row, at least :data:`CLEARANCE_FLOOR` (the onset stage's divisor)."""
+    return np.maximum(g["clearance_ratio"].to_numpy(float), CLEARANCE_FLOOR)
+
+
+def _curve_design(q_on: np.ndarray, g: pd.DataFrame, scales: dict[str, Any]) -> np.ndarray:
+    """The curve stage's design inputs: (q_on, t/d1, d2/d1) scaled to their training ranges."""
+    x = np.column_stack([q_on, g["wall_ratio"].to_numpy(float),
+                         g["wire_ratio"].to_numpy(float)])
+    return ((x - scales["cur_lo"]) / scales["cur_span"])[:, scales["cur_keep"]]
+
+
+def _pressure_coord(s: np.ndarray, s_max: float) -> np.ndarray:
+    """The curve stage's pressure input PRESSURE_WEIGHT sqrt(s / s_max), s = P/G - q_on."""
+    return PRESSURE_WEIGHT * np.sqrt(s / s_max)
 
 
 def _design_groups(designs: pd.DataFrame) -> pd.DataFrame:
@@ -307,33 +375,44 @@ def fit_surrogate(frame: pd.DataFrame, *, loo: bool = True) -> SqueezeSurrogate:
     if not contact.any():
         raise InputError("the surrogate needs designs with contact: no design of the sweep "
                          "touches the wire at its pressures")
+    s_max = float(s_all[contact].max())
+    rows = s_all > ONSET_GAP * s_max            # the curve stage's rows
     one = f.drop_duplicates("key")
     geo = one[list(GROUPS)].to_numpy(float)
     lo, span, keep = _box(geo)
-    scales: dict[str, Any] = {"geo_lo": lo, "geo_span": span, "geo_keep": keep}
-    s_max = float(s_all[contact].max())
-    scales["s_max"] = s_max
-    zg_all = ((f[list(GROUPS)].to_numpy(float) - lo) / span)[:, keep]
     q_one = (one["contact_onset_pressure_mpa"].to_numpy(float)
              / one["shear_modulus_mpa"].to_numpy(float))
     on_ok = np.isfinite(q_one)
-    onset = _RBF(((geo - lo) / span)[:, keep][on_ok], q_one[on_ok]) if on_ok.sum() >= 3 else None
-    zc = np.column_stack([zg_all[contact], PRESSURE_WEIGHT * s_all[contact] / s_max])
-    curve = _RBF(zc, f["squeeze_number"].to_numpy(float)[contact])
+    cur_lo, cur_span, cur_keep = _box(np.column_stack(
+        [q_one, one["wall_ratio"].to_numpy(float), one["wire_ratio"].to_numpy(float)])[on_ok])
+    scales: dict[str, Any] = {"geo_lo": lo, "geo_span": span, "geo_keep": keep,
+                              "cur_lo": cur_lo, "cur_span": cur_span, "cur_keep": cur_keep,
+                              "s_max": s_max}
+    zg_one = ((geo - lo) / span)[:, keep]
+    onset = (_RBF(zg_one[on_ok], q_one[on_ok] / _clearance(one)[on_ok])
+             if on_ok.sum() >= 3 else None)
+    fr = f[rows]
+    zc = np.column_stack([_curve_design(q_on[rows], fr, scales),
+                          _pressure_coord(s_all[rows], s_max)])
+    stiffness = (fr["squeeze_force_n"].to_numpy(float)         # k = N / (G L d2 s)
+                 / (gm[rows] * fr["length_mm"].to_numpy(float) * fr["wire_mm"].to_numpy(float)
+                    * s_all[rows]))
+    curve = _RBF(zc, stiffness)
     gmin = {k: float(one[k].min()) for k in (*GROUPS, "shear_modulus_mpa")}
     gmax = {k: float(one[k].max()) for k in (*GROUPS, "shear_modulus_mpa")}
     pressures = tuple(sorted({float(x) for x in f["pressure_mpa"]}))
     sur = SqueezeSurrogate(pressures, len(keys), gmin, gmax, pd.DataFrame(), 0.0, onset, curve,
                            scales)
-    table = _loo(sur, f, contact, on_ok, one) if loo else pd.DataFrame(
+    table = _loo(sur, f, rows, on_ok, one) if loo else pd.DataFrame(
         columns=["key", "name", "loo_max_error_n", "n_pmax_n", "loo_error_pct"])
     return replace(sur, loo=table, fit_time_s=time.process_time() - t0)
 
 
-def _loo(sur: SqueezeSurrogate, f: pd.DataFrame, contact: np.ndarray, on_ok: np.ndarray,
+def _loo(sur: SqueezeSurrogate, f: pd.DataFrame, curve_rows: np.ndarray, on_ok: np.ndarray,
          one: pd.DataFrame) -> pd.DataFrame:
-    """Leave-one-design-out curves of every training design (exact rank updates)."""
-    key_c = f["key"].to_numpy()[contact]
+    """Leave-one-design-out curves of every training design (exact rank updates);
+    ``curve_rows``: the rows of ``f`` in the curve stage."""
+    key_c = f["key"].to_numpy()[curve_rows]
     onset_row = {k: i for i, k in enumerate(one["key"].to_numpy()[on_ok])}
     rows = []
     for key, g in f.groupby("key", sort=False):
