@@ -19,7 +19,14 @@ from exofric.cli._common import (
 )
 
 if TYPE_CHECKING:
-    from exofric.material import MooneyRivlin
+    from exofric.material import HyperelasticModel, MooneyRivlin
+
+MODEL_HELP = ("Hyperelastic model instead of the Shore route: neo-hookean, mooney-rivlin, yeoh "
+              "or ogden (ogden1-3; constants from --params; --d optional). Not with "
+              "--shore/--c10/--c01.")
+PARAMS_HELP = ("Comma-separated constants of --model (MPa; alpha unitless): neo-hookean C10; "
+               "mooney-rivlin C10,C01; yeoh C10,C20,C30; ogden mu1,alpha1[,mu2,alpha2[,mu3,"
+               "alpha3]].")
 
 
 def material_from_options(
@@ -28,13 +35,36 @@ def material_from_options(
     c01: float | None,
     d: float | None,
     correlation: str = "paper",
-) -> MooneyRivlin:
-    """MooneyRivlin from --shore, with --c10/--c01/--d overriding the derived constants."""
-    from exofric.errors import InputError
-    from exofric.material import MooneyRivlin
+    model: str | None = None,
+    params: str | None = None,
+) -> MooneyRivlin | HyperelasticModel:
+    """MooneyRivlin from --shore, with --c10/--c01/--d overriding the derived constants.
 
+    With --model (and --params), the named hyperelastic model instead (``d`` from --d or its
+    default); not together with --shore, --c10 or --c01.
+    """
+    import re
+
+    from exofric.errors import InputError
+    from exofric.material import MooneyRivlin, material_model
+
+    if model is not None or params is not None:
+        if model is None:
+            raise InputError("params needs --model (the model it parametrises)", param="params")
+        if (shore, c10, c01) != (None, None, None):
+            raise InputError("model takes its constants from --params: not with --shore, --c10 "
+                             "or --c01", param="model")
+        if params is None:
+            raise InputError(f"params: give the constants of --model {model} "
+                             "(comma-separated, MPa)", param="params")
+        vals = parse_floats("--params", params)
+        try:
+            return material_model(model, vals, d=d)
+        except InputError as exc:  # name the constants as the --params help does (c10, ...)
+            raise InputError(re.sub(r"\b(c\d\d)_mpa\b", r"\1", str(exc)),
+                             param=exc.param) from None
     if shore is None and None in (c10, c01, d):
-        raise InputError("give --shore, or all of --c10, --c01 and --d")
+        raise InputError("give --shore, or all of --c10, --c01 and --d, or --model and --params")
     base = MooneyRivlin.from_shore(shore, correlation) if shore is not None else None
     return MooneyRivlin(
         c10 if c10 is not None else base.c10,  # type: ignore[union-attr]
@@ -59,6 +89,8 @@ def register(app: typer.Typer) -> None:
         c10: float = typer.Option(None, help="Override C10 (MPa)."),
         c01: float = typer.Option(None, help="Override C01 (MPa)."),
         d: float = typer.Option(None, help="Override d (1/MPa)."),
+        model: str = typer.Option(None, "--model", help=MODEL_HELP),
+        params: str = typer.Option(None, "--params", help=PARAMS_HELP),
         accuracy: str = typer.Option(
             None, help="Accuracy level: draft, standard or fine (two nested meshes, error "
             f"estimate of the diameters; default {defaults.ACCURACY}). Not with --n-radial."),
@@ -77,7 +109,7 @@ def register(app: typer.Typer) -> None:
         vtu = None if vtu is None else out_file("vtu", vtu)
         check_size_mm("tube_od_mm", tube_od, "tube outer diameter d1")
         check_size_mm("tube_id_mm", tube_id, "tube inner diameter")
-        mat = material_from_options(shore, c10, c01, d)
+        mat = material_from_options(shore, c10, c01, d, model=model, params=params)
         p = parse_floats("--pressures", pressures)
         mesh = None
         if n_radial is not None or n_circ is not None:

@@ -19,7 +19,7 @@ from exofric.cli._common import (
     save_figure,
     write_outputs,
 )
-from exofric.cli.inflate import material_from_options
+from exofric.cli.inflate import MODEL_HELP, PARAMS_HELP, material_from_options
 
 DEFAULT_P = ",".join(f"{0.05 * i:.2f}" for i in range(1, 13))
 
@@ -54,6 +54,8 @@ def register(app: typer.Typer) -> None:
         c10: float = typer.Option(None, help="Override C10 (MPa)."),
         c01: float = typer.Option(None, help="Override C01 (MPa)."),
         d: float = typer.Option(None, help="Override d (1/MPa)."),
+        model: str = typer.Option(None, "--model", help=MODEL_HELP),
+        params: str = typer.Option(None, "--params", help=PARAMS_HELP),
         length: float = typer.Option(116.0, help="Tube length L (mm) for total forces."),
         pressures: str = typer.Option(DEFAULT_P, help="Increasing pressures (MPa)."),
         accuracy: str = typer.Option(
@@ -97,7 +99,7 @@ def register(app: typer.Typer) -> None:
         plot = None if plot is None else plot_path(plot)
         contact_plot = None if contact_plot is None else plot_path(contact_plot)
         vtu = None if vtu is None else out_file("vtu", vtu)
-        mat = material_from_options(shore, c10, c01, d)
+        mat = material_from_options(shore, c10, c01, d, model=model, params=params)
         st = Structure(hole, tube_od, tube_id, wire, length)
         p = parse_floats("--pressures", pressures)
         mesh = None

@@ -8,6 +8,9 @@ are in :mod:`exofric.simulate`.
   u/p Mooney-Rivlin, follower pressure as a cavity-area potential, rigid circles as penalty
   contact, optionally with Coulomb friction: :func:`evaluate_friction`, per interface
   ``mu_wall`` / ``mu_wire``).
+* :class:`PlaneStrainMaterial` -- a :class:`~exofric.material.MooneyRivlin` or any
+  :class:`~exofric.material.HyperelasticModel` (neo-Hookean, Mooney-Rivlin, Yeoh, Ogden) as the
+  body's kernel.
 * :class:`NewtonSettings`, :func:`solve_path` -- Newton with line search along a load path,
   with cutback.
 
@@ -36,7 +39,14 @@ from exofric.fe._elements import (
     reference_data,
     shape_2d,
 )
-from exofric.fe._hyperelastic import HyperelasticBody, mooney_rivlin_plane_strain, von_mises
+from exofric.fe._hyperelastic import (
+    HyperelasticBody,
+    PlaneStrainMaterial,
+    mooney_rivlin_plane_strain,
+    ogden_plane_strain,
+    von_mises,
+    yeoh_plane_strain,
+)
 from exofric.fe._inflation import InflationProblem, MeshSpec, PressurizedTube
 from exofric.fe._loads import area_hessian, enclosed_area
 from exofric.fe._mesh import TubeMesh, graded_angles, polar_mesh
@@ -72,6 +82,7 @@ __all__ = [
     "MeshSpec",
     "NewtonSettings",
     "PathPoint",
+    "PlaneStrainMaterial",
     "PressurizedTube",
     "Problem",
     "ReferenceData",
@@ -91,6 +102,7 @@ __all__ = [
     "lagrange_1d",
     "mooney_rivlin_plane_strain",
     "nodal_weights",
+    "ogden_plane_strain",
     "polar_mesh",
     "pressure_basis",
     "reference_data",
@@ -99,4 +111,5 @@ __all__ = [
     "von_mises",
     "wall_arc",
     "wire_halfwidth",
+    "yeoh_plane_strain",
 ]

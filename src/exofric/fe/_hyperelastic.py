@@ -20,20 +20,32 @@ is condensed element by element. Stationarity of
 so the volumetric energy is ``(K/2) g^T M^-1 g`` with the exact tangent
 ``K G^T M^-1 G + int p D(cof)``, ``G = int Np (cof : grad N)``. ``'displacement'``
 evaluates U at every Gauss point instead (this locks for nu -> 0.5; kept to show it).
+
+Other invariant models (:func:`exofric.material.material_model`) use the same scheme with
+``Ib1 = J^-2/3 (s + 1)``: neo-Hookean ``C10 (Ib1 - 3)`` and Yeoh ``sum_i Ci0 (Ib1 - 3)^i``
+(:func:`yeoh_plane_strain`; neo-Hookean is Yeoh with C20 = C30 = 0), whose ``W_iso`` is
+not linear in s, so the tangent gains ``4 W_ss F x F``. :class:`PlaneStrainMaterial` adapts
+a :class:`~exofric.material.MooneyRivlin` or a
+:class:`~exofric.material.HyperelasticModel` to the body (Mooney-Rivlin keeps its own
+kernel, :func:`mooney_rivlin_plane_strain`). Ogden, a function of the principal stretches,
+is one of (s, J) too in plane strain (:func:`ogden_plane_strain`): with ``l1,2 = sqrt(J)
+exp(+-eta)``, ``s = 2 J cosh 2 eta``, so each term is smooth in (s, J) at equal stretches.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from exofric.errors import InputError
 from exofric.fe._elements import ReferenceData, reference_data
 from exofric.fe._mesh import TubeMesh
-from exofric.material import MooneyRivlin
+from exofric.material import HyperelasticModel, MooneyRivlin
 
-__all__ = ["HyperelasticBody", "mooney_rivlin_plane_strain", "DCOF"]
+__all__ = ["HyperelasticBody", "PlaneStrainMaterial", "mooney_rivlin_plane_strain",
+           "ogden_plane_strain", "yeoh_plane_strain", "DCOF"]
 
 #: d(cof F)/dF for 2x2 F: cof = [[F11, -F10], [-F01, F00]].
 DCOF = np.zeros((2, 2, 2, 2))
@@ -108,6 +120,296 @@ def mooney_rivlin_plane_strain(
     return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
 
 
+def yeoh_plane_strain(
+    F: np.ndarray, c10: float, c20: float, c30: float, tangent: bool = True
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Isochoric Yeoh energy density, first Piola stress and tangent (plane strain).
+
+    ``W_iso = C10 x + C20 x^2 + C30 x^3`` with ``x = Ib1 - 3 = J^-2/3 (s + 1) - 3``;
+    neo-Hookean is ``C20 = C30 = 0``. With ``W' = dW/dx``, ``W'' = d2W/dx2`` and
+    ``x_s = J^-2/3``, ``x_J = -2/3 J^-5/3 (s + 1)``::
+
+        W_s = W' x_s,  W_J = W' x_J,  W_ss = W'' x_s^2,
+        W_sJ = W'' x_s x_J - 2/3 W' J^-5/3,  W_JJ = W'' x_J^2 + 10/9 W' J^-8/3 (s + 1)
+        P = 2 W_s F + W_J cof F
+        A = 4 W_ss F x F + 2 W_sJ (F x cof + cof x F) + W_JJ cof x cof + 2 W_s I + W_J D(cof)
+
+    Parameters
+    ----------
+    F : ndarray (..., 2, 2)
+        In-plane deformation gradients (det > 0).
+    c10, c20, c30 : float
+        Yeoh constants (MPa).
+    tangent : bool
+        Also return ``A = dP/dF`` (..., 2, 2, 2, 2).
+
+    Returns
+    -------
+    W, P, A
+        Energy density (MPa = N mm/mm^3), stress (MPa), tangent (MPa).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> W, P, A = yeoh_plane_strain(np.eye(2)[None], 0.19, -0.0019, 4.1e-5)
+    >>> float(W[0]), float(abs(P).max()) < 1e-14
+    (0.0, True)
+    """
+    shape = F.shape[:-2]
+    f = F.reshape(-1, 4)
+    c = f[:, _COF_PERM] * _COF_SIGN  # cof F, flattened
+    J = f[:, 0] * f[:, 3] - f[:, 1] * f[:, 2]
+    s = np.einsum("pi,pi->p", f, f)
+    jm13 = 1.0 / np.cbrt(J)  # J^-1/3
+    j23 = jm13 * jm13  # J^-2/3
+    iJ = 1.0 / J
+    x = j23 * (s + 1.0) - 3.0
+    W = ((c30 * x + c20) * x + c10) * x
+    W1 = c10 + (2.0 * c20 + 3.0 * c30 * x) * x
+    # operation order as in mooney_rivlin_plane_strain: C20 = C30 = 0 is bit-identical to it
+    Ws = W1 * j23
+    WJ = -2.0 / 3.0 * W1 * j23 * iJ * (s + 1.0)
+    P = 2.0 * Ws[:, None] * f + WJ[:, None] * c
+    if not tangent:
+        return W.reshape(shape), P.reshape(*shape, 2, 2), None
+    W2 = 2.0 * c20 + 6.0 * c30 * x
+    xJ = -2.0 / 3.0 * j23 * iJ * (s + 1.0)
+    Wss = W2 * j23 * j23
+    WsJ = W2 * j23 * xJ - 2.0 / 3.0 * W1 * j23 * iJ
+    WJJ = W2 * xJ * xJ + 10.0 / 9.0 * W1 * j23 * (s + 1.0) * iJ * iJ
+    fc = f[:, :, None] * c[:, None, :]
+    A = (4.0 * Wss[:, None, None] * (f[:, :, None] * f[:, None, :])
+         + 2.0 * WsJ[:, None, None] * (fc + fc.transpose(0, 2, 1))
+         + WJJ[:, None, None] * (c[:, :, None] * c[:, None, :])
+         + 2.0 * Ws[:, None, None] * _I4F
+         + WJ[:, None, None] * _DCOF4)
+    return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
+
+
+def _chebyshev_t(nu: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``h(c) = cosh(nu arccosh c)`` and its first two c-derivatives at ``c = 1 + y``, y >= 0.
+
+    Closed form for ``y >= 1e-2``; below, the series ``h = 2F1(-nu, nu; 1/2; -y/2)``
+    (analytic at equal stretches, ``h'(1) = nu^2``, ``h''(1) = nu^2 (nu^2 - 1) / 3``), whose
+    12 terms are exact to round-off there while the closed form loses ``eps / y``.
+    """
+    big = y >= 1e-2
+    yb = np.where(big, y, 1.0)
+    sh = np.sqrt(yb * (yb + 2.0))  # sinh x, x = arccosh c
+    x = np.log1p(yb + sh)
+    ch_n, sh_n = np.cosh(nu * x), np.sinh(nu * x)
+    h_b = ch_n
+    h1_b = nu * sh_n / sh
+    h2_b = (nu * nu * ch_n * sh - nu * sh_n * (1.0 + yb)) / sh**3
+    z = np.where(big, 0.0, -0.5 * y)
+    r = 1.0
+    h, d1, d2 = np.ones_like(z), np.zeros_like(z), np.zeros_like(z)
+    zk = np.ones_like(z)  # z^k
+    zk1 = np.zeros_like(z)  # z^(k-1)
+    zk2 = np.zeros_like(z)  # z^(k-2)
+    for k in range(1, 13):
+        r *= ((k - 1) ** 2 - nu * nu) / ((k - 0.5) * k)
+        zk2, zk1, zk = zk1, zk, zk * z
+        h += r * zk
+        d1 += k * r * zk1
+        d2 += k * (k - 1) * r * zk2
+    return (np.where(big, h_b, h), np.where(big, h1_b, -0.5 * d1),
+            np.where(big, h2_b, 0.25 * d2))
+
+
+def ogden_plane_strain(
+    F: np.ndarray, mus: tuple[float, ...], alphas: tuple[float, ...], tangent: bool = True
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Isochoric Ogden energy density, first Piola stress and tangent (plane strain).
+
+    ``W_iso = sum_k 2 mu_k / a_k^2 (lb1^a_k + lb2^a_k + lb3^a_k - 3)`` (ABAQUS). With the
+    in-plane stretches ``l1,2 = sqrt(J) exp(+-eta)`` and ``l3 = 1``, ``c = cosh 2 eta =
+    s / (2 J)``, each term is ``2 mu / a^2 (2 J^(a/6) T(c) + J^(-a/3) - 3)`` with
+    ``T(c) = cosh(a/2 arccosh c)``, a smooth function of (s, J) also at equal stretches
+    (``c = 1``, where :func:`_chebyshev_t` switches to its series). ``c - 1 = ((F00 - F11)^2 +
+    (F01 + F10)^2) / (2 J)`` is computed without cancellation. Stress and tangent then follow
+    from W_s, W_J, W_ss, W_sJ, W_JJ as in :func:`yeoh_plane_strain`.
+
+    Parameters
+    ----------
+    F : ndarray (..., 2, 2)
+        In-plane deformation gradients (det > 0).
+    mus : tuple of float
+        Ogden moduli mu_k (MPa).
+    alphas : tuple of float
+        Ogden exponents a_k (unitless, nonzero).
+    tangent : bool
+        Also return ``A = dP/dF`` (..., 2, 2, 2, 2).
+
+    Returns
+    -------
+    W, P, A
+        Energy density (MPa = N mm/mm^3), stress (MPa), tangent (MPa).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> W, P, A = ogden_plane_strain(np.eye(2)[None], (0.6,), (1.5,))
+    >>> float(W[0]), float(abs(P).max()) < 1e-14
+    (0.0, True)
+    """
+    shape = F.shape[:-2]
+    f = F.reshape(-1, 4)
+    cf = f[:, _COF_PERM] * _COF_SIGN  # cof F, flattened
+    J = f[:, 0] * f[:, 3] - f[:, 1] * f[:, 2]
+    iJ = 1.0 / J
+    lnJ = np.log(J)
+    y = 0.5 * ((f[:, 0] - f[:, 3]) ** 2 + (f[:, 1] + f[:, 2]) ** 2) * iJ  # c - 1 >= 0
+    c = 1.0 + y
+    W = np.zeros_like(J)
+    Ws, WJ = np.zeros_like(J), np.zeros_like(J)
+    Wss, WsJ, WJJ = np.zeros_like(J), np.zeros_like(J), np.zeros_like(J)
+    for mu, a in zip(mus, alphas, strict=True):
+        A0 = 2.0 * mu / (a * a)
+        e1, e2 = a / 6.0, -a / 3.0
+        h, h1, h2 = _chebyshev_t(0.5 * a, y)
+        j1 = np.exp((e1 - 1.0) * lnJ)  # J^(e1-1)
+        j2 = np.exp((e2 - 1.0) * lnJ)  # J^(e2-1)
+        W += A0 * (2.0 * j1 * J * h + j2 * J - 3.0)
+        Ws += A0 * j1 * h1
+        WJ += A0 * (2.0 * e1 * j1 * h - 2.0 * j1 * c * h1 + e2 * j2)
+        if tangent:
+            Wss += 0.5 * A0 * j1 * iJ * h2
+            WsJ += A0 * j1 * iJ * ((e1 - 1.0) * h1 - c * h2)
+            WJJ += A0 * (j1 * iJ * (2.0 * e1 * (e1 - 1.0) * h - 4.0 * (e1 - 1.0) * c * h1
+                                    + 2.0 * c * c * h2)
+                         + e2 * (e2 - 1.0) * j2 * iJ)
+    P = 2.0 * Ws[:, None] * f + WJ[:, None] * cf
+    if not tangent:
+        return W.reshape(shape), P.reshape(*shape, 2, 2), None
+    fc = f[:, :, None] * cf[:, None, :]
+    A = (4.0 * Wss[:, None, None] * (f[:, :, None] * f[:, None, :])
+         + 2.0 * WsJ[:, None, None] * (fc + fc.transpose(0, 2, 1))
+         + WJJ[:, None, None] * (cf[:, :, None] * cf[:, None, :])
+         + 2.0 * Ws[:, None, None] * _I4F
+         + WJ[:, None, None] * _DCOF4)
+    return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
+
+
+class PlaneStrainMaterial:
+    """A material as the FE body sees it: isochoric kernel, bulk and shear moduli.
+
+    Adapts a :class:`~exofric.material.MooneyRivlin` (its own kernel, unchanged) or a
+    :class:`~exofric.material.HyperelasticModel` (neo-Hookean and Yeoh through
+    :func:`yeoh_plane_strain`, Mooney-Rivlin through :func:`mooney_rivlin_plane_strain`,
+    Ogden through :func:`ogden_plane_strain`).
+    Every model has the volumetric term ``(J - 1)^2 / d``, ``K = 2 / d``.
+
+    Parameters
+    ----------
+    material : MooneyRivlin or HyperelasticModel or PlaneStrainMaterial
+        The material (MPa, 1/MPa).
+
+    Attributes
+    ----------
+    source : MooneyRivlin or HyperelasticModel
+        The material given (what results report through :meth:`to_dict`).
+    name : str
+        ``mooney-rivlin``, ``neo-hookean``, ``yeoh``, ``ogden1``, ``ogden2`` or ``ogden3``.
+    shear_modulus, bulk_modulus : float
+        Initial shear modulus mu and bulk modulus K = 2/d (MPa).
+
+    Raises
+    ------
+    InputError
+        For another type.
+
+    Examples
+    --------
+    >>> from exofric.material import material_model
+    >>> m = PlaneStrainMaterial(material_model("yeoh", [0.19, -0.0019, 4.1e-5]))
+    >>> m.name, round(m.shear_modulus, 3)
+    ('yeoh', 0.38)
+    """
+
+    def __init__(self, material: Any) -> None:
+        if isinstance(material, PlaneStrainMaterial):
+            material = material.source
+        self.source: MooneyRivlin | HyperelasticModel = material
+        if isinstance(material, MooneyRivlin):
+            self.name = "mooney-rivlin"
+            self.coeffs: tuple[float, ...] = (material.c10_mpa, material.c01_mpa)
+            self.shear_modulus = float(material.shear_modulus)
+            self.bulk_modulus = float(material.bulk_modulus)
+        elif isinstance(material, HyperelasticModel):
+            self.name = material.name
+            pr = material.params
+            self.coeffs = {"neo-hookean": (pr[0], 0.0, 0.0)}.get(material.name, pr)
+            self.shear_modulus = float(material.shear_modulus_mpa)
+            self.bulk_modulus = float(material.bulk_modulus_mpa)
+        else:
+            raise InputError("material must be a MooneyRivlin or a HyperelasticModel (from "
+                             f"material_model), got {type(material).__name__}",
+                             param="material")
+
+    def stress(
+        self, F: np.ndarray, tangent: bool = True
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """Isochoric energy density, first Piola stress and tangent at F (..., 2, 2).
+
+        Parameters
+        ----------
+        F : ndarray (..., 2, 2)
+            In-plane deformation gradients (det > 0).
+        tangent : bool
+            Also return ``A = dP/dF``.
+
+        Returns
+        -------
+        W, P, A
+            MPa (see :func:`mooney_rivlin_plane_strain`).
+        """
+        if self.name == "mooney-rivlin":
+            return mooney_rivlin_plane_strain(F, self.coeffs[0], self.coeffs[1], tangent)
+        if self.name.startswith("ogden"):
+            return ogden_plane_strain(F, self.coeffs[0::2], self.coeffs[1::2], tangent)
+        c10, c20, c30 = self.coeffs
+        return yeoh_plane_strain(F, c10, c20, c30, tangent)
+
+    def szz_iso(self, s: np.ndarray, J: np.ndarray) -> np.ndarray:
+        """Isochoric out-of-plane Cauchy stress (MPa) at ``s = |F|^2`` and ``J = det F``.
+
+        Parameters
+        ----------
+        s, J : ndarray
+            ``|F|^2`` and ``det F`` of the in-plane F (unitless).
+
+        Returns
+        -------
+        ndarray
+            ``sigma_zz`` without the pressure (MPa).
+        """
+        j23 = J ** (-2.0 / 3.0)
+        if self.name == "mooney-rivlin":
+            c10, c01 = self.coeffs
+            j43 = J ** (-4.0 / 3.0)
+            out: np.ndarray = (c10 * j23 * (2.0 - 2.0 / 3.0 * (s + 1.0))
+                               + c01 * j43 * (2.0 * s - 4.0 / 3.0 * (s + J**2))) / J
+            return out
+        if self.name.startswith("ogden"):
+            # tau_3 = sum 2 mu / a (lb3^a - (lb1^a + lb2^a + lb3^a) / 3), lb3 = J^-1/3
+            y = 0.5 * s / J - 1.0
+            out = np.zeros_like(j23)
+            for mu, a in zip(self.coeffs[0::2], self.coeffs[1::2], strict=True):
+                h = np.cosh(0.5 * a * np.arccosh(np.maximum(1.0 + y, 1.0)))
+                out = out + 2.0 * mu / a * 2.0 / 3.0 * (J ** (-a / 3.0) - J ** (a / 6.0) * h)
+            return out / J
+        c10, c20, c30 = self.coeffs
+        x = j23 * (s + 1.0) - 3.0
+        w1 = c10 + (2.0 * c20 + 3.0 * c30 * x) * x
+        out = w1 * j23 * (2.0 - 2.0 / 3.0 * (s + 1.0)) / J
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """The given material's dict (:meth:`MooneyRivlin.to_dict` or its model's)."""
+        return dict(self.source.to_dict())
+
+
 @dataclass
 class ElementState:
     """Element-level results of one evaluation (internal to the solver)."""
@@ -119,14 +421,15 @@ class ElementState:
 
 
 class HyperelasticBody:
-    """A meshed Mooney-Rivlin body in plane strain (precomputed element data).
+    """A meshed hyperelastic body in plane strain (precomputed element data).
 
     Parameters
     ----------
     mesh : TubeMesh
         The mesh (mm).
-    material : MooneyRivlin
-        Constants C10, C01 (MPa) and d (1/MPa).
+    material : MooneyRivlin or HyperelasticModel or PlaneStrainMaterial
+        Constants C10, C01 (MPa) and d (1/MPa), or a neo-Hookean, Mooney-Rivlin or Yeoh
+        model from :func:`~exofric.material.material_model` (Ogden too).
     formulation : {'mixed', 'displacement'}
         Mixed u/p (default; locking-free) or plain displacement (locks).
     n_gauss : int, optional
@@ -145,7 +448,7 @@ class HyperelasticBody:
     def __init__(
         self,
         mesh: TubeMesh,
-        material: MooneyRivlin,
+        material: MooneyRivlin | HyperelasticModel | PlaneStrainMaterial,
         formulation: str = "mixed",
         n_gauss: int | None = None,
     ) -> None:
@@ -153,13 +456,14 @@ class HyperelasticBody:
             raise InputError(f"formulation must be 'mixed' or 'displacement', got {formulation!r}")
         self.mesh = mesh
         self.material = material
+        self.model = PlaneStrainMaterial(material)
         self.formulation = formulation
         ng = n_gauss or (3 if mesh.order == 2 else 2)
         self.ref: ReferenceData = reference_data(mesh.nodes, mesh.elements, mesh.order, ng)
         n = mesh.elements.shape[1]
         self.n_local = n
         self.edofs = (2 * mesh.elements[:, :, None] + np.arange(2)).reshape(-1, 2 * n)
-        self.K = material.bulk_modulus
+        self.K = self.model.bulk_modulus
         # Reshaped gradients so every contraction below is one batched matmul.
         d = self.ref.dNdX  # (e, q, n, 2)
         ne, nq = d.shape[:2]
@@ -215,8 +519,7 @@ class HyperelasticBody:
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
         if np.any(J <= 1e-8) or not np.all(np.isfinite(J)):
             return ElementState(np.inf, np.empty(0), None, False)
-        m = self.material
-        W, P, A = mooney_rivlin_plane_strain(F, m.c10_mpa, m.c01_mpa, tangent)
+        W, P, A = self.model.stress(F, tangent)
         cof = _cof(F)
         ne = len(self.edofs)
         ke = None
@@ -301,16 +604,11 @@ class HyperelasticBody:
         F = self.deformation_gradient(u)
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
         s = np.einsum("...ij,...ij->...", F, F)
-        m = self.material
-        _, P, _ = mooney_rivlin_plane_strain(F, m.c10_mpa, m.c01_mpa, tangent=False)
+        _, P, _ = self.model.stress(F, tangent=False)
         p = self.element_pressure(u)
         P = P + p[..., None, None] * _cof(F)
         sig = np.einsum("...ij,...kj->...ik", P, F) / J[..., None, None]
-        j23, j43 = J ** (-2.0 / 3.0), J ** (-4.0 / 3.0)
-        szz = (
-            m.c10_mpa * j23 * (2.0 - 2.0 / 3.0 * (s + 1.0))
-            + m.c01_mpa * j43 * (2.0 * s - 4.0 / 3.0 * (s + J**2))
-        ) / J + p
+        szz = self.model.szz_iso(s, J) + p
         return np.stack([sig[..., 0, 0], sig[..., 1, 1], sig[..., 0, 1], szz], axis=-1)
 
 

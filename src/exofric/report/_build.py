@@ -213,10 +213,12 @@ def _fig_table1(r: ReproduceResult) -> Any:
 def _fig_squeeze_n(r: ReproduceResult) -> Any:
     s = r.squeeze.result
     n_paper = paper.scalar("base_squeeze_force_at_0_6_mpa_n")
+    shore = getattr(s.material, "shore", None)  # the reproduction's material is Mooney-Rivlin
+    mat = f"Shore {shore:.2f}" if shore is not None else str(getattr(s.material, "name", ""))
     return plot_squeeze_force(
         s, reference=(0.6, n_paper, f"paper (Fig 7): {n_paper:g} N"),
         label="exofric FE, base group",
-        title=f"Fig 7: tube ID {s.structure.tube_id_mm:.4f} mm, Shore {s.material.shore:.2f}")
+        title=f"Fig 7: tube ID {s.structure.tube_id_mm:.4f} mm, {mat}")
 
 
 def _fig_all_curves(r: ReproduceResult) -> Any:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -22,12 +22,14 @@ from exofric.fe import (
     von_mises,
 )
 from exofric.geometry import check_size_mm
-from exofric.material import MooneyRivlin
+from exofric.material import HyperelasticModel, MooneyRivlin
 from exofric.simulate._analytic import incompressible_inflation, incompressible_limit_pressure
 from exofric.simulate._stretch import check_stretch
 
 if TYPE_CHECKING:
     import pandas as pd
+
+    from exofric.simulate._squeeze import FEMaterial
 
 __all__ = ["InflationResult", "inflate"]
 
@@ -55,7 +57,7 @@ class InflationResult:
         Which symmetry was used.
     tube_od_mm, tube_id_mm : float
         Undeformed outer and inner tube diameters (mm).
-    material : MooneyRivlin
+    material : MooneyRivlin or HyperelasticModel
         Tube material.
     mesh : MeshSpec
         Mesh used.
@@ -95,7 +97,7 @@ class InflationResult:
     symmetry: str
     tube_od_mm: float
     tube_id_mm: float
-    material: MooneyRivlin
+    material: MooneyRivlin | HyperelasticModel
     mesh: MeshSpec
     nodes: np.ndarray = field(repr=False)
     elements: np.ndarray = field(repr=False)
@@ -110,7 +112,7 @@ class InflationResult:
     def analytic_outer_diameter_mm(self) -> np.ndarray:
         """Incompressible closed-form outer diameters (mm) at the same pressures."""
         return incompressible_inflation(
-            self.tube_od_mm, self.tube_id_mm, self.material.shear_modulus, self.pressure_mpa
+            self.tube_od_mm, self.tube_id_mm, _shear_modulus(self.material), self.pressure_mpa
         ).outer_diameter_mm
 
     def to_dict(self) -> dict[str, Any]:
@@ -196,7 +198,7 @@ class InflationResult:
 def inflate(
     tube_od_mm: float,
     tube_id_mm: float,
-    material: MooneyRivlin,
+    material: MooneyRivlin | HyperelasticModel,
     pressures_mpa: np.ndarray | list[float],
     *,
     accuracy: str | None = None,
@@ -213,8 +215,10 @@ def inflate(
     ----------
     tube_od_mm, tube_id_mm : float
         Undeformed outer and inner diameters (mm).
-    material : MooneyRivlin
-        Constants C10, C01 (MPa), d (1/MPa).
+    material : MooneyRivlin or HyperelasticModel
+        Constants C10, C01 (MPa), d (1/MPa), or a neo-Hookean, Mooney-Rivlin, Yeoh or Ogden model
+        from :func:`~exofric.material.material_model`. The
+        closed form beside it is neo-Hookean with the model's shear modulus.
     pressures_mpa : array-like
         Strictly increasing pressures (MPa), each below the tube's limit pressure.
     accuracy : {'draft', 'standard', 'fine'}, optional
@@ -251,8 +255,11 @@ def inflate(
     idm = check_size_mm("tube_id_mm", tube_id_mm, "tube inner diameter")
     if idm >= od:
         raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {idm:g}")
+    from exofric.simulate._squeeze import fe_material_of
+
+    fe_material = fe_material_of(material)
     p = check_pressures("pressures_mpa", pressures_mpa, allow_zero=True)
-    plim = incompressible_limit_pressure(od, idm, material.shear_modulus)
+    plim = incompressible_limit_pressure(od, idm, fe_material.shear_modulus)
     if p[-1] >= 0.99 * plim:
         raise InputError(
             f"pressure {p[-1]:g} MPa is beyond 99% of the tube's limit pressure {plim:.4g} MPa "
@@ -264,11 +271,11 @@ def inflate(
     level, spec, coarse_spec = resolve_accuracy(accuracy, mesh, defaults.INFLATION_ACCURACY)
     s = settings or NewtonSettings(**defaults.INFLATION_NEWTON)
     t0 = time.perf_counter()
-    prob, pts, od_fe, id_fe = _solve_inflation(od, idm, material, p, spec, s)
+    prob, pts, od_fe, id_fe = _solve_inflation(od, idm, fe_material, p, spec, s)
     od_est: np.ndarray | None = None
     id_est: np.ndarray | None = None
     if coarse_spec is not None:
-        _, _, od_c, id_c = _solve_inflation(od, idm, material, p, coarse_spec, s)
+        _, _, od_c, id_c = _solve_inflation(od, idm, fe_material, p, coarse_spec, s)
         od_est = defaults.ESTIMATE_SAFETY_FACTOR * np.abs(od_fe - od_c)
         id_est = defaults.ESTIMATE_SAFETY_FACTOR * np.abs(id_fe - id_c)
     dt = time.perf_counter() - t0
@@ -305,14 +312,22 @@ def inflate(
 
 
 def _solve_inflation(
-    od: float, idm: float, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
+    od: float, idm: float, material: FEMaterial, p: np.ndarray, spec: MeshSpec,
     s: NewtonSettings,
 ) -> tuple[InflationProblem, list[PathPoint], np.ndarray, np.ndarray]:
     """Solve on one mesh: (problem, states, outer and inner diameters in mm)."""
-    prob = InflationProblem(od, idm, material, spec)
+    # InflationProblem reads only shear_modulus (and its body the kernel): either type serves
+    prob = InflationProblem(od, idm, cast(MooneyRivlin, material), spec)
     pts = solve_path(prob, p, s)
     g = prob.mesh.grid
     xo = np.array([(prob.X + pt.u)[2 * g[-1, 0]] for pt in pts])
     xi = np.array([(prob.X + pt.u)[2 * g[0, 0]] for pt in pts])
     return prob, pts, 2.0 * xo, 2.0 * xi
 
+
+
+def _shear_modulus(material: MooneyRivlin | HyperelasticModel) -> float:
+    """Initial shear modulus mu (MPa) of either material type."""
+    if isinstance(material, MooneyRivlin):
+        return float(material.shear_modulus)
+    return float(material.shear_modulus_mpa)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -28,6 +28,7 @@ from exofric.fe import (
     MU_WARN,
     MeshSpec,
     NewtonSettings,
+    PlaneStrainMaterial,
     SolverStats,
     SqueezeProblem,
     collect_stats,
@@ -38,7 +39,7 @@ from exofric.fe import (
     wire_halfwidth,
 )
 from exofric.geometry import Structure
-from exofric.material import MooneyRivlin
+from exofric.material import HyperelasticModel, MooneyRivlin
 from exofric.simulate._stretch import check_stretch
 
 if TYPE_CHECKING:
@@ -87,7 +88,7 @@ class SqueezeResult:
         Wall time of the solve alone (s).
     structure : Structure
         Hole, tube and wire (mm).
-    material : MooneyRivlin
+    material : MooneyRivlin or HyperelasticModel
         Tube material.
     mesh : MeshSpec
         Mesh used.
@@ -183,7 +184,7 @@ class SqueezeResult:
     dofs: int
     solve_time_s: float
     structure: Structure
-    material: MooneyRivlin
+    material: MooneyRivlin | HyperelasticModel
     mesh: MeshSpec
     penalty: float
     density: float
@@ -578,7 +579,33 @@ def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings,
         prob.spring_k = k
 
 
-def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
+#: What the FE problems take: the paper's MooneyRivlin as is, any other model adapted.
+FEMaterial = MooneyRivlin | PlaneStrainMaterial
+
+
+def fe_material_of(material: Any) -> FEMaterial:
+    """The FE's view of a tube material: a MooneyRivlin unchanged, a model adapted.
+
+    Parameters
+    ----------
+    material : MooneyRivlin or HyperelasticModel
+        Tube material (MPa, 1/MPa).
+
+    Returns
+    -------
+    MooneyRivlin or PlaneStrainMaterial
+
+    Raises
+    ------
+    InputError
+        Another type.
+    """
+    if isinstance(material, MooneyRivlin):
+        return material
+    return PlaneStrainMaterial(material)
+
+
+def _solve_mesh(structure: Structure, material: FEMaterial, p: np.ndarray, spec: MeshSpec,
                 penalty: float, density: float, gravity: str, settings: NewtonSettings,
                 spring_rel: float, release: bool = True, wire_angle_deg: float = 0.0,
                 rotation_rel: float = defaults.ROTATION_SPRING_REL,
@@ -591,9 +618,10 @@ def _solve_mesh(structure: Structure, material: MooneyRivlin, p: np.ndarray, spe
     later sub-steps converge without it, so only the outputs up to that sub-step need a
     release solve (one Newton attempt each; they were ~15% of a default squeeze's attempts).
     """
-    prob = SqueezeProblem(structure, material, spec, penalty, density, gravity, spring_rel,
-                          wire_angle_deg, rotation_rel, full, mu_wall=mu[0], mu_wire=mu[1],
-                          friction_penalty=friction_penalty)
+    # SqueezeProblem reads only shear_modulus (and its body the kernel): either type serves
+    prob = SqueezeProblem(structure, cast(MooneyRivlin, material), spec, penalty, density,
+                          gravity, spring_rel, wire_angle_deg, rotation_rel, full,
+                          mu_wall=mu[0], mu_wire=mu[1], friction_penalty=friction_penalty)
     path: list[tuple[float, np.ndarray]] = []
     spring = prob.spring_k
     freed_at = np.inf  # the load (MPa) of the sub-step after which the spring is out
@@ -740,7 +768,7 @@ def resolve_accuracy(accuracy: str | None, mesh: MeshSpec | None,
 
 
 def _solve_levels(
-    structure: Structure, material: MooneyRivlin, p: np.ndarray, spec: MeshSpec,
+    structure: Structure, material: FEMaterial, p: np.ndarray, spec: MeshSpec,
     coarse_spec: MeshSpec | None, penalty: float, density: float, gravity: str,
     s: NewtonSettings, regulariser: float, onset_tol_mpa: float, wire_angle_deg: float = 0.0,
     rotation_rel: float = defaults.ROTATION_SPRING_REL, full: bool | None = None,
@@ -778,7 +806,7 @@ def _solve_levels(
 
 def squeeze(
     structure: Structure,
-    material: MooneyRivlin,
+    material: MooneyRivlin | HyperelasticModel,
     pressures_mpa: np.ndarray | list[float],
     *,
     accuracy: str | None = None,
@@ -814,8 +842,9 @@ def squeeze(
     ----------
     structure : Structure
         Hole, tube and wire (mm) and tube length (mm).
-    material : MooneyRivlin
-        Tube material.
+    material : MooneyRivlin or HyperelasticModel
+        Tube material: Mooney-Rivlin constants, or a neo-Hookean, Mooney-Rivlin, Yeoh or
+        Ogden model from :func:`~exofric.material.material_model`.
     pressures_mpa : array-like
         Strictly increasing pressures (MPa), in [0, 2].
     accuracy : {'draft', 'standard', 'fine'}, optional
@@ -887,6 +916,7 @@ def squeeze(
     ('standard', 32, True)
     """
 
+    fe_material = fe_material_of(material)
     p = check_pressures("pressures_mpa", pressures_mpa, max_mpa=2.0)
     check_positive("penalty", penalty, "N/mm^3")
     check_positive("density", density, "t/mm^3")
@@ -918,7 +948,7 @@ def squeeze(
     t0 = time.perf_counter()
     with collect_stats() as counted:
         sol, onset, coarse_n, est_pct, est_abs = _solve_levels(
-            structure, material, p, spec, coarse_spec, penalty, density, gravity, s,
+            structure, fe_material, p, spec, coarse_spec, penalty, density, gravity, s,
             regulariser, onset_tol_mpa, angle, rotation_regulariser,
             True if full_model else None, mu, friction_penalty)
     dt = time.perf_counter() - t0
