@@ -10,10 +10,10 @@ Measured (2026-11-23, one core of the shared 2-core machine, medians of 5; CPU s
 =================  ==================  ===========================================
 case               sweep 2 x 24 mesh   squeeze standard (4 x 32 + 2 x 16 estimate)
 =================  ==================  ===========================================
-frictionless       0.17                0.39
-wall 0.3           0.32 (1.9x)         1.02 (2.6x)
-wire 0.3           0.36 (2.1x)         0.83 (2.2x)
-both 0.3           0.39 (2.3x)         1.13 (2.9x)
+frictionless       0.15                0.38
+wall 0.3           0.34 (2.3x)         1.08 (2.8x)
+wire 0.3           0.37 (2.5x)         0.80 (2.1x)
+both 0.3           0.38 (2.6x)         1.10 (2.9x)
 =================  ==================  ===========================================
 
 Within the issue's target (3x). Newton iterations are 1.6-1.8x the frictionless ones, and
