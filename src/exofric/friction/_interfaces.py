@@ -81,7 +81,9 @@ from exofric.errors import (
     check_series,
     warn_implausible,
 )
+from exofric.fe import MU_WARN
 from exofric.friction._curve import SqueezeCurve
+from exofric.simulate import check_friction
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -106,10 +108,6 @@ __all__ = [
 KAPPA_MAX = 100.0
 #: Largest 95 % CI half-width, as a fraction of the estimate, of an identified coefficient.
 CI_REL_MAX = 0.5
-#: Friction coefficients above this are refused (InputError); above :data:`MU_WARN` warned.
-MU_MAX = 2.0
-#: Friction coefficients above this (and up to :data:`MU_MAX`) are warned as implausible.
-MU_WARN = 1.5
 #: The key of a squeeze result (``exofric squeeze --json``) that the interface law needs.
 WIRE_KEY = "wire_pressure_integral_n_per_mm"
 
@@ -128,51 +126,6 @@ class IdentifiabilityWarning(UserWarning):
     >>> issubclass(IdentifiabilityWarning, UserWarning)
     True
     """
-
-
-def check_mu(name: str, value: float) -> float:
-    """A friction coefficient (unitless): finite, in [0, 2]; warns above 1.5.
-
-    Parameters
-    ----------
-    name : str
-        The parameter's name for the message (``"mu_tube"``).
-    value : float
-        The coefficient (unitless).
-
-    Returns
-    -------
-    float
-
-    Raises
-    ------
-    InputError
-        NaN/inf, negative, or above :data:`MU_MAX` (one line naming ``name``).
-
-    Examples
-    --------
-    >>> check_mu("mu_tube", 0.4)
-    0.4
-    """
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number (unitless friction coefficient), got "
-                         f"{value!r}", param=name) from None
-    if not np.isfinite(v):
-        raise InputError(f"{name} must be a finite friction coefficient (unitless), got {v}",
-                         param=name)
-    if v < 0.0:
-        raise InputError(f"{name} must be >= 0 (unitless friction coefficient), got {v:g}",
-                         param=name)
-    if v > MU_MAX:
-        raise InputError(f"{name} must be <= {MU_MAX:g} (unitless friction coefficient), got "
-                         f"{v:g}", param=name)
-    if v > MU_WARN:
-        warn_implausible(f"{name} = {v:g} is above {MU_WARN:g}: unusually high for a Coulomb "
-                         "friction coefficient (even soft silicone on steel rarely exceeds "
-                         "it); check the value")
-    return v
 
 
 @dataclass(frozen=True)
@@ -209,8 +162,8 @@ class InterfaceFrictionModel:
     f0_n: float = 0.0
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mu_tube", check_mu("mu_tube", self.mu_tube))
-        object.__setattr__(self, "mu_wall", check_mu("mu_wall", self.mu_wall))
+        object.__setattr__(self, "mu_tube", check_friction("mu_tube", self.mu_tube))
+        object.__setattr__(self, "mu_wall", check_friction("mu_wall", self.mu_wall))
         object.__setattr__(self, "f0_n", check_finite("f0_n (friction offset, N)", self.f0_n))
 
     @overload

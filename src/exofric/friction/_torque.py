@@ -78,10 +78,10 @@ def capstan_factor(wrap_deg: float, mu_arc: float, direction: str = "locking") -
     >>> round(capstan_factor(180.0, 0.1), 6), round(capstan_factor(180.0, 0.1, "buffering"), 6)
     (1.369108, 0.730403)
     """
-    from exofric.friction._interfaces import check_mu
+    from exofric.simulate import check_friction
 
     theta = math.radians(check_range("wrap_deg", wrap_deg, 0.0, WRAP_MAX_DEG, unit="deg"))
-    mu = check_mu("mu_arc", mu_arc)
+    mu = check_friction("mu_arc", mu_arc)
     if direction not in ("locking", "buffering"):
         raise InputError(f"direction must be 'locking' or 'buffering', got {direction!r}",
                          param="direction")

@@ -42,7 +42,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         squeeze_with_clearance,
     )
     from exofric.simulate._inflate import InflationResult, inflate
-    from exofric.simulate._squeeze import SqueezeResult, squeeze
+    from exofric.simulate._squeeze import SqueezeResult, check_friction, squeeze
     from exofric.simulate._stretch import StretchWarning, check_stretch
     from exofric.simulate._tolerance import TOLERANCE_NAMES, ToleranceResult, squeeze_tolerances
 
@@ -57,7 +57,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "_clearance": ("ClearanceDistribution", "ClearanceSqueeze", "squeeze_with_clearance"),
     "_inflate": ("InflationResult", "inflate"),
     "_tolerance": ("TOLERANCE_NAMES", "ToleranceResult", "squeeze_tolerances"),
-    "_squeeze": ("SqueezeResult", "squeeze"),
+    "_squeeze": ("SqueezeResult", "check_friction", "squeeze"),
     "_stretch": ("StretchWarning", "check_stretch"),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
@@ -69,6 +69,7 @@ __all__ = [
     "InflationResult",
     "SqueezeResult",
     "StretchWarning",
+    "check_friction",
     "check_stretch",
     "compressible_inflation",
     "incompressible_inflation",

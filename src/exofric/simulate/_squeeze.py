@@ -19,7 +19,6 @@ from exofric.errors import (
     InputError,
     check_positive,
     check_pressures,
-    check_range,
     warn_implausible,
 )
 from exofric.fe import (
@@ -388,28 +387,51 @@ class SqueezeResult:
 
 
 def check_friction(name: str, value: float) -> float:
-    """A Coulomb coefficient (unitless) in [0, 2]; warns above 1.5 (implausible on metal).
+    """A Coulomb coefficient (unitless): finite, in [0, 2]; warns above 1.5.
+
+    The one check of every friction coefficient a user gives (``mu_wall``, ``mu_wire`` of the
+    squeeze, ``mu_tube``, ``mu_wall`` of the interface law, ``mu_arc`` of the capstan).
 
     Parameters
     ----------
     name : str
         Parameter name for the messages (e.g. ``"mu_wall"``).
     value : float
-        The coefficient.
+        The coefficient (unitless).
 
     Returns
     -------
     float
+
+    Raises
+    ------
+    InputError
+        Not a number, NaN/inf, negative, or above :data:`exofric.fe.MU_MAX` (one line naming
+        ``name``).
 
     Examples
     --------
     >>> check_friction("mu_wall", 0.3)
     0.3
     """
-    v = check_range(name, value, 0.0, MU_MAX)
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number (unitless friction coefficient), got "
+                         f"{value!r}", param=name) from None
+    if not np.isfinite(v):
+        raise InputError(f"{name} must be a finite friction coefficient (unitless), got {v}",
+                         param=name)
+    if v < 0.0:
+        raise InputError(f"{name} must be >= 0 (unitless friction coefficient), got {v:g}",
+                         param=name)
+    if v > MU_MAX:
+        raise InputError(f"{name} must be <= {MU_MAX:g} (unitless friction coefficient), got "
+                         f"{v:g}", param=name)
     if v > MU_WARN:
-        warn_implausible(f"{name} = {v:g} is above {MU_WARN:g}: implausible for silicone on "
-                         "aluminium or steel (measured 0.2-1.2); check the value")
+        warn_implausible(f"{name} = {v:g} is above {MU_WARN:g}: implausible for a Coulomb "
+                         "coefficient of silicone or steel on metal (measured 0.2-1.2); check "
+                         "the value")
     return v
 
 
