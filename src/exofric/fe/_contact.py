@@ -22,7 +22,7 @@ import numpy as np
 from exofric.fe._elements import lagrange_1d
 
 __all__ = ["RigidCircle", "ContactState", "FrictionState", "nodal_weights", "evaluate_contact",
-           "evaluate_friction", "polar_angle"]
+           "evaluate_friction", "polar_angle", "slip_geometry"]
 
 
 @dataclass(frozen=True)
@@ -325,9 +325,8 @@ def evaluate_friction(
     """
     d = x - np.asarray(circle.center)
     r2 = d[:, 0] ** 2 + d[:, 1] ** 2
-    theta = np.arctan2(d[:, 1], d[:, 0])
+    theta, dth, gth = slip_geometry(x, circle, anchor)
     rc = circle.radius
-    dth = np.angle(np.exp(1j * (theta - anchor)))          # wrapped to (-pi, pi]
     gt = rc * dth
     kw = eps_t * weights
     frozen = bound is not None
@@ -338,7 +337,6 @@ def evaluate_friction(
     stick = on & (np.abs(trial) < (1.0 - _SLIP_TOL) * bound)
     sgn = np.sign(trial)
     T = np.where(stick, trial, np.where(on, bound * sgn, 0.0))
-    gth = np.column_stack([-d[:, 1], d[:, 0]]) / r2[:, None]  # grad(theta)
     force = -(T * rc)[:, None] * gth
     slip = on & ~stick
     energy = float(np.sum(np.where(stick, 0.5 * kw * gt**2, 0.0))
@@ -361,6 +359,40 @@ def evaluate_friction(
                   + np.where(slip[:, None, None], slip_b, 0.0)
                   + (T * rc)[:, None, None] * H)
     return FrictionState(energy, force, blocks, T, stick, theta)
+
+
+def slip_geometry(x: np.ndarray, circle: RigidCircle, anchor: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Polar angle, angle from the anchor and its gradient of points on a rigid circle.
+
+    Parameters
+    ----------
+    x : ndarray (m, 2)
+        Points (mm).
+    circle : RigidCircle
+        The circle (angles seen from its centre).
+    anchor : ndarray (m,)
+        Anchor angles (rad).
+
+    Returns
+    -------
+    theta, dtheta, grad_theta : ndarray (m,), (m,), (m, 2)
+        ``theta`` (rad), ``theta - anchor`` wrapped to (-pi, pi] (rad) and ``grad(theta)``
+        (1/mm).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> c = RigidCircle((0.0, 0.0), 1.0, True)
+    >>> th, dth, g = slip_geometry(np.array([[0.0, -1.0]]), c, np.array([-np.pi / 2]))
+    >>> float(dth[0]), g[0].tolist()
+    (0.0, [1.0, 0.0])
+    """
+    d = x - np.asarray(circle.center)
+    r2 = d[:, 0] ** 2 + d[:, 1] ** 2
+    theta = np.arctan2(d[:, 1], d[:, 0])
+    dth = np.angle(np.exp(1j * (theta - anchor)))
+    return theta, dth, np.column_stack([-d[:, 1], d[:, 0]]) / r2[:, None]
 
 
 def _gap_grad(d: np.ndarray, circle: RigidCircle) -> np.ndarray:

@@ -660,11 +660,6 @@ def _spsolve(K: sp.csc_matrix, rhs: np.ndarray) -> np.ndarray:
     return np.asarray(spsolve(K, rhs))
 
 
-#: Fixed-point iterations on the frozen slip bounds of a frictional problem allowed per load
-#: (sub-)step before the attempt counts as failed.
-_MAX_REFRESH = 60
-
-
 def _newton(
     problem: Problem, u: np.ndarray, load: float, s: NewtonSettings
 ) -> tuple[np.ndarray, int] | None:

@@ -64,6 +64,7 @@ from exofric.fe._contact import (
     evaluate_friction,
     nodal_weights,
     polar_angle,
+    slip_geometry,
 )
 from exofric.fe._inflation import MeshSpec, PressurizedTube
 from exofric.fe._mesh import polar_mesh
@@ -585,11 +586,8 @@ class SqueezeProblem(PressurizedTube):
             if not (self.frictional and m > 0.0):
                 fric.append((None, np.zeros((len(kw), 2))))
                 continue
-            v = xo - np.asarray(c.center)
-            r2 = v[:, 0] ** 2 + v[:, 1] ** 2
-            sense = np.sign(np.angle(np.exp(1j * (np.arctan2(v[:, 1], v[:, 0]) - a))))
-            gth = np.column_stack([-v[:, 1], v[:, 0]]) / r2[:, None]
-            fric.append((m, (sense * c.radius)[:, None] * gth))
+            _, dth, gth = slip_geometry(xo, c, a)
+            fric.append((m, (np.sign(dth) * c.radius)[:, None] * gth))
         free = self.free
         step = np.zeros(self.n_dofs)
         plain = d
