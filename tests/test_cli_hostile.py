@@ -63,6 +63,8 @@ def _base(tmp: Path) -> dict[str, list[str]]:
         "inflate": ["--tube-od", "8.3", "--tube-id", "4.97", "--shore", "62.5", "--pressures",
                     "0.1", "--n-radial", "1", "--n-circ", "2"],
         "material": ["--shore", "62.5"],
+        "ring": ["--od", "8.3", "--id", "4.97", "--width", "5", "--pin", "3", "--shore", "62.5",
+                 "--max-displacement", "0.5", "--steps", "1", "--n-radial", "1", "--n-circ", "4"],
         "torque": ["--friction", "180.49"],
         "paper": [],
         "reproduce": ["--out", str(tmp / "never-written")],

@@ -338,3 +338,40 @@ def test_treloar_fit_against_linear_least_squares():
     assert ex.n_points == {"uniaxial": 24, "biaxial": 16, "planar": 13}
     # the six-parameter Ogden model beats the one-parameter neo-Hookean in every mode
     assert all(ex.rms_mpa["ogden3"][m] < ex.rms_mpa["neo-hookean"][m] for m in data)
+
+
+# --- tube_ends.py ----------------------------------------------------------------------------
+
+
+def test_tube_ends_against_the_incompressible_references():
+    """The three end conditions against independent references.
+
+    * FE vs the incompressible solutions (plane-strain closed form, scipy thick tube): within
+      0.1 %, the compressibility of nu = 0.498 (0.08 % at 0.4 MPa; tests/test_fe_ends.py shows
+      it falls in proportion to d).
+    * Closed ends lengthen, open ends shorten the tube (l > 1, l < 1), monotonically in P.
+    * C01 at fixed C10 + C01: the FE's OD change with closed ends equals the incompressible
+      thick tube's to 0.05 percentage points; with C10 = C01 a closed incompressible tube keeps
+      l = 1 exactly (Haughton & Ogden's axial-force integrand vanishes at l = 1), and plane
+      strain sees C01 only through compressibility (< 0.05 %).
+    """
+    from exofric.material import MooneyRivlin
+    from exofric.simulate import tube_inflation
+
+    ex = example("tube_ends")
+    assert max(ex.reference_gap_pct.values()) < 0.1
+    lc, lo = ex.axial_stretch["closed"], ex.axial_stretch["open"]
+    assert np.all(lc > 1.0) and np.all(np.diff(lc) > 0)
+    assert np.all(lo < 1.0) and np.all(np.diff(lo) < 0)
+    assert np.all(ex.axial_stretch["plane-strain"] == 1.0)
+    m = ex.material
+    total = m.c10 + m.c01
+    ref = [float(tube_inflation(8.3, 4.97, MooneyRivlin(a, b, m.d), [0.4],
+                                ends="closed").outer_diameter_mm[0])
+           for a, b in ((total, 0.0), (0.5 * total, 0.5 * total))]
+    assert abs(ex.c01_effect_pct["closed"] - 100 * (ref[1] / ref[0] - 1)) < 0.05
+    assert abs(ex.c01_effect_pct["plane-strain"]) < 0.05
+    assert abs(ex.c01_equal_axial_stretch - 1.0) < 1e-9
+    # the squeeze with closed ends: the tube lengthens, so N per mm in the hole drops
+    assert ex.squeeze_axial_stretch > 1.05
+    assert ex.n_at_0_6_mpa_n_per_mm["closed"] < ex.n_at_0_6_mpa_n_per_mm["plane-strain"]

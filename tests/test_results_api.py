@@ -36,8 +36,9 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "exofric"
 
 UNIT_SUFFIXES = ("_mpa", "_per_mpa", "_n", "_n_per_mm", "_mm", "_s", "_pct", "_nm", "_m")
 # numeric columns that carry no unit (ratios, counts, indices, hardness, coefficients)
-UNITLESS = {"group", "n_measured", "max_stretch", "newton_iterations", "trial", "shore", "gamma",
-            "design_index", "dofs", "stick_fraction_wire", "stick_fraction_wall"}
+UNITLESS = {"group", "n_measured", "max_stretch", "axial_stretch", "newton_iterations", "trial",
+            "shore", "gamma", "design_index", "dofs", "stick_fraction_wire",
+            "stick_fraction_wall"}
 
 MAT = MooneyRivlin.from_shore(62.5)
 

@@ -29,6 +29,16 @@ from exofric._lazy import facade
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.calibration._api import METHODS, calibrate
+    from exofric.calibration._material import (
+        CONDITION_LIMIT,
+        CORRELATION_LIMIT,
+        DatasetFit,
+        Identifiability,
+        MaterialCalibration,
+        MisfitProfile,
+        RingTest,
+        calibrate_material,
+    )
     from exofric.calibration._methods import (
         Evaluator,
         Fit,
@@ -59,6 +69,10 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
 # the same one level up).
 _MODULES: dict[str, tuple[str, ...]] = {
     "_api": ("METHODS", "calibrate"),
+    "_material": (
+        "CONDITION_LIMIT", "CORRELATION_LIMIT", "DatasetFit", "Identifiability",
+        "MaterialCalibration", "MisfitProfile", "RingTest", "calibrate_material",
+    ),
     "_methods": ("Evaluator", "Fit", "bisection", "bounded", "joint", "known_hardness"),
     "_models": (
         "DEFAULT_MODEL", "MODEL_KINDS", "C10Convention", "CachedModel", "ModelFn", "make_model",
@@ -73,6 +87,9 @@ __all__ = [
     "DEFAULT_MODEL", "Evaluator", "Fit", "InflationData", "joint", "known_hardness", "make_model",
     "material_for", "METHODS", "MODEL_KINDS", "ModelFn", "paper_table1_model",
     "relative_errors_pct", "Trial",
+    # joint material calibration (inflation + tensile + ring + Shore prior)
+    "calibrate_material", "CONDITION_LIMIT", "CORRELATION_LIMIT", "DatasetFit",
+    "Identifiability", "MaterialCalibration", "MisfitProfile", "RingTest",
 ]
 
 __getattr__, __dir__ = facade(__name__, _HOME, __all__)

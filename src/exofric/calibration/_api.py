@@ -93,6 +93,7 @@ def calibrate(
     poisson: float = 0.498,
     c10_convention: C10Convention = "eq4",
     xtol: float = 0.01,
+    ends: str = "plane-strain",
 ) -> CalibrationResult:
     """Identify Shore A hardness and/or tube inner diameter from inflation data.
 
@@ -124,6 +125,9 @@ def calibrate(
         Material construction from hardness (Eqs 3-6; see :func:`material_for`).
     xtol : float
         Shore A resolution of ``bisection``/``bounded``.
+    ends : {'plane-strain', 'closed', 'open'}
+        Tube end condition of the ``'fe'`` model (the others are plane strain only: an
+        InputError otherwise).
 
     Returns
     -------
@@ -161,11 +165,14 @@ def calibrate(
         if tube_id_mm is None:
             raise InputError(f"method {method!r} needs tube_id_mm (mm) or fit_tube_id",
                              param="tube_id_mm")
+    if ends != "plane-strain" and not isinstance(model, str):
+        raise InputError(f"ends {ends!r} applies to the built-in 'fe' model, not to a model "
+                         "you pass", param="ends")
     if isinstance(model, CachedModel):
         cm = model
     elif isinstance(model, str):
         cm = make_model(model, od, correlation=correlation, c01_ratio=c01_ratio, poisson=poisson,
-                        c10_convention=c10_convention)
+                        c10_convention=c10_convention, ends=ends)
     else:
         cm = CachedModel(model, getattr(model, "__name__", "custom"))
     calls0 = cm.calls

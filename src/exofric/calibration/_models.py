@@ -211,6 +211,7 @@ def make_model(
     poisson: float = 0.498,
     c10_convention: C10Convention = "eq4",
     mesh: MeshSpec | None = None,
+    ends: str = "plane-strain",
 ) -> CachedModel:
     """A memoised free-inflation model ``(shore, tube_id_mm, pressures_mpa) -> OD (mm)``.
 
@@ -226,6 +227,8 @@ def make_model(
         How a trial hardness becomes a material (see :func:`material_for`).
     mesh : exofric.fe.MeshSpec, optional
         Resolution passed to :func:`exofric.simulate.inflate` (``'fe'`` only).
+    ends : {'plane-strain', 'closed', 'open'}
+        End condition of the tube (``'fe'`` only; the other kinds are plane strain).
 
     Returns
     -------
@@ -238,6 +241,12 @@ def make_model(
     9.58
     """
     od = check_positive("tube_od_mm", tube_od_mm, "mm")
+    from exofric.fe import check_ends
+
+    check_ends(ends)
+    if ends != "plane-strain" and kind != "fe":
+        raise InputError(f"ends {ends!r} needs the fe model: model {kind!r} is plane strain",
+                         param="ends")
     if kind == "paper-table1":
         return paper_table1_model()
 
@@ -272,8 +281,9 @@ def make_model(
 
         def fn_fe(shore: float, tube_id_mm: float, pressures_mpa: np.ndarray) -> np.ndarray:
             p = check_pressures("pressures_mpa", pressures_mpa)
-            res = inflate(od, tube_id_mm, mat(shore), p, mesh=fe_mesh, keep_fields=False)
+            res = inflate(od, tube_id_mm, mat(shore), p, mesh=fe_mesh, keep_fields=False,
+                          ends=ends)
             return np.asarray(res.outer_diameter_mm, dtype=float)
 
-        return CachedModel(fn_fe, "fe")
+        return CachedModel(fn_fe, "fe" if ends == "plane-strain" else f"fe ({ends} ends)")
     raise InputError(f"model must be one of {', '.join(MODEL_KINDS)}, got {kind!r}")

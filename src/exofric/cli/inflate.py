@@ -98,9 +98,12 @@ def register(app: typer.Typer) -> None:
         n_circ: int = typer.Option(None, help="Explicit mesh: elements around the quarter."),
         plot: Path = typer.Option(None, help="Write a PNG of the deformed section and OD(P)."),
         vtu: Path = typer.Option(None, help="Write the deformed mesh at the last pressure (VTU)."),
+        ends: str = typer.Option(
+            "plane-strain", "--ends", help="Tube ends: plane-strain (axial stretch 1, the "
+            "paper's model), closed (end caps carry P x cavity area) or open (no axial force)."),
         as_json: bool = JSON_OPTION,
     ) -> None:
-        """Free plane-strain inflation (FE, quarter model): diameters vs pressure (mm, MPa)."""
+        """Free inflation (FE, quarter model): diameters, axial stretch vs pressure (mm, MPa)."""
         from exofric.fe import MeshSpec
         from exofric.geometry import check_size_mm
         from exofric.simulate import inflate
@@ -115,7 +118,7 @@ def register(app: typer.Typer) -> None:
         if n_radial is not None or n_circ is not None:
             mesh = MeshSpec(defaults.INFLATION_MESH["n_radial"] if n_radial is None else n_radial,
                             defaults.INFLATION_MESH["n_circ"] if n_circ is None else n_circ)
-        res = inflate(tube_od, tube_id, mat, p, accuracy=accuracy, mesh=mesh)
+        res = inflate(tube_od, tube_id, mat, p, accuracy=accuracy, mesh=mesh, ends=ends)
         out = res.to_dict()
         from exofric import paper
         from exofric.plots import plot_inflation
@@ -141,6 +144,9 @@ def register(app: typer.Typer) -> None:
             est = res.outer_diameter_error_estimate_mm
             cols = ["P (MPa)", "OD FE (mm)", "ID FE (mm)", "OD closed form (mm)"]
             cols += ["OD error est. (mm)"] if est is not None else ["Newton it."]
+            axial = res.ends != "plane-strain"
+            if axial:
+                cols += ["axial stretch"]
             if table1:
                 cols += ["OD Table 1 test (mm)"]
             for c in cols:
@@ -155,12 +161,16 @@ def register(app: typer.Typer) -> None:
             )):
                 last = f"{est[i]:.1e}" if est is not None else str(row[4])
                 cells = [f"{row[0]:g}", f"{row[1]:.4f}", f"{row[2]:.4f}", f"{row[3]:.4f}", last]
+                if axial:
+                    cells.append(f"{out['axial_stretch'][i]:.5f}")
                 if table1:
                     cells.append(next((f"{v:g}" for k, v in table1.items()
                                        if abs(k - row[0]) < 1e-9), "-"))
                 t.add_row(*cells)
             console.print(t)
-            console.print(f"[dim]{res.symmetry}. Closed form: incompressible (J = 1).[/dim]")
+            ref = ("incompressible (J = 1), plane strain" if not axial else
+                   f"incompressible thick tube, {res.ends} ends (semi-analytic)")
+            console.print(f"[dim]{res.symmetry}; ends: {res.ends}. Closed form: {ref}.[/dim]")
             for k in ("plot", "vtu"):
                 if k in out:
                     console.print(f"wrote {out[k]}")

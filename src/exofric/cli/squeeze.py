@@ -83,6 +83,10 @@ def register(app: typer.Typer) -> None:
         mu_wire: float = typer.Option(
             0.0, "--mu-wire", help="Coulomb friction coefficient tube-wire (silicone on steel) "
             "in the section's plane, [0, 2]; 0: frictionless (the paper)."),
+        ends: str = typer.Option(
+            "plane-strain", "--ends", help="Tube ends: plane-strain (the paper's), closed (end "
+            "caps carry P x cavity area) or open (no axial force); closed/open add a uniform "
+            "axial stretch and give forces per mm of tube in the hole."),
         plot: Path = typer.Option(None, help="PNG: deformed sections (Fig 6) and N(P) (Fig 7)."),
         contact_plot: Path = typer.Option(
             None, "--contact-plot", help="PNG: contact pressure (and friction traction) along "
@@ -109,7 +113,7 @@ def register(app: typer.Typer) -> None:
                             grading=grading)
         res = squeeze(st, mat, p, accuracy=accuracy, mesh=mesh, gravity=gravity,
                       penalty=penalty, wire_angle_deg=wire_angle, mu_wall=mu_wall,
-                      mu_wire=mu_wire)
+                      mu_wire=mu_wire, ends=ends)
         out = res.to_dict()
         if _paper_beside(st, p, res.squeeze_force_n):
             from exofric import paper
@@ -146,6 +150,9 @@ def register(app: typer.Typer) -> None:
                 cols.append("S_wire (N/mm)")
             if fric:
                 cols += ["stick wire", "stick wall"]
+            axial = res.ends != "plane-strain" and res.axial_stretch is not None
+            if axial:
+                cols.append("axial stretch")
             if est is not None:
                 cols.append("N error est. (%)")
             for c in cols:
@@ -166,6 +173,9 @@ def register(app: typer.Typer) -> None:
                     for sf in (res.stick_fraction_wire, res.stick_fraction_wall):
                         v = float("nan") if sf is None else float(sf[i])
                         row.append("-" if not math.isfinite(v) else f"{100 * v:.0f}%")
+                if axial:
+                    assert res.axial_stretch is not None
+                    row.append(f"{res.axial_stretch[i]:.4f}")
                 if est is not None:
                     row.append("-" if res.squeeze_force_n_per_mm[i] == 0.0 and est[i] == 0.0
                                else f"{est[i]:.2g}")
@@ -176,6 +186,9 @@ def register(app: typer.Typer) -> None:
                               f"(tube-hole), mu_wire {res.mu_wire:g} (tube-wire); S_wire = "
                               "integral of the tube-wire contact pressure over the arc")
             onset = res.contact_onset_pressure_mpa
+            if axial:
+                console.print(f"{res.ends} ends: uniform axial stretch (generalised plane "
+                              "strain); forces per mm of deformed tube, the length in the hole")
             console.print(
                 f"contact onset: {onset:.4f} MPa (bracketed to 2e-4 MPa)"
                 if onset is not None

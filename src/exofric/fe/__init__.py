@@ -27,6 +27,7 @@ from exofric.fe._contact import (
     ContactState,
     FrictionState,
     RigidCircle,
+    active_set_direction,
     evaluate_contact,
     evaluate_friction,
     nodal_weights,
@@ -42,14 +43,23 @@ from exofric.fe._elements import (
 from exofric.fe._hyperelastic import (
     HyperelasticBody,
     PlaneStrainMaterial,
+    isochoric_derivatives,
     mooney_rivlin_plane_strain,
     ogden_plane_strain,
+    stress_from_derivatives,
     von_mises,
     yeoh_plane_strain,
 )
-from exofric.fe._inflation import InflationProblem, MeshSpec, PressurizedTube
+from exofric.fe._inflation import ENDS, InflationProblem, MeshSpec, PressurizedTube, check_ends
 from exofric.fe._loads import area_hessian, enclosed_area
 from exofric.fe._mesh import TubeMesh, graded_angles, polar_mesh
+from exofric.fe._ring import (
+    RING_MESH,
+    RING_PENALTY,
+    RING_SECTIONS,
+    PlaneStressBody,
+    RingProblem,
+)
 from exofric.fe._solver import (
     Assembler,
     NewtonSettings,
@@ -71,11 +81,13 @@ from exofric.fe._squeeze import (
 )
 
 __all__ = [
+    "ENDS",
     "GRAVITY_MM_S2",
     "GRAVITY_OPTIONS",
     "MU_MAX",
     "MU_WARN",
     "Assembler",
+    "active_set_direction",
     "ContactState",
     "HyperelasticBody",
     "InflationProblem",
@@ -85,6 +97,11 @@ __all__ = [
     "PlaneStrainMaterial",
     "PressurizedTube",
     "Problem",
+    "PlaneStressBody",
+    "RING_MESH",
+    "RING_PENALTY",
+    "RING_SECTIONS",
+    "RingProblem",
     "ReferenceData",
     "RigidCircle",
     "SolverStats",
@@ -92,6 +109,7 @@ __all__ = [
     "StatsCollector",
     "TubeMesh",
     "area_hessian",
+    "check_ends",
     "collect_stats",
     "enclosed_area",
     "evaluate_contact",
@@ -100,6 +118,8 @@ __all__ = [
     "polar_angle",
     "graded_angles",
     "lagrange_1d",
+    "isochoric_derivatives",
+    "stress_from_derivatives",
     "mooney_rivlin_plane_strain",
     "nodal_weights",
     "ogden_plane_strain",

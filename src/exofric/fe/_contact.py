@@ -15,6 +15,7 @@ penetration).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,7 +23,12 @@ import numpy as np
 from exofric.fe._elements import lagrange_1d
 
 __all__ = ["RigidCircle", "ContactState", "FrictionState", "nodal_weights", "evaluate_contact",
-           "evaluate_friction", "polar_angle", "slip_geometry"]
+           "evaluate_friction", "polar_angle", "slip_geometry", "active_set_direction"]
+
+#: The refined direction is kept only if rhs . d > _DESCENT_COS |rhs| |d|, i.e. it descends the
+#: energy (an indefinite tangent far from equilibrium can make the active-set solution an
+#: ascent direction).
+_DESCENT_COS = 1e-6
 
 
 @dataclass(frozen=True)
@@ -400,3 +406,98 @@ def _gap_grad(d: np.ndarray, circle: RigidCircle) -> np.ndarray:
     n = d / np.hypot(d[:, 0], d[:, 1])[:, None]
     return -n if circle.inside else n
 
+
+
+def active_set_direction(
+    gaps: Sequence[tuple[np.ndarray, np.ndarray]],
+    kw: np.ndarray,
+    contact_dofs: np.ndarray,
+    free: np.ndarray,
+    rhs: np.ndarray,
+    d: np.ndarray,
+    solve_with: Callable[[np.ndarray, np.ndarray], np.ndarray],
+    max_iter: int,
+    friction: Sequence[tuple[float | None, np.ndarray]] | None = None,
+) -> np.ndarray:
+    """Newton direction with the contacts the step itself would make (semismooth active set).
+
+    The tangent only knows the nodes in contact at the current state. A node outside that the
+    linearised step ``d`` runs into an obstacle (``g + grad g . d < 0``) joins the linear
+    model, with the penalty stiffness ``eps w grad g grad g^T`` in the matrix and its
+    linearised force ``-eps w g grad g`` in the right-hand side, and the direction is solved
+    again, until the nodes in the model are exactly those the direction runs into (at most
+    ``max_iter`` re-solves). The last direction is returned if it descends (``rhs . d >
+    1e-6 |rhs| |d|``), else the plain one. Only the direction changes, never the residual.
+
+    Parameters
+    ----------
+    gaps : sequence of (ndarray (m,), ndarray (m, 2))
+        Per obstacle: the gaps g (mm) of the m contact nodes and their gradients.
+    kw : ndarray (m,)
+        Penalty times tributary length of each node (N/mm^2 per mm depth).
+    contact_dofs : ndarray (m, 2)
+        The nodes' dofs.
+    free : ndarray of bool (n_dofs,)
+        Free dofs.
+    rhs : ndarray (nf,)
+        Minus the free residual (N per mm depth).
+    d : ndarray (nf,)
+        The plain Newton direction (mm).
+    solve_with : callable
+        ``solve_with(blocks, extra)``: the direction of the tangent plus the contact blocks
+        ``(m, 2, 2)`` (N/mm per mm depth) for the right-hand side ``rhs + extra[free]``.
+    max_iter : int
+        Re-solves allowed.
+    friction : sequence of (float or None, ndarray (m, 2)), optional
+        Per obstacle: mu (None: frictionless) and ``s R grad(theta)`` of a node entering while
+        sliding (its linearised friction ``mu s R F_n grad(theta)``).
+
+    Returns
+    -------
+    ndarray (nf,)
+        The refined direction (mm); ``d`` itself when no node would enter.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> gaps = [(np.array([1.0]), np.array([[0.0, 1.0]]))]  # 1 mm away, gap grows with +y
+    >>> d = active_set_direction(gaps, np.array([10.0]), np.array([[0, 1]]),
+    ...                          np.ones(2, bool), np.zeros(2), np.array([0.0, 0.5]),
+    ...                          lambda b, e: np.zeros(2), 3)
+    >>> d.tolist()  # the step does not reach the obstacle: unchanged (mm)
+    [0.0, 0.5]
+    """
+    n_dofs = free.size
+    m = len(kw)
+    fric = friction if friction is not None else [(None, np.zeros((m, 2))) for _ in gaps]
+    step = np.zeros(n_dofs)
+    plain = d
+    used = [np.zeros(m, dtype=bool) for _ in gaps]  # entering nodes in the model
+    for it in range(max_iter + 1):
+        step[free] = d
+        dn = step[contact_dofs]
+        nxt = [(g > 0.0) & (g + np.einsum("mi,mi->m", grad, dn) < 0.0) for g, grad in gaps]
+        if all(np.array_equal(n_, us) for n_, us in zip(nxt, used, strict=True)):
+            break  # consistent: exactly the nodes it runs into are in its model
+        if it == max_iter:
+            break  # the last set is kept if it descends (the test below)
+        used = nxt
+        blocks = np.zeros((m, 2, 2))
+        extra = np.zeros(n_dofs)
+        for (g, grad), e, (mf, slip_dir) in zip(gaps, used, fric, strict=True):
+            ke = np.where(e, kw, 0.0)
+            blocks += ke[:, None, None] * np.einsum("mi,mj->mij", grad, grad)
+            np.add.at(extra, contact_dofs.ravel(), (-(ke * g)[:, None] * grad).ravel())
+            if mf is not None:
+                # friction of an entering node, sliding (its bound starts at 0): residual
+                # mu s R F_n grad(theta) with F_n = -eps w (g + grad g . d), linearised
+                fk = mf * ke
+                blocks -= fk[:, None, None] * np.einsum("mi,mj->mij", slip_dir, grad)
+                np.add.at(extra, contact_dofs.ravel(), ((fk * g)[:, None] * slip_dir).ravel())
+        d = solve_with(blocks, extra)
+        if not np.all(np.isfinite(d)):
+            return plain
+    if d is plain or float(rhs @ d) > _DESCENT_COS * float(np.linalg.norm(rhs)
+                                                          * np.linalg.norm(d)):
+        return d
+    return plain

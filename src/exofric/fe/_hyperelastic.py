@@ -44,7 +44,8 @@ from exofric.fe._elements import ReferenceData, reference_data
 from exofric.fe._mesh import TubeMesh
 from exofric.material import HyperelasticModel, MooneyRivlin
 
-__all__ = ["HyperelasticBody", "PlaneStrainMaterial", "mooney_rivlin_plane_strain",
+__all__ = ["HyperelasticBody", "PlaneStrainMaterial", "isochoric_derivatives",
+           "mooney_rivlin_plane_strain", "stress_from_derivatives",
            "ogden_plane_strain", "yeoh_plane_strain", "DCOF"]
 
 #: d(cof F)/dF for 2x2 F: cof = [[F11, -F10], [-F01, F00]].
@@ -291,6 +292,185 @@ def ogden_plane_strain(
     return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
 
 
+def _monomial(coef: float, e: tuple[float, float, float], x: np.ndarray, second: bool
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """``m = coef s^e0 J^e1 l^e2`` at ``x = (s, J, l)`` (..., 3), its gradient and Hessian.
+
+    ``dm/dx_i = e_i m / x_i`` and ``d2m/dx_i dx_j = (e_i e_j - delta_ij e_i) m / (x_i x_j)``.
+    """
+    ev = np.asarray(e, dtype=float)
+    m = coef * np.prod(x ** ev, axis=-1)
+    g = ev * m[..., None] / x
+    if not second:
+        return m, g, None
+    ex = (np.outer(ev, ev) - np.diag(ev))
+    h = ex * m[..., None, None] / (x[..., :, None] * x[..., None, :])
+    return m, g, h
+
+
+def isochoric_derivatives(
+    model: PlaneStrainMaterial, s: np.ndarray, J: np.ndarray, lz: np.ndarray,
+    second: bool = True,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Isochoric energy ``W_iso(s, J, l)`` of a 3D block-diagonal deformation and its derivatives.
+
+    For ``F = blockdiag(F2, l)`` with the in-plane ``F2`` (``s = |F2|^2``, ``J = det F2``) and
+    the out-of-plane stretch ``l`` (generalised plane strain, plane stress), ``J3 = J l`` and
+    the invariants are monomials in (s, J, l)::
+
+        Ib1 = J3^-2/3 (s + l^2)     = s J^-2/3 l^-2/3 + J^-2/3 l^4/3
+        Ib2 = J3^-4/3 (s l^2 + J^2) = s J^-4/3 l^2/3  + J^2/3 l^-4/3
+
+    (``tr C^2 = s^2 - 2 J^2 + l^4``). Mooney-Rivlin is linear in them, neo-Hookean and Yeoh a
+    polynomial of ``Ib1 - 3``. Ogden's in-plane isochoric stretches give
+    ``lb1^a + lb2^a = 2 J^(a/6) l^(-a/3) T(c)``, ``c = s / (2 J)``, ``T = cosh(a/2 arccosh c)``
+    (smooth at c = 1, see :func:`ogden_plane_strain`), and ``lb3^a = J^(-a/3) l^(2a/3)``.
+    The volumetric term ``(J l - 1)^2 / d`` is the caller's. At ``l = 1`` this is the
+    plane-strain energy of :meth:`PlaneStrainMaterial.stress` (a test checks the two
+    derivations against each other).
+
+    Parameters
+    ----------
+    model : PlaneStrainMaterial
+        The material (any model).
+    s, J, lz : ndarray
+        ``|F2|^2``, ``det F2`` and the out-of-plane stretch l (unitless, J, l > 0), same
+        shape (broadcast).
+    second : bool
+        Also return the second derivatives.
+
+    Returns
+    -------
+    W : ndarray (...)
+        Energy density (MPa).
+    G : ndarray (..., 3)
+        ``[W_s, W_J, W_l]`` (MPa).
+    H : ndarray (..., 3, 3) or None
+        Second derivatives in the order (s, J, l) (MPa).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from exofric.material import material_model
+    >>> m = PlaneStrainMaterial(material_model("neo-hookean", [0.2]))
+    >>> W, G, H = isochoric_derivatives(m, np.array([2.0]), np.array([1.0]), np.array([1.0]))
+    >>> float(W[0]), np.round(G[0], 6).tolist()  # undeformed: W_l = 0
+    (0.0, [0.2, -0.4, 0.0])
+    """
+    x = np.stack(np.broadcast_arrays(np.asarray(s, float), np.asarray(J, float),
+                                     np.asarray(lz, float)), axis=-1)
+    shape = x.shape[:-1]
+    W = np.zeros(shape)
+    G = np.zeros((*shape, 3))
+    H = np.zeros((*shape, 3, 3)) if second else None
+
+    def add(m: tuple[np.ndarray, np.ndarray, np.ndarray | None], f: float = 1.0) -> None:
+        nonlocal W
+        W = W + f * m[0]
+        G[...] += f * m[1]
+        if H is not None and m[2] is not None:
+            H[...] += f * m[2]
+
+    name, co = model.name, model.coeffs
+    if name.startswith("ogden"):
+        sv, Jv = x[..., 0], x[..., 1]
+        c = 0.5 * sv / Jv
+        gc = np.zeros((*shape, 3))
+        gc[..., 0], gc[..., 1] = 0.5 / Jv, -c / Jv
+        hc = np.zeros((*shape, 3, 3))
+        hc[..., 0, 1] = hc[..., 1, 0] = -0.5 / Jv**2
+        hc[..., 1, 1] = 2.0 * c / Jv**2
+        for mu, a in zip(co[0::2], co[1::2], strict=True):
+            A0 = 2.0 * mu / (a * a)
+            h0, h1, h2 = _chebyshev_t(0.5 * a, np.maximum(c - 1.0, 0.0))
+            m, gm, hm = _monomial(2.0 * A0, (0.0, a / 6.0, -a / 3.0), x, second)
+            W = W + m * h0
+            G[...] += h0[..., None] * gm + (m * h1)[..., None] * gc
+            if H is not None and hm is not None:
+                cross = gm[..., :, None] * gc[..., None, :]
+                H[...] += (h0[..., None, None] * hm + h1[..., None, None] * (cross + np.swapaxes(
+                    cross, -1, -2)) + (m * h2)[..., None, None] * (gc[..., :, None]
+                                                                   * gc[..., None, :])
+                           + (m * h1)[..., None, None] * hc)
+            add(_monomial(A0, (0.0, -a / 3.0, 2.0 * a / 3.0), x, second))
+            W = W - 3.0 * A0
+        return W, G, H
+    i1 = [_monomial(1.0, (1.0, -2.0 / 3.0, -2.0 / 3.0), x, second),
+          _monomial(1.0, (0.0, -2.0 / 3.0, 4.0 / 3.0), x, second)]
+    I1 = i1[0][0] + i1[1][0]
+    g1 = i1[0][1] + i1[1][1]
+    ha, hb = i1[0][2], i1[1][2]
+    h1m = ha + hb if ha is not None and hb is not None else None
+    if name == "mooney-rivlin":
+        c10, c01 = co
+        add((I1 - 3.0, g1, h1m), c10)
+        add(_monomial(1.0, (1.0, -4.0 / 3.0, 2.0 / 3.0), x, second), c01)
+        add(_monomial(1.0, (0.0, 2.0 / 3.0, -4.0 / 3.0), x, second), c01)
+        W = W - 3.0 * c01
+        return W, G, H
+    c10, c20, c30 = co
+    xi = I1 - 3.0
+    W = ((c30 * xi + c20) * xi + c10) * xi
+    w1 = c10 + (2.0 * c20 + 3.0 * c30 * xi) * xi
+    G[...] = w1[..., None] * g1
+    if H is not None and h1m is not None:
+        w2 = 2.0 * c20 + 6.0 * c30 * xi
+        H[...] = w2[..., None, None] * (g1[..., :, None] * g1[..., None, :]) \
+            + w1[..., None, None] * h1m
+    return W, G, H
+
+
+def stress_from_derivatives(
+    f: np.ndarray, G: np.ndarray, H: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+    """In-plane first Piola stress and tangents from the derivatives of ``W(s, J, l)``.
+
+    With ``s = |F|^2``, ``J = det F`` (``dJ/dF = cof F``, linear in F) and ``l`` held::
+
+        P    = 2 W_s F + W_J cof F
+        A    = 4 W_ss F x F + 2 W_sJ (F x cof + cof x F) + W_JJ cof x cof + 2 W_s I + W_J Dcof
+        A_Fl = d2W / dF dl = 2 W_sl F + W_Jl cof F
+
+    Parameters
+    ----------
+    f : ndarray (..., 4)
+        In-plane F flattened ``[F00, F01, F10, F11]``.
+    G : ndarray (..., 3)
+        ``[W_s, W_J, W_l]`` (MPa), e.g. from :func:`isochoric_derivatives`.
+    H : ndarray (..., 3, 3) or None
+        Second derivatives (MPa); None: stress only.
+
+    Returns
+    -------
+    P : ndarray (..., 4)
+        First Piola stress (MPa).
+    A : ndarray (..., 4, 4) or None
+        ``dP/dF`` at fixed l (MPa).
+    A_Fl : ndarray (..., 4) or None
+        ``dP/dl`` (MPa).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f = np.array([[1.0, 0.0, 0.0, 1.0]])
+    >>> P, _, _ = stress_from_derivatives(f, np.array([[0.5, -0.5, 0.0]]), None)
+    >>> P.tolist()  # 2 W_s F + W_J cof F at F = I (MPa)
+    [[0.5, 0.0, 0.0, 0.5]]
+    """
+    c = f[..., _COF_PERM] * _COF_SIGN
+    Ws, WJ = G[..., 0], G[..., 1]
+    P = 2.0 * Ws[..., None] * f + WJ[..., None] * c
+    if H is None:
+        return P, None, None
+    fc = f[..., :, None] * c[..., None, :]
+    A = (4.0 * H[..., 0, 0, None, None] * (f[..., :, None] * f[..., None, :])
+         + 2.0 * H[..., 0, 1, None, None] * (fc + np.swapaxes(fc, -1, -2))
+         + H[..., 1, 1, None, None] * (c[..., :, None] * c[..., None, :])
+         + 2.0 * Ws[..., None, None] * _I4F + WJ[..., None, None] * _DCOF4)
+    Al = 2.0 * H[..., 0, 2, None] * f + H[..., 1, 2, None] * c
+    return P, A, Al
+
+
 class PlaneStrainMaterial:
     """A material as the FE body sees it: isochoric kernel, bulk and shear moduli.
 
@@ -418,6 +598,11 @@ class ElementState:
     fe: np.ndarray  # (e, 2n) element internal forces (N per mm depth)
     ke: np.ndarray | None  # (e, 2n, 2n) element tangents (N/mm per mm depth)
     valid: bool  # False if any J <= 0 (inverted element)
+    # generalised plane strain (:meth:`HyperelasticBody.evaluate_axial`): the axial force
+    # dW/dl (e,) (N), its coupling to the nodal dofs d2W/du dl (e, 2n) (N/mm) and d2W/dl2 (e,)
+    fl: np.ndarray | None = None
+    kel: np.ndarray | None = None
+    kll: np.ndarray | None = None
 
 
 class HyperelasticBody:
@@ -554,6 +739,100 @@ class HyperelasticBody:
             ke = kk if ke is None else ke + kk
         return ElementState(energy, fe, ke, True)
 
+    def evaluate_axial(self, u: np.ndarray, stretch: float, tangent: bool = True
+                       ) -> ElementState:
+        """Generalised plane strain: the body with a uniform axial stretch ``stretch``.
+
+        ``F = blockdiag(F2, l)``; the energy per unit reference length is ``int W(F2, l)
+        dA`` with the isochoric part from :func:`isochoric_derivatives` and the volumetric
+        part on ``J3 = J l`` (mixed: ``p`` condensed on ``J l - 1``). Besides the element
+        forces and tangents of :meth:`evaluate` it returns the axial force ``dW/dl`` and its
+        couplings. At ``l = 1`` forces and tangents are those of :meth:`evaluate` (tested).
+
+        Parameters
+        ----------
+        u : ndarray (2 n_nodes,)
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        stretch : float
+            Axial stretch l (unitless, > 0).
+        tangent : bool
+            Also compute the tangents.
+
+        Returns
+        -------
+        ElementState
+            With ``fl`` (N per element, per unit reference length: the axial force is its
+            sum), ``kel`` (e, 2n) and ``kll`` (e,) set.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from exofric.fe import polar_mesh
+        >>> from exofric.material import MooneyRivlin
+        >>> body = HyperelasticBody(polar_mesh(2.485, 4.15, 2, 4), MooneyRivlin.from_shore(62.5))
+        >>> st = body.evaluate_axial(np.zeros(90), 1.0)
+        >>> bool(abs(st.fl).max() < 1e-12)  # undeformed: no axial force (N)
+        True
+        """
+        r = self.ref
+        lz = float(stretch)
+        F = self.deformation_gradient(u)
+        J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
+        if (np.any(J <= 1e-8) or not np.all(np.isfinite(J)) or not np.isfinite(lz)
+                or lz <= 1e-8):
+            return ElementState(np.inf, np.empty(0), None, False)
+        ne, nq = J.shape
+        f = F.reshape(ne, nq, 4)
+        c = f[..., _COF_PERM] * _COF_SIGN
+        s = np.einsum("eqi,eqi->eq", f, f)
+        W, G, H = isochoric_derivatives(self.model, s, J, np.full_like(J, lz), tangent)
+        P, A_, Al_ = stress_from_derivatives(f, G, H)
+        Pl = G[..., 2].copy()
+        if tangent:
+            assert H is not None and A_ is not None and Al_ is not None
+            A, Al = A_, Al_
+            All = H[..., 2, 2].copy()
+        j3m1 = J * lz - 1.0
+        kvol = None
+        if self.formulation == "mixed":
+            g = np.einsum("eq,qm,eq->em", r.w, r.Np, j3m1)
+            pe = self.K * np.einsum("emk,ek->em", r.Minv, g)
+            p = pe @ r.Np.T  # (e, q)
+            e_vol = 0.5 * float(np.einsum("em,em->", g, pe))
+            P = P + (p * lz)[..., None] * c
+            Pl = Pl + p * J
+            if tangent:
+                A = A + (p * lz)[..., None, None] * _DCOF4
+                Al = Al + p[..., None] * c
+                cofB = (c.reshape(ne, nq, 1, 4) @ self._B)[:, :, 0, :]  # (e, q, 2n): dJ/du
+                Gx = np.concatenate([lz * (self._wNp @ cofB),
+                                     (self._wNp @ J[..., None])], axis=2)  # (e, m, 2n + 1)
+                kvol = self.K * (Gx.transpose(0, 2, 1) @ (r.Minv @ Gx))
+        else:
+            e_vol = float(np.einsum("eq,eq->", r.w, 0.5 * self.K * j3m1**2))
+            kp = self.K * j3m1
+            P = P + (kp * lz)[..., None] * c
+            Pl = Pl + kp * J
+            if tangent:
+                A = A + self.K * ((lz * lz) * (c[..., :, None] * c[..., None, :])) \
+                    + (kp * lz)[..., None, None] * _DCOF4
+                Al = Al + (self.K * J * lz + kp)[..., None] * c
+                All = All + self.K * J * J
+        energy = float(np.einsum("eq,eq->", r.w, W)) + e_vol
+        fe = (self._wBT @ P.reshape(ne, 4 * nq, 1))[..., 0]
+        fl = np.einsum("eq,eq->e", r.w, Pl)
+        if not tangent:
+            return ElementState(energy, fe, None, True, fl)
+        BD = (A @ self._B).reshape(ne, 4 * nq, -1)
+        ke = self._wBT @ BD
+        kel = (self._wBT @ Al.reshape(ne, 4 * nq, 1))[..., 0]
+        kll = np.einsum("eq,eq->e", r.w, All)
+        if kvol is not None:
+            ke = ke + kvol[:, :-1, :-1]
+            kel = kel + kvol[:, :-1, -1]
+            kll = kll + kvol[:, -1, -1]
+        return ElementState(energy, fe, ke, True, fl, kel, kll)
+
     def max_stretch(self, u: np.ndarray) -> float:
         """Largest in-plane principal stretch over all quadrature points at ``u``.
 
@@ -577,38 +856,51 @@ class HyperelasticBody:
         lam2 = 0.5 * (tr + np.sqrt(np.maximum(tr * tr - 4.0 * det, 0.0)))
         return float(np.sqrt(lam2.max()))
 
-    def element_pressure(self, u: np.ndarray) -> np.ndarray:
+    def element_pressure(self, u: np.ndarray, stretch: float = 1.0) -> np.ndarray:
         """Hydrostatic pressure field p (MPa, tension positive) at quadrature points (e, q).
 
         Parameters
         ----------
         u : ndarray (n_dofs,)
             Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        stretch : float
+            Axial stretch l of generalised plane strain (unitless; 1: plane strain).
         """
         F = self.deformation_gradient(u)
-        J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
+        J = (F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]) * stretch
         r = self.ref
         if self.formulation == "mixed":
             g = np.einsum("eq,qm,eq->em", r.w, r.Np, J - 1.0)
             return (self.K * np.einsum("emk,ek->em", r.Minv, g)) @ r.Np.T
         return self.K * (J - 1.0)
 
-    def cauchy_stress(self, u: np.ndarray) -> np.ndarray:
+    def cauchy_stress(self, u: np.ndarray, stretch: float = 1.0) -> np.ndarray:
         """Cauchy stress (MPa) at quadrature points: (e, q, 4) = [sxx, syy, sxy, szz].
 
         Parameters
         ----------
         u : ndarray (n_dofs,)
             Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+        stretch : float
+            Axial stretch l of generalised plane strain (unitless; 1: plane strain).
         """
         F = self.deformation_gradient(u)
         J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
         s = np.einsum("...ij,...ij->...", F, F)
-        _, P, _ = self.model.stress(F, tangent=False)
-        p = self.element_pressure(u)
-        P = P + p[..., None, None] * _cof(F)
-        sig = np.einsum("...ij,...kj->...ik", P, F) / J[..., None, None]
-        szz = self.model.szz_iso(s, J) + p
+        p = self.element_pressure(u, stretch)
+        if stretch == 1.0:
+            _, P, _ = self.model.stress(F, tangent=False)
+            P = P + p[..., None, None] * _cof(F)
+            sig = np.einsum("...ij,...kj->...ik", P, F) / J[..., None, None]
+            szz = self.model.szz_iso(s, J) + p
+            return np.stack([sig[..., 0, 0], sig[..., 1, 1], sig[..., 0, 1], szz], axis=-1)
+        # sigma = P F^T / J3 with J3 = J l; in-plane P = 2 W_s F + W_J cof F + p l cof F and
+        # the axial P_zz = W_l + p J, so sigma_zz = l P_zz / J3 = (W_l + p J) / J
+        _, G, _ = isochoric_derivatives(self.model, s, J, np.full_like(J, stretch), False)
+        P = (2.0 * G[..., 0, None, None] * F
+             + (G[..., 1] + p * stretch)[..., None, None] * _cof(F))
+        sig = np.einsum("...ij,...kj->...ik", P, F) / (J * stretch)[..., None, None]
+        szz = (G[..., 2] + p * J) / J
         return np.stack([sig[..., 0, 0], sig[..., 1, 1], sig[..., 0, 1], szz], axis=-1)
 
 

@@ -15,7 +15,7 @@ from exofric.fe._mesh import TubeMesh, polar_mesh
 from exofric.fe._solver import Assembler
 from exofric.material import MooneyRivlin
 
-__all__ = ["MeshSpec", "InflationProblem"]
+__all__ = ["ENDS", "MeshSpec", "InflationProblem", "PressurizedTube", "check_ends"]
 
 
 @dataclass(frozen=True)
@@ -137,12 +137,51 @@ def _line_order(mesh: TubeMesh) -> np.ndarray:
     return (2 * nodes[:, None] + np.arange(2)).ravel()
 
 
+#: The tube's ends: plane strain (axial stretch 1, the paper's model), or generalised plane
+#: strain with one uniform axial stretch, closed (end caps carry P times the deformed cavity
+#: area) or open (no axial force).
+ENDS = ("plane-strain", "closed", "open")
+
+
+def check_ends(ends: str) -> str:
+    """``ends`` if it is one of :data:`ENDS`, else a one-line :class:`InputError`.
+
+    Parameters
+    ----------
+    ends : str
+        ``'plane-strain'``, ``'closed'`` or ``'open'``.
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> check_ends("closed")
+    'closed'
+    """
+    if not isinstance(ends, str) or ends not in ENDS:
+        raise InputError(f"ends must be one of {', '.join(ENDS)}, got {ends!r}", param="ends")
+    return ends
+
+
 class PressurizedTube:
     """A meshed tube under internal follower pressure: what both FE problems share.
 
     Holds the hyperelastic body, the symmetry constraints (``fixed`` dofs), the
     cavity-area Hessian of the pressure potential ``-P * A_cavity`` and the assembler
     (element blocks, the pressure Hessian, then any ``extra_patterns``).
+
+    With ``ends`` ``'closed'`` or ``'open'`` (generalised plane strain) the last dof is the
+    axial strain ``l - 1`` (unitless), uniform over the section; energies and forces are then
+    per unit *reference* length. Closed ends: the pressure potential is ``-P l A(x)`` (the
+    cavity volume per unit reference length), whose l-derivative puts the end-cap force
+    ``P A`` on the wall. Open ends: the pressure does the work ``P l dA`` on the wall only
+    and the axial force is zero; that load is not conservative, so the Newton iterations
+    solve the problem with the cap force frozen at ``P A*`` (:meth:`refresh` sets
+    ``A* = A(x)`` at each iterate; an exact potential for the line search) with the tangent of
+    the open-end residual (not symmetric: the banded LU solves it). The axial dof is
+    coupled to every node and is eliminated by a Schur complement (``Assembler(border=)``).
 
     Parameters
     ----------
@@ -156,6 +195,8 @@ class PressurizedTube:
         Constrained dofs (symmetry planes).
     extra_patterns : tuple of (rows, cols)
         Further block patterns (e.g. contact) assembled after the pressure Hessian.
+    ends : {'plane-strain', 'closed', 'open'}
+        Axial condition (see above).
 
     Examples
     --------
@@ -175,17 +216,37 @@ class PressurizedTube:
         spec: MeshSpec,
         fixed: np.ndarray,
         extra_patterns: tuple[tuple[np.ndarray, np.ndarray], ...] = (),
+        ends: str = "plane-strain",
     ) -> None:
         self.mesh = mesh
+        self.ends = check_ends(ends)
+        self.axial = ends != "plane-strain"
         self.body = HyperelasticBody(mesh, material, spec.formulation)
         n = mesh.n_nodes
-        self.n_dofs = 2 * n
+        self.n_nodal = 2 * n
+        self.n_dofs = 2 * n + int(self.axial)
         self.free = np.ones(self.n_dofs, dtype=bool)
         self.free[fixed] = False
         self.H = area_hessian(mesh.boundary_edges("inner"), n).tocoo()
         self.X = mesh.nodes.ravel()
+        #: open ends: the frozen cavity area A* (mm^2) of the cap force (see :meth:`refresh`)
+        self.area_star = 0.0
+        self._hx: tuple[np.ndarray, float] | None = None
         ed = self.body.edofs
         k = ed.shape[1]
+        border: tuple[int, ...] = ()
+        if self.axial:
+            ld = self.n_dofs - 1
+            ed = np.hstack([ed, np.full((len(ed), 1), ld)])
+            k += 1
+            self.hx_dofs = np.unique(self.H.row)
+            lrow = np.full(self.hx_dofs.size, ld)
+            axial_patterns: tuple[tuple[np.ndarray, np.ndarray], ...] = (
+                (self.hx_dofs, lrow), (lrow, self.hx_dofs))
+            border = (ld,)
+        else:
+            axial_patterns = ()
+        self.edofs_ext = ed
         self.assembler = Assembler(
             self.n_dofs,
             self.free,
@@ -193,9 +254,65 @@ class PressurizedTube:
                 (np.repeat(ed, k, axis=1), np.tile(ed, (1, k))),
                 (self.H.row, self.H.col),
                 *extra_patterns,
+                *axial_patterns,  # last: the extra patterns keep their indices (2, 3, ...)
             ],
             orders=[_line_order(mesh)],
+            border=border,
         )
+
+    def nodal(self, u: np.ndarray) -> np.ndarray:
+        """Current node coordinates (n, 2) in mm from the dofs ``u`` (mm; axial dof dropped).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Dofs: nodal displacements (mm), then the axial strain (ends closed or open).
+        """
+        return (self.X + u[: self.n_nodal]).reshape(-1, 2)
+
+    def axial_stretch(self, u: np.ndarray) -> float:
+        """Axial stretch l (unitless; 1 in plane strain).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Dofs: nodal displacements (mm), then the axial strain (ends closed or open).
+        """
+        return 1.0 + float(u[-1]) if self.axial else 1.0
+
+    def cavity_area(self, u: np.ndarray) -> float:
+        """Deformed cavity area of the modelled sector (mm^2).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Dofs: nodal displacements (mm), then the axial strain (ends closed or open).
+        """
+        x = self.X + u[: self.n_nodal]
+        return 0.5 * float(x @ (self.H @ x))
+
+    def refresh(self, u: np.ndarray) -> float:
+        """Open ends: freeze the cap force's area ``A* = A(x)`` at ``u``; return its change.
+
+        The Newton iterations then solve a conservative problem whose residual at ``u`` is the
+        open-end one (see the class docstring). Other ends: nothing to freeze (0).
+
+        Parameters
+        ----------
+        u : ndarray (n_dofs,)
+            Dofs: nodal displacements (mm), then the axial strain.
+
+        Returns
+        -------
+        float
+            |change of A*| (mm^2).
+        """
+        if self.ends != "open":
+            return 0.0
+        a = self.cavity_area(u)
+        change = abs(a - self.area_star)
+        self.area_star = a
+        return change
 
     def pressurized(
         self, u: np.ndarray, load: float, tangent: bool
@@ -205,7 +322,8 @@ class PressurizedTube:
         Parameters
         ----------
         u : ndarray (n_dofs,)
-            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
+            Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]`` (then the axial
+            strain with ends closed or open).
         load : float
             Internal pressure (MPa).
         tangent : bool
@@ -216,13 +334,25 @@ class PressurizedTube:
         tuple or None
             ``(state, energy, residual)``; None if an element is inverted.
         """
-        st = self.body.evaluate(u, tangent)
+        un = u[: self.n_nodal]
+        lz = self.axial_stretch(u)
+        st = self.body.evaluate_axial(un, lz, tangent) if self.axial else \
+            self.body.evaluate(un, tangent)
         if not st.valid:
             return None
-        x = self.X + u
+        x = self.X + un
         Hx = self.H @ x
-        R = scatter(self.body.edofs, st.fe, self.n_dofs) - load * Hx
-        return st, st.energy - 0.5 * load * float(x @ Hx), R
+        self._hx = (Hx, lz)
+        area2 = float(x @ Hx)
+        if not self.axial:
+            R = scatter(self.body.edofs, st.fe, self.n_dofs) - load * Hx
+            return st, st.energy - 0.5 * load * area2, R
+        R = np.zeros(self.n_dofs)
+        R[: self.n_nodal] = scatter(self.body.edofs, st.fe, self.n_nodal) - load * lz * Hx
+        assert st.fl is not None
+        cap = load * self.area_star if self.ends == "open" else 0.0
+        R[-1] = float(st.fl.sum()) - 0.5 * load * area2 + cap
+        return st, st.energy - 0.5 * load * lz * area2 + cap * lz, R
 
     def tangent(self, st: ElementState, load: float, *extra_blocks: np.ndarray) -> sp.csc_matrix:
         """Reduced tangent: element blocks, ``-P H`` and the extra blocks (pattern order).
@@ -237,7 +367,19 @@ class PressurizedTube:
             Values of the ``extra_patterns`` blocks (N/mm per mm depth), in order.
         """
         assert st.ke is not None
-        return self.assembler.matrix([st.ke, -load * self.H.data, *extra_blocks])
+        if not self.axial:
+            return self.assembler.matrix([st.ke, -load * self.H.data, *extra_blocks])
+        assert st.kel is not None and st.kll is not None and self._hx is not None
+        Hx, lz = self._hx
+        ne, k = st.ke.shape[:2]
+        ke = np.empty((ne, k + 1, k + 1))
+        ke[:, :k, :k] = st.ke
+        ke[:, :k, k] = ke[:, k, :k] = st.kel
+        ke[:, k, k] = st.kll
+        c = -load * Hx[self.hx_dofs]
+        # closed ends: symmetric; open ends: the axial residual has no pressure term
+        lx = c if self.ends == "closed" else np.zeros_like(c)
+        return self.assembler.matrix([ke, -load * lz * self.H.data, *extra_blocks, c, lx])
 
 
 class InflationProblem(PressurizedTube):
@@ -254,6 +396,8 @@ class InflationProblem(PressurizedTube):
         Tube material.
     spec : MeshSpec
         Quarter-tube mesh (``n_circ`` elements over 90 deg).
+    ends : {'plane-strain', 'closed', 'open'}
+        Axial condition (:class:`PressurizedTube`); default plane strain (the paper's).
 
     Examples
     --------
@@ -264,7 +408,8 @@ class InflationProblem(PressurizedTube):
     """
 
     def __init__(
-        self, tube_od_mm: float, tube_id_mm: float, material: MooneyRivlin, spec: MeshSpec
+        self, tube_od_mm: float, tube_id_mm: float, material: MooneyRivlin, spec: MeshSpec,
+        ends: str = "plane-strain",
     ) -> None:
         self.A, self.B = 0.5 * tube_id_mm, 0.5 * tube_od_mm
         mesh = polar_mesh(
@@ -282,7 +427,7 @@ class InflationProblem(PressurizedTube):
                 2 * mesh.grid[:, -1],
             ]
         )  # theta = 90 deg: u_x = 0
-        super().__init__(mesh, material, spec, fixed)
+        super().__init__(mesh, material, spec, fixed, ends=ends)
 
     def evaluate(
         self, u: np.ndarray, load: float, tangent: bool

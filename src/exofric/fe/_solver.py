@@ -53,6 +53,9 @@ class Assembler:
         Candidate orderings of the dofs (each a permutation of ``range(n_dofs)``, e.g. a
         structured mesh's line-by-line order) tried besides reverse Cuthill-McKee; the one
         with the narrowest band is used. Candidates that are not permutations are ignored.
+    border : sequence of int, optional
+        Free dofs coupled to many others (e.g. a tube's axial stretch): kept out of the band
+        and eliminated by their Schur complement in :meth:`solve`.
 
     Examples
     --------
@@ -65,7 +68,7 @@ class Assembler:
 
     def __init__(
         self, n_dofs: int, free: np.ndarray, patterns: Sequence[tuple[np.ndarray, np.ndarray]],
-        orders: Sequence[np.ndarray] = (),
+        orders: Sequence[np.ndarray] = (), border: Sequence[int] = (),
     ) -> None:
         self.n_dofs = n_dofs
         self.free = np.asarray(free, dtype=bool)
@@ -84,6 +87,32 @@ class Assembler:
         cols = uniq // self.nf
         self.indptr = np.searchsorted(cols, np.arange(self.nf + 1)).astype(np.int32)
 
+        # Border dofs (e.g. a tube's axial stretch, coupled to every node) would make the band
+        # as wide as the system: they are kept out of it and eliminated by a Schur complement
+        # in :meth:`solve` (``ints``: the reduced ids of the other, interior, dofs).
+        bred = self.red[np.asarray(border, dtype=np.int64)]
+        if np.any(bred < 0):
+            raise ValueError("border dofs must be free")
+        isb = np.zeros(self.nf, dtype=bool)
+        isb[bred] = True
+        self.border = bred
+        self.ints = np.flatnonzero(~isb)
+        ni = self.ints.size
+        ii = np.full(self.nf, -1)
+        ii[self.ints] = np.arange(ni)
+        col_of = np.repeat(np.arange(self.nf), np.diff(self.indptr))
+        row_i, col_i = ii[self.indices], ii[col_of]
+        self.e_ii = (row_i >= 0) & (col_i >= 0)
+        if bred.size:
+            bpos = np.full(self.nf, -1)
+            bpos[bred] = np.arange(bred.size)
+            e_ib = (row_i >= 0) & (col_i < 0)
+            e_bi = (row_i < 0) & (col_i >= 0)
+            e_bb = (row_i < 0) & (col_i < 0)
+            self._ib = (e_ib, row_i[e_ib], bpos[col_of[e_ib]])
+            self._bi = (e_bi, bpos[self.indices[e_bi]], col_i[e_bi])
+            self._bb = (e_bb, bpos[self.indices[e_bb]], bpos[col_of[e_bb]])
+
         # Banded storage after a bandwidth-reducing ordering: the thin structured meshes of
         # the tube then have a narrow band, and LAPACK's banded solvers beat SuperLU's general
         # sparse LU (by ~2x for the banded LU) at these sizes (a few hundred to ~20000 dofs).
@@ -94,21 +123,21 @@ class Assembler:
         # Cholesky work, which grows as n band^2). The narrowest band
         # wins. This is the whole symbolic analysis: the ordering and each CSC slot's place in
         # the band are computed once here and reused by every factorisation.
-        col_of = np.repeat(np.arange(self.nf), np.diff(self.indptr))
-        pattern = sp.csc_matrix((np.ones(self.nnz), self.indices, self.indptr),
-                                shape=(self.nf, self.nf))
+        ri, ci = row_i[self.e_ii], col_i[self.e_ii]
+        pattern = sp.csc_matrix((np.ones(ri.size), (ri, ci)), shape=(ni, ni))
         candidates = [np.asarray(reverse_cuthill_mckee(pattern.tocsr(), symmetric_mode=True))]
         for order in orders:
             r = self.red[np.asarray(order, dtype=np.int64)]
+            r = ii[r[r >= 0]]
             r = r[r >= 0]
-            if r.size == self.nf and np.array_equal(np.sort(r), np.arange(self.nf)):
+            if r.size == ni and np.array_equal(np.sort(r), np.arange(ni)):
                 candidates.append(r)
         best = None
         for perm in candidates:
             iperm = np.empty_like(perm)
-            iperm[perm] = np.arange(self.nf)
-            rows, colsp = iperm[self.indices], iperm[col_of]
-            band = int(np.max(np.abs(rows - colsp))) if self.nnz else 0
+            iperm[perm] = np.arange(ni)
+            rows, colsp = iperm[ri], iperm[ci]
+            band = int(np.max(np.abs(rows - colsp))) if ri.size else 0
             if best is None or band < best[0]:
                 best = (band, perm, rows, colsp)
         assert best is not None
@@ -135,7 +164,9 @@ class Assembler:
         A matrix that is symmetric to round-off (1e-12 of its largest entry) is first given
         to LAPACK's banded Cholesky (pbsv); if it is not positive definite (or not
         symmetric), the banded LU with partial pivoting (gbsv) solves it. Falls back to
-        SuperLU when the band is wider than 1/4 of the system. Raises ``LinAlgError`` for a
+        SuperLU when the band is wider than 1/4 of the system. Border dofs (``border``) are
+        eliminated by their Schur complement: the banded factorisation solves for the
+        right-hand side and the border columns at once. Raises ``LinAlgError`` for a
         singular matrix.
 
         Parameters
@@ -149,27 +180,55 @@ class Assembler:
         -------
         ndarray (nf,)
         """
-        if 4 * self.band > self.nf:
+        ni = self.ints.size
+        if 4 * self.band > ni:
             return np.asarray(spsolve(K, rhs))
-        data, nf, b = K.data, self.nf, self.band
-        x = np.empty(nf)
-        rp = np.ascontiguousarray(rhs[self.perm], dtype=float)[:, None]
-        if self.transpose_slot is not None and np.max(
-                np.abs(data - data[self.transpose_slot])) <= 1e-12 * np.max(np.abs(data)):
-            ab = np.zeros((nf, b + 1))  # the transpose of the Fortran-ordered band
+        data = K.data
+        nb = self.border.size
+        b_rhs = rhs[self.ints][:, None]
+        if nb:
+            kib = np.zeros((ni, nb))
+            e, r, c = self._ib
+            kib[r, c] = data[e]
+            b_rhs = np.hstack([b_rhs, kib])
+        sym = self.transpose_slot is not None and np.max(
+            np.abs(data - data[self.transpose_slot])) <= 1e-12 * np.max(np.abs(data))
+        y = self._banded(data[self.e_ii], b_rhs, sym)
+        x = np.empty(self.nf)
+        if not nb:
+            x[self.ints] = y[:, 0]
+            return x
+        kbi, kbb = np.zeros((nb, ni)), np.zeros((nb, nb))
+        e, r, c = self._bi
+        kbi[r, c] = data[e]
+        e, r, c = self._bb
+        kbb[r, c] = data[e]
+        schur = kbb - kbi @ y[:, 1:]
+        xb = np.linalg.solve(schur, rhs[self.border] - kbi @ y[:, 0])
+        x[self.ints] = y[:, 0] - y[:, 1:] @ xb
+        x[self.border] = xb
+        return x
+
+    def _banded(self, data: np.ndarray, rhs: np.ndarray, sym: bool) -> np.ndarray:
+        """Solve the interior block (entries ``data``) for the columns of ``rhs`` (ni, k)."""
+        ni, b = self.ints.size, self.band
+        rp = np.ascontiguousarray(rhs[self.perm], dtype=float)
+        x = np.empty_like(rp)
+        if sym:
+            ab = np.zeros((ni, b + 1))  # the transpose of the Fortran-ordered band
             ab.ravel()[self.chol_slot] = data[self.upper]
             _, xp, info = dpbsv(ab.T, rp, lower=0, overwrite_ab=1, overwrite_b=0)
             if info == 0:
-                x[self.perm] = xp[:, 0]
+                x[self.perm] = xp
                 return x
-        ab = np.zeros((nf, 3 * b + 1))
+        ab = np.zeros((ni, 3 * b + 1))
         ab.ravel()[self.lu_slot] = data
         _, _, xp, info = dgbsv(b, b, ab.T, rp, overwrite_ab=1, overwrite_b=0)
         if info > 0:
             raise LinAlgError("singular matrix")
         if info < 0:
             raise ValueError(f"illegal value in argument {-info} of gbsv")
-        x[self.perm] = xp[:, 0]
+        x[self.perm] = xp
         return x
 
     def add(self, K: sp.csc_matrix, pattern: int, values: np.ndarray) -> sp.csc_matrix:

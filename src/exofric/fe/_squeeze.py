@@ -60,6 +60,7 @@ from exofric.fe._contact import (
     ContactState,
     FrictionState,
     RigidCircle,
+    active_set_direction,
     evaluate_contact,
     evaluate_friction,
     nodal_weights,
@@ -90,12 +91,6 @@ GRAVITY_OPTIONS = ("none", "toward-wall", "toward-wire")
 #: Full model (off-centre wire): stiffness of the rotation spring relative to mu B^2 (see
 #: :data:`exofric.defaults.ROTATION_SPRING_REL`).
 ROTATION_SPRING_REL = defaults.ROTATION_SPRING_REL
-
-
-#: Angle test of a refined direction d (``refine_direction``): kept only if
-#: rhs . d > _DESCENT_COS |rhs| |d|, i.e. it descends the energy (an indefinite tangent far from
-#: equilibrium can make the active-set solution an ascent direction).
-_DESCENT_COS = 1e-6
 
 
 class SqueezeProblem(PressurizedTube):
@@ -136,6 +131,10 @@ class SqueezeProblem(PressurizedTube):
     frictional : bool, optional
         Run the frictional machinery (anchors, bounds, commits); default: iff a mu > 0
         (True with mu = 0 checks it against the frictionless solver).
+    ends : {'plane-strain', 'closed', 'open'}
+        Axial condition of the tube (:class:`~exofric.fe.PressurizedTube`): plane strain
+        (the paper's), or a uniform axial stretch with closed or open ends. The contacts are
+        frictionless along the axis. Forces are then per unit *reference* length.
 
     Attributes
     ----------
@@ -174,6 +173,7 @@ class SqueezeProblem(PressurizedTube):
         mu_wire: float = 0.0,
         friction_penalty: float | None = None,
         frictional: bool | None = None,
+        ends: str = "plane-strain",
     ) -> None:
         for name, m in (("mu_wall", mu_wall), ("mu_wire", mu_wire)):
             if not (np.isfinite(m) and 0.0 <= m <= MU_MAX):
@@ -198,7 +198,7 @@ class SqueezeProblem(PressurizedTube):
         self._eps_t = friction_penalty
         if self.full:
             self._init_full(structure, material, spec, penalty, density, gravity, spring_rel,
-                            np.radians(a), rotation_rel)
+                            np.radians(a), rotation_rel, ends)
             return
         s = structure
         self.gravity = gravity
@@ -232,7 +232,7 @@ class SqueezeProblem(PressurizedTube):
         sd = np.array([self.spring_dof])
         super().__init__(
             mesh, material, spec, fixed,
-            ((np.repeat(cd, 2, axis=1), np.tile(cd, (1, 2))), (sd, sd)),
+            ((np.repeat(cd, 2, axis=1), np.tile(cd, (1, 2))), (sd, sd)), ends=ends,
         )
         self.spring_k = spring_rel * material.shear_modulus if gravity == "none" else 0.0
         self.w_outer = nodal_weights(mesh.boundary_edges("outer"), mesh.nodes, n)[self.outer]
@@ -253,7 +253,7 @@ class SqueezeProblem(PressurizedTube):
 
     def _init_full(self, s: Structure, material: MooneyRivlin, spec: MeshSpec, penalty: float,
                    density: float, gravity: str, spring_rel: float, a: float,
-                   rotation_rel: float) -> None:
+                   rotation_rel: float, ends: str = "plane-strain") -> None:
         """Full model of the wire at the angle ``a`` (rad) from the top (module docstring)."""
         if gravity == "toward-wire":
             raise InputError("gravity 'toward-wire' needs the wire at the top "
@@ -307,7 +307,8 @@ class SqueezeProblem(PressurizedTube):
         extra = ((np.repeat(cd, 2, axis=1), np.tile(cd, (1, 2))),
                  (np.repeat(sd, 1), np.repeat(sd, 1)),
                  (np.repeat(rd, 4), np.tile(rd, 4)))
-        PressurizedTube.__init__(self, mesh, material, spec, np.zeros(0, dtype=int), extra)
+        PressurizedTube.__init__(self, mesh, material, spec, np.zeros(0, dtype=int), extra,
+                                 ends=ends)
         # the closed ring's narrowest band: its lines folded pairwise (the line at angle tw - pi,
         # then tw - pi +- one line, ...), the two halves side by side
         nt = mesh.grid.shape[1] - 1
@@ -374,7 +375,7 @@ class SqueezeProblem(PressurizedTube):
             return None
         if normal is None:
             normal = self.contact(u, tangent)
-        xo = (self.X + u).reshape(-1, 2)[self.outer]
+        xo = self.nodal(u)[self.outer]
         bounds = self.bounds if frozen else (None, None)
         return tuple(  # type: ignore[return-value]
             evaluate_friction(xo, self.w_outer, c, self.penalty, self.penalty_t, m, a, n,
@@ -397,17 +398,20 @@ class SqueezeProblem(PressurizedTube):
         Returns
         -------
         float
-            Largest change of a node's bound (N per mm depth); 0 if frictionless.
+            Largest change of a node's bound (N per mm depth); 0 if frictionless. With open
+            ends, also the change of the frozen cap area (mm^2; see
+            :meth:`PressurizedTube.refresh`).
         """
+        cap = PressurizedTube.refresh(self, u)
         if not self.frictional:
-            return 0.0
+            return cap
         ch, cw = self.contact(u)
         new = tuple(m * np.linalg.norm(c.force, axis=1) for m, c in zip(self.mu, (ch, cw),
                                                                             strict=True))
         change = max(float(np.max(np.abs(n - b))) for n, b in zip(new, self.bounds,
                                                                    strict=True))
         self.bounds = (new[0], new[1])
-        return change
+        return max(change, cap)
 
     def commit(self, u: np.ndarray) -> None:
         """Accept the converged state ``u``: move each node's anchor by its slip.
@@ -476,7 +480,7 @@ class SqueezeProblem(PressurizedTube):
         tangent : bool
             Also compute the contact tangent blocks.
         """
-        xo = (self.X + u).reshape(-1, 2)[self.outer]
+        xo = self.nodal(u)[self.outer]
         return (
             evaluate_contact(xo, self.w_outer, self.hole, self.penalty, tangent),
             evaluate_contact(xo, self.w_outer, self.wire, self.penalty, tangent),
@@ -570,7 +574,7 @@ class SqueezeProblem(PressurizedTube):
         ndarray (nf,)
             The refined direction (mm); ``d`` itself when no node would enter.
         """
-        xo = (self.X + u).reshape(-1, 2)[self.outer]
+        xo = self.nodal(u)[self.outer]
         cd = self.contact_dofs
         lin = []
         for c in (self.hole, self.wire):
@@ -589,37 +593,10 @@ class SqueezeProblem(PressurizedTube):
             _, dth, gth = slip_geometry(xo, c, a)
             fric.append((m, (np.sign(dth) * c.radius)[:, None] * gth))
         free = self.free
-        step = np.zeros(self.n_dofs)
-        plain = d
-        used = [np.zeros(len(kw), dtype=bool) for _ in lin]  # entering nodes in the model
-        for it in range(max_iter + 1):
-            step[free] = d
-            dn = step[cd]
-            nxt = [(g > 0.0) & (g + np.einsum("mi,mi->m", grad, dn) < 0.0) for g, grad in lin]
-            if all(np.array_equal(n_, us) for n_, us in zip(nxt, used, strict=True)):
-                break  # consistent: exactly the nodes it runs into are in its model
-            if it == max_iter:
-                break  # the last set is kept if it descends (the test below)
-            used = nxt
-            blocks = np.zeros((len(kw), 2, 2))
-            extra = np.zeros(self.n_dofs)
-            for (g, grad), e, (mf, slip_dir) in zip(lin, used, fric, strict=True):
-                ke = np.where(e, kw, 0.0)
-                blocks += ke[:, None, None] * np.einsum("mi,mj->mij", grad, grad)
-                np.add.at(extra, cd.ravel(), (-(ke * g)[:, None] * grad).ravel())
-                if mf is not None:
-                    # friction of an entering node, sliding (its bound starts at 0): residual
-                    # mu s R F_n grad(theta) with F_n = -eps w (g + grad g . d), linearised
-                    fk = mf * ke
-                    blocks -= fk[:, None, None] * np.einsum("mi,mj->mij", slip_dir, grad)
-                    np.add.at(extra, cd.ravel(), ((fk * g)[:, None] * slip_dir).ravel())
-            d = solve(self.assembler.add(K, 2, blocks), rhs + extra[free])
-            if not np.all(np.isfinite(d)):
-                return plain
-        if d is plain or float(rhs @ d) > _DESCENT_COS * float(np.linalg.norm(rhs)
-                                                              * np.linalg.norm(d)):
-            return d
-        return plain
+        return active_set_direction(
+            lin, kw, cd, free, rhs, d,
+            lambda blocks, extra: solve(self.assembler.add(K, 2, blocks), rhs + extra[free]),
+            max_iter, fric)
 
     def limit_predictor(self, u: np.ndarray, guess: np.ndarray) -> np.ndarray:
         """Shorten a load-step predictor so that no node newly crosses into the last obstacle.
@@ -688,7 +665,7 @@ class SqueezeProblem(PressurizedTube):
             Nodal displacements (mm), flattened ``[ux0, uy0, ux1, ...]``.
         """
         ch, cw = self.contact(u)
-        xo = (self.X + u).reshape(-1, 2)[self.outer]
+        xo = self.nodal(u)[self.outer]
         if self.full:
             return (ring_wire_halfwidth(xo, cw.gap, self.wire.center, self.wire.radius),
                     ring_wall_arc(xo, ch.active, self.hole.radius))

@@ -11,7 +11,8 @@ methods delegate here.
   :func:`plot_contact_pressure` (pressure and friction along the contact arcs),
   :func:`plot_squeeze_curves`, :func:`plot_inflation`, :func:`plot_inflation_curve`,
   :func:`draw_section`, :func:`section_polygons`.
-* Calibration: :func:`plot_calibration` (Fig 5b), :func:`plot_table1`.
+* Calibration: :func:`plot_calibration` (Fig 5b), :func:`plot_table1`,
+  :func:`plot_material_calibration` (joint material calibration: data vs model, misfit profile).
 * Friction: :func:`plot_gamma_fit` (Fig 4), :func:`plot_predictions` (Figs 8-10),
   :func:`plot_cubic_fit` (Fig 11), :func:`plot_torque`, :func:`plot_interface_fit` (the
   two-interface law against the pooled gamma).
@@ -40,7 +41,11 @@ from typing import TYPE_CHECKING
 from exofric._lazy import facade
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
-    from exofric.plots._calibrate import plot_calibration, plot_table1
+    from exofric.plots._calibrate import (
+        plot_calibration,
+        plot_material_calibration,
+        plot_table1,
+    )
     from exofric.plots._common import save
     from exofric.plots._control import plot_control_cases, plot_simulation
     from exofric.plots._design import map_axes, plot_design_map
@@ -52,6 +57,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         plot_squeeze,
         plot_squeeze_curves,
         plot_squeeze_force,
+        plot_tube_ends,
         section_polygons,
     )
     from exofric.plots._friction import (
@@ -63,16 +69,18 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.plots._interfaces import plot_interface_fit
     from exofric.plots._material import plot_material_fit
     from exofric.plots._rig import plot_reduction
+    from exofric.plots._ring import plot_ring_test
 
 # Lazy facade (PEP 562): ``save`` or one figure does not load every plotting module; each name is
 # loaded from its module on first use (exofric/__init__.py does the same one level up).
 _MODULES: dict[str, tuple[str, ...]] = {
-    "_calibrate": ("plot_calibration", "plot_table1"),
+    "_calibrate": ("plot_calibration", "plot_material_calibration", "plot_table1"),
     "_common": ("save",),
     "_control": ("plot_control_cases", "plot_simulation"),
     "_design": ("map_axes", "plot_design_map"),
     "_fe": (
         "draw_section", "plot_contact_pressure", "plot_inflation", "plot_inflation_curve",
+        "plot_tube_ends",
         "plot_squeeze",
         "plot_squeeze_curves", "plot_squeeze_force", "section_polygons",
     ),
@@ -80,6 +88,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "_interfaces": ("plot_interface_fit",),
     "_material": ("plot_material_fit",),
     "_rig": ("plot_reduction",),
+    "_ring": ("plot_ring_test",),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
@@ -87,7 +96,10 @@ __all__ = [
     "draw_section", "map_axes", "plot_calibration", "plot_contact_pressure",
     "plot_control_cases", "plot_cubic_fit",
     "plot_design_map", "plot_gamma_fit", "plot_inflation", "plot_inflation_curve",
-    "plot_interface_fit", "plot_material_fit", "plot_predictions", "plot_reduction",
+    "plot_tube_ends",
+    "plot_interface_fit", "plot_material_calibration", "plot_material_fit", "plot_predictions",
+    "plot_reduction",
+    "plot_ring_test",
     "plot_simulation", "plot_squeeze",
     "plot_squeeze_curves",
     "plot_squeeze_force", "plot_table1", "plot_torque", "save", "section_polygons",

@@ -168,9 +168,13 @@ def plot_inflation_curve(
     (3, 'outer diameter (mm)')
     """
     ax, created = new_axes(ax, (5.6, 4.4))
-    ax.plot(result.pressure_mpa, result.outer_diameter_mm, "o-", label="FE (exofric)")
+    ends = getattr(result, "ends", "plane-strain")
+    fe_label, ref_label = ("FE (exofric)", "incompressible closed form") \
+        if ends == "plane-strain" else (f"FE (exofric), {ends} ends",
+                                        f"incompressible thick tube, {ends} ends")
+    ax.plot(result.pressure_mpa, result.outer_diameter_mm, "o-", label=fe_label)
     ax.plot(result.pressure_mpa, result.analytic_outer_diameter_mm(), "k--",
-            label="incompressible closed form")
+            label=ref_label)
     if measured is not None:
         ax.plot(list(measured[0]), list(measured[1]), "s", ms=7, mfc="none", mew=1.5,
                 color="tab:red", label=measured[2], zorder=4)
@@ -180,6 +184,63 @@ def plot_inflation_curve(
     ax.legend(fontsize=SMALL + 1, loc="upper left")
     finish(ax.figure, created)
     return ax
+
+
+def plot_tube_ends(results: Sequence[InflationResult], fig: Any | None = None) -> Any:
+    """Outer diameter and axial stretch against pressure for tubes with different ends.
+
+    Two Axes on ``fig`` (an empty Figure; default a new one): the outer diameter (mm) and the
+    axial stretch (unitless) of each result (markers: FE), each beside its incompressible
+    reference (dashed: the plane-strain closed form or the semi-analytic closed/open-end
+    thick tube). Returns the Figure.
+
+    Parameters
+    ----------
+    results : sequence of InflationResult
+        From :func:`exofric.simulate.inflate` with different ``ends`` (MPa, mm); the legend
+        names each by its ends.
+    fig : matplotlib Figure, optional
+        An empty Figure to draw on (default a new one).
+
+    Returns
+    -------
+    matplotlib Figure
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from exofric.fe import MeshSpec
+    >>> from exofric.material import MooneyRivlin
+    >>> from exofric.simulate import inflate
+    >>> m = MooneyRivlin.from_shore(62.5)
+    >>> rs = [inflate(8.3, 4.97, m, [0.1, 0.2], mesh=MeshSpec(1, 4), ends=e)
+    ...       for e in ("plane-strain", "closed")]
+    >>> f = plot_tube_ends(rs, Figure())
+    >>> len(f.axes), f.axes[1].get_ylabel()
+    (2, 'axial stretch (-)')
+    """
+    fig, created = new_figure(fig, (9.0, 3.8))
+    ax_od, ax_l = fig.subplots(1, 2)
+    for k, r in enumerate(results):
+        c = f"C{k}"
+        ends = getattr(r, "ends", "plane-strain")
+        lz = np.ones_like(r.pressure_mpa) if r.axial_stretch is None else r.axial_stretch
+        ax_od.plot(r.pressure_mpa, r.outer_diameter_mm, "o", color=c, label=f"FE, {ends}")
+        ax_od.plot(r.pressure_mpa, r.analytic_outer_diameter_mm(), "--", color=c, lw=1.2,
+                   label=f"reference, {ends}")
+        ax_l.plot(r.pressure_mpa, lz, "o-", color=c, label=ends)
+    ax_od.set_xlabel("pressure (MPa)")
+    ax_od.set_ylabel("outer diameter (mm)")
+    ax_od.legend(fontsize=SMALL, loc="upper left")
+    ax_l.axhline(1.0, color="0.6", lw=0.8)
+    ax_l.set_xlabel("pressure (MPa)")
+    ax_l.set_ylabel("axial stretch (-)")
+    ax_l.legend(fontsize=SMALL, loc="best")
+    for a in (ax_od, ax_l):
+        a.grid(alpha=0.3)
+    ax_od.set_title("dashed: incompressible references", fontsize=SMALL + 1)
+    finish(fig, created)
+    return fig
 
 
 def plot_inflation(

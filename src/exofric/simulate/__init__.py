@@ -4,7 +4,8 @@
 * :func:`squeeze` -> :class:`SqueezeResult` -- the tube-wire-hole squeeze N(P) (half model,
   paper §3.4, Figs 6-7).
 * :func:`incompressible_inflation`, :func:`compressible_inflation` -- exact and 1D-BVP
-  references for the free inflation.
+  references for the free inflation; :func:`tube_inflation` -> :class:`TubeInflationCurve` --
+  the incompressible thick tube with closed or open ends (generalised plane strain).
 * :func:`check_stretch`, :class:`StretchWarning` -- the paper's validated stretch range.
 * :func:`squeeze_with_clearance` -> :class:`ClearanceSqueeze` -- N(P) with the clearance
   distributed along the tube (:class:`ClearanceDistribution`);
@@ -31,10 +32,12 @@ from exofric._lazy import facade
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.simulate._analytic import (
         InflationCurve,
+        TubeInflationCurve,
         compressible_inflation,
         incompressible_inflation,
         incompressible_limit_pressure,
         incompressible_pressure,
+        tube_inflation,
     )
     from exofric.simulate._clearance import (
         ClearanceDistribution,
@@ -42,6 +45,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         squeeze_with_clearance,
     )
     from exofric.simulate._inflate import InflationResult, inflate
+    from exofric.simulate._ring import RingResult, ring_test
     from exofric.simulate._squeeze import SqueezeResult, check_friction, squeeze
     from exofric.simulate._stretch import StretchWarning, check_stretch
     from exofric.simulate._tolerance import TOLERANCE_NAMES, ToleranceResult, squeeze_tolerances
@@ -52,11 +56,13 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
 _MODULES: dict[str, tuple[str, ...]] = {
     "_analytic": (
         "InflationCurve", "compressible_inflation", "incompressible_inflation",
-        "incompressible_limit_pressure", "incompressible_pressure",
+        "incompressible_limit_pressure", "incompressible_pressure", "TubeInflationCurve",
+        "tube_inflation",
     ),
     "_clearance": ("ClearanceDistribution", "ClearanceSqueeze", "squeeze_with_clearance"),
     "_inflate": ("InflationResult", "inflate"),
     "_tolerance": ("TOLERANCE_NAMES", "ToleranceResult", "squeeze_tolerances"),
+    "_ring": ("RingResult", "ring_test"),
     "_squeeze": ("SqueezeResult", "check_friction", "squeeze"),
     "_stretch": ("StretchWarning", "check_stretch"),
 }
@@ -81,6 +87,10 @@ __all__ = [
     "incompressible_pressure",
     "inflate",
     "squeeze",
+    "RingResult",
+    "ring_test",
+    "TubeInflationCurve",
+    "tube_inflation",
 ]
 
 __getattr__, __dir__ = facade(__name__, _HOME, __all__)

@@ -18,6 +18,7 @@ from exofric.fe import (
     MeshSpec,
     NewtonSettings,
     PathPoint,
+    check_ends,
     solve_path,
     von_mises,
 )
@@ -78,6 +79,11 @@ class InflationResult:
     outer_diameter_error_estimate_mm, inner_diameter_error_estimate_mm : ndarray or None
         Estimated discretisation error of the diameters (mm) per pressure, Fs |d - d_coarse|
         with Fs = :data:`exofric.defaults.ESTIMATE_SAFETY_FACTOR` (None for an explicit mesh).
+    ends : str
+        ``'plane-strain'`` (the paper's), ``'closed'`` or ``'open'`` (generalised plane
+        strain; see :class:`exofric.fe.PressurizedTube`).
+    axial_stretch : ndarray or None
+        Axial stretch l (unitless) per pressure (all 1 in plane strain).
 
     Examples
     --------
@@ -108,9 +114,25 @@ class InflationResult:
     estimate_mesh: MeshSpec | None = None
     outer_diameter_error_estimate_mm: np.ndarray | None = None
     inner_diameter_error_estimate_mm: np.ndarray | None = None
+    ends: str = "plane-strain"
+    axial_stretch: np.ndarray | None = None
 
     def analytic_outer_diameter_mm(self) -> np.ndarray:
-        """Incompressible closed-form outer diameters (mm) at the same pressures."""
+        """Incompressible reference outer diameters (mm) at the same pressures.
+
+        Plane strain: the closed form with the model's shear modulus (neo-Hookean); closed or
+        open ends: the semi-analytic thick tube of :func:`~exofric.simulate.tube_inflation`
+        with the model itself (NaN past its limit pressure).
+        """
+        if self.ends != "plane-strain":
+            from exofric.errors import ConvergenceError
+            from exofric.simulate._analytic import tube_inflation
+
+            try:
+                return tube_inflation(self.tube_od_mm, self.tube_id_mm, self.material,
+                                      self.pressure_mpa, ends=self.ends).outer_diameter_mm
+            except ConvergenceError:
+                return np.full_like(self.pressure_mpa, np.nan)
         return incompressible_inflation(
             self.tube_od_mm, self.tube_id_mm, _shear_modulus(self.material), self.pressure_mpa
         ).outer_diameter_mm
@@ -137,14 +159,22 @@ class InflationResult:
             "estimate_mesh": None if self.estimate_mesh is None else self.estimate_mesh.to_dict(),
             "outer_diameter_error_estimate_mm": opt_list(self.outer_diameter_error_estimate_mm),
             "inner_diameter_error_estimate_mm": opt_list(self.inner_diameter_error_estimate_mm),
+            "ends": self.ends,
+            "axial_stretch": self._stretch().tolist(),
         }
+
+    def _stretch(self) -> np.ndarray:
+        """Axial stretch per pressure (unitless; ones when not stored)."""
+        return (np.ones_like(self.pressure_mpa) if self.axial_stretch is None
+                else np.asarray(self.axial_stretch, dtype=float))
 
     def to_frame(self) -> pd.DataFrame:
         """The per-pressure diameters as a DataFrame: one row per pressure (MPa, mm).
 
         Columns: ``pressure_mpa``, ``outer_diameter_mm``, ``inner_diameter_mm``,
         ``analytic_outer_diameter_mm`` (incompressible closed form), ``max_stretch``
-        (unitless) and ``newton_iterations`` (count).
+        (unitless), ``axial_stretch`` (unitless; 1 in plane strain) and ``newton_iterations``
+        (count).
 
         Returns
         -------
@@ -165,6 +195,7 @@ class InflationResult:
             "inner_diameter_mm": self.inner_diameter_mm,
             "analytic_outer_diameter_mm": self.analytic_outer_diameter_mm(),
             "max_stretch": self.max_stretch,
+            "axial_stretch": self._stretch(),
             "newton_iterations": np.asarray(self.newton_iterations, dtype=int),
         })
 
@@ -205,11 +236,14 @@ def inflate(
     mesh: MeshSpec | None = None,
     settings: NewtonSettings | None = None,
     keep_fields: bool = True,
+    ends: str = "plane-strain",
 ) -> InflationResult:
-    """Free plane-strain inflation of the air tube under internal follower pressure.
+    """Free inflation of the air tube under internal follower pressure.
 
     Quarter model (two symmetry planes), large deformation, mixed u/p
-    Mooney-Rivlin (Eq 2), Newton with line search and load stepping.
+    Mooney-Rivlin (Eq 2), Newton with line search and load stepping. Plane strain (the
+    paper's model) by default; ``ends='closed'`` or ``'open'`` adds a uniform axial
+    stretch (generalised plane strain, :class:`exofric.fe.PressurizedTube`).
 
     Parameters
     ----------
@@ -231,6 +265,9 @@ def inflate(
         Solver tolerances and stepping.
     keep_fields : bool
         Keep displacements and stresses for plotting/export (default True).
+    ends : {'plane-strain', 'closed', 'open'}
+        Axial condition: plane strain (axial stretch 1), closed ends (the end caps carry
+        P times the deformed cavity area) or open ends (no axial force).
 
     Returns
     -------
@@ -255,6 +292,7 @@ def inflate(
     idm = check_size_mm("tube_id_mm", tube_id_mm, "tube inner diameter")
     if idm >= od:
         raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {idm:g}")
+    ends = check_ends(ends)
     from exofric.simulate._squeeze import fe_material_of
 
     fe_material = fe_material_of(material)
@@ -271,11 +309,11 @@ def inflate(
     level, spec, coarse_spec = resolve_accuracy(accuracy, mesh, defaults.INFLATION_ACCURACY)
     s = settings or NewtonSettings(**defaults.INFLATION_NEWTON)
     t0 = time.perf_counter()
-    prob, pts, od_fe, id_fe = _solve_inflation(od, idm, fe_material, p, spec, s)
+    prob, pts, od_fe, id_fe = _solve_inflation(od, idm, fe_material, p, spec, s, ends)
     od_est: np.ndarray | None = None
     id_est: np.ndarray | None = None
     if coarse_spec is not None:
-        _, _, od_c, id_c = _solve_inflation(od, idm, fe_material, p, coarse_spec, s)
+        _, _, od_c, id_c = _solve_inflation(od, idm, fe_material, p, coarse_spec, s, ends)
         od_est = defaults.ESTIMATE_SAFETY_FACTOR * np.abs(od_fe - od_c)
         id_est = defaults.ESTIMATE_SAFETY_FACTOR * np.abs(id_fe - id_c)
     dt = time.perf_counter() - t0
@@ -283,9 +321,12 @@ def inflate(
     check_stretch(stretch, p, "free inflation")
     disp: tuple[np.ndarray, ...] = ()
     vm: tuple[np.ndarray, ...] = ()
+    lz = np.array([prob.axial_stretch(pt.u) for pt in pts])
     if keep_fields:
-        disp = tuple(pt.u.reshape(-1, 2).copy() for pt in pts)
-        vm = tuple(von_mises(prob.body.cauchy_stress(pt.u)).mean(axis=1) for pt in pts)
+        n2 = prob.n_nodal
+        disp = tuple(pt.u[:n2].reshape(-1, 2).copy() for pt in pts)
+        vm = tuple(von_mises(prob.body.cauchy_stress(pt.u[:n2], lz[i])).mean(axis=1)
+                   for i, pt in enumerate(pts))
     return InflationResult(
         pressure_mpa=p,
         outer_diameter_mm=od_fe,
@@ -308,20 +349,22 @@ def inflate(
         estimate_mesh=coarse_spec,
         outer_diameter_error_estimate_mm=od_est,
         inner_diameter_error_estimate_mm=id_est,
+        ends=ends,
+        axial_stretch=lz,
     )
 
 
 def _solve_inflation(
     od: float, idm: float, material: FEMaterial, p: np.ndarray, spec: MeshSpec,
-    s: NewtonSettings,
+    s: NewtonSettings, ends: str = "plane-strain",
 ) -> tuple[InflationProblem, list[PathPoint], np.ndarray, np.ndarray]:
     """Solve on one mesh: (problem, states, outer and inner diameters in mm)."""
     # InflationProblem reads only shear_modulus (and its body the kernel): either type serves
-    prob = InflationProblem(od, idm, cast(MooneyRivlin, material), spec)
+    prob = InflationProblem(od, idm, cast(MooneyRivlin, material), spec, ends=ends)
     pts = solve_path(prob, p, s)
     g = prob.mesh.grid
-    xo = np.array([(prob.X + pt.u)[2 * g[-1, 0]] for pt in pts])
-    xi = np.array([(prob.X + pt.u)[2 * g[0, 0]] for pt in pts])
+    xo = np.array([prob.nodal(pt.u)[g[-1, 0], 0] for pt in pts])
+    xi = np.array([prob.nodal(pt.u)[g[0, 0], 0] for pt in pts])
     return prob, pts, 2.0 * xo, 2.0 * xi
 
 

@@ -30,6 +30,7 @@ from exofric.fe import (
     PlaneStrainMaterial,
     SolverStats,
     SqueezeProblem,
+    check_ends,
     collect_stats,
     nodal_weights,
     solve_path,
@@ -157,7 +158,12 @@ class SqueezeResult:
         traction, MPa) and ``stick``.
     friction_dissipation_n_per_mm : ndarray or None
         Frictional work of each committed load sub-step (N mm per mm depth, full section;
-        >= 0), None without friction.
+        >= 0), None without friction (per unit reference length with closed or open ends).
+    ends : str
+        ``'plane-strain'`` (the paper's), ``'closed'`` or ``'open'``: the tube's axial
+        condition; with closed or open ends the forces are per unit deformed length.
+    axial_stretch : ndarray or None
+        Axial stretch of the tube (unitless) per pressure (1 in plane strain).
 
     Examples
     --------
@@ -213,6 +219,8 @@ class SqueezeResult:
     stick_fraction_wall: np.ndarray | None = None
     contact: tuple[dict[str, dict[str, list[Any]]], ...] = field(default=(), repr=False)
     friction_dissipation_n_per_mm: np.ndarray | None = field(default=None, repr=False)
+    ends: str = "plane-strain"
+    axial_stretch: np.ndarray | None = None
 
     def contact_point_data(self, index: int = -1) -> dict[str, np.ndarray]:
         """Per-node contact fields of one pressure, for VTU point data (0 off the arcs).
@@ -304,6 +312,9 @@ class SqueezeResult:
             "stick_fraction_wire": _nan_list(self.stick_fraction_wire),
             "stick_fraction_wall": _nan_list(self.stick_fraction_wall),
             "contact": list(self.contact),
+            "ends": self.ends,
+            "axial_stretch": (np.ones_like(self.pressure_mpa) if self.axial_stretch is None
+                              else self.axial_stretch).tolist(),
         }
 
     def to_frame(self) -> pd.DataFrame:
@@ -470,8 +481,14 @@ class _MeshSolution:
         self.path = path
         self.fstates = fstates
         self.path_fstates = path_fstates or {}
+        #: per state: 1 / axial stretch, which turns forces per unit reference length (the
+        #: problem's) into forces per unit deformed length of tube (what the hole's length
+        #: multiplies); 1 in plane strain
+        self.per_length = np.array([1.0 / prob.axial_stretch(u) for u in states])
+        self.axial_stretch = 1.0 / self.per_length
         self.interfaces = np.array([self._interfaces(u, k) for k, u in enumerate(states)]
                                    ).reshape(-1, 6)
+        self.interfaces[:, :4] *= self.per_length[:, None]
         self.profiles = [self._profiles(u, k) for k, u in enumerate(states)]
         if prob.full:
             self._full_outputs(states)
@@ -481,7 +498,7 @@ class _MeshSolution:
             ch, cw = prob.contact(u)
             self._use(k)
             fh, fw = prob.contact_forces(u)
-            xo = (prob.X + u).reshape(-1, 2)[prob.outer]
+            xo = prob.nodal(u)[prob.outer]
             rows.append((
                 -2.0 * fw[:, 1].sum() + 0.0,  # + 0.0: no negative zero
                 2.0 * fh[:, 1].sum() + 0.0,
@@ -490,6 +507,7 @@ class _MeshSolution:
                 max(0.0, -float(ch.gap.min()), -float(cw.gap.min())),
             ))
         self.arr = np.array(rows).reshape(-1, 5)
+        self.arr[:, :2] *= self.per_length[:, None]
         self.stretch = np.array([prob.body.max_stretch(u) for u in states])
         self.n_dir = np.where(self.arr[:, 0] > 0.0, 0.0, np.nan)
         self.wall_dir = np.where(self.arr[:, 1] > 0.0, 0.0, np.nan)
@@ -527,12 +545,12 @@ class _MeshSolution:
         self._use(k)
         ch, cw = prob.contact(u)
         fr = prob.friction(u, (ch, cw))
-        xo = (prob.X + u).reshape(-1, 2)[prob.outer]
+        xo = prob.nodal(u)[prob.outer]
         wc, hc = np.asarray(prob.wire.center), np.asarray(prob.hole.center)
         e = (wc - hc) / np.hypot(*(wc - hc))
         ref = float(np.arctan2(-e[1], -e[0]))       # both arcs centre on the side facing away
         # current tributary lengths: pressures are true (deformed-surface) tractions
-        xa = (prob.X + u).reshape(-1, 2)
+        xa = prob.nodal(u)
         w_now = nodal_weights(prob.mesh.boundary_edges("outer"), xa, len(xa))[prob.outer]
         out = {}
         for name, c, f in (("wire", cw, None if fr is None else fr[1]),
@@ -542,7 +560,7 @@ class _MeshSolution:
             ang = np.angle(np.exp(1j * (np.arctan2(d[:, 1], d[:, 0]) - ref)))
             i = np.flatnonzero(c.active)
             i = i[np.argsort(ang[i])]
-            w = w_now[i]
+            w = w_now[i] * prob.axial_stretch(u)  # deformed area per unit reference length
             t = np.zeros(len(i)) if f is None else f.traction[i] / w
             st = np.zeros(len(i), bool) if f is None else f.stick[i]
             out[name] = {"node": prob.outer[i].tolist(),
@@ -565,6 +583,7 @@ class _MeshSolution:
             rows.append((float(np.hypot(*fw)), float(np.hypot(*fh)), *prob.contact_extent(u),
                          max(0.0, -float(ch.gap.min()), -float(cw.gap.min()))))
         self.arr = np.array(rows).reshape(-1, 5)
+        self.arr[:, :2] *= self.per_length[:, None]
         self.stretch = np.array([prob.body.max_stretch(u) for u in states])
         self.n_dir = _direction_deg(np.array(on_wire))
         self.wall_dir = _direction_deg(np.array(on_tube))
@@ -632,7 +651,8 @@ def _solve_mesh(structure: Structure, material: FEMaterial, p: np.ndarray, spec:
                 spring_rel: float, release: bool = True, wire_angle_deg: float = 0.0,
                 rotation_rel: float = defaults.ROTATION_SPRING_REL,
                 full: bool | None = None, mu: tuple[float, float] = (0.0, 0.0),
-                friction_penalty: float | None = None) -> _MeshSolution:
+                friction_penalty: float | None = None, ends: str = "plane-strain"
+                ) -> _MeshSolution:
     """Follow the load path on one mesh; release the regulariser at each output (gravity none).
 
     With ``release``, the floating-mode spring is also taken out of the path itself at the
@@ -643,7 +663,8 @@ def _solve_mesh(structure: Structure, material: FEMaterial, p: np.ndarray, spec:
     # SqueezeProblem reads only shear_modulus (and its body the kernel): either type serves
     prob = SqueezeProblem(structure, cast(MooneyRivlin, material), spec, penalty, density,
                           gravity, spring_rel, wire_angle_deg, rotation_rel, full,
-                          mu_wall=mu[0], mu_wire=mu[1], friction_penalty=friction_penalty)
+                          mu_wall=mu[0], mu_wire=mu[1], friction_penalty=friction_penalty,
+                          ends=ends)
     path: list[tuple[float, np.ndarray]] = []
     spring = prob.spring_k
     freed_at = np.inf  # the load (MPa) of the sub-step after which the spring is out
@@ -795,12 +816,13 @@ def _solve_levels(
     s: NewtonSettings, regulariser: float, onset_tol_mpa: float, wire_angle_deg: float = 0.0,
     rotation_rel: float = defaults.ROTATION_SPRING_REL, full: bool | None = None,
     mu: tuple[float, float] = (0.0, 0.0), friction_penalty: float | None = None,
+    ends: str = "plane-strain",
 ) -> tuple[_MeshSolution, float | None, np.ndarray | None, np.ndarray | None,
            np.ndarray | None]:
     """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm) of :func:`squeeze`."""
     sol = _solve_mesh(structure, material, p, spec, penalty, density, gravity, s, regulariser,
                       wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full,
-                      mu=mu, friction_penalty=friction_penalty)
+                      mu=mu, friction_penalty=friction_penalty, ends=ends)
     est_pct: np.ndarray | None = None
     est_abs: np.ndarray | None = None
     coarse_n: np.ndarray | None = None
@@ -816,7 +838,7 @@ def _solve_levels(
         coarse = _solve_mesh(structure, material, p, coarse_spec, penalty, density, gravity,
                              loose, regulariser, release=False,
                              wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full,
-                             mu=mu, friction_penalty=friction_penalty)
+                             mu=mu, friction_penalty=friction_penalty, ends=ends)
         onset = _bracket_onset(coarse, s, onset_tol_mpa)
         coarse_n = coarse.n.copy()
         fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
@@ -846,6 +868,7 @@ def squeeze(
     mu_wall: float = 0.0,
     mu_wire: float = 0.0,
     friction_penalty: float | None = None,
+    ends: str = "plane-strain",
 ) -> SqueezeResult:
     """Squeezing force N(P) between the inflated tube and the wire (paper §3.4, Figs 6-7).
 
@@ -914,6 +937,11 @@ def squeeze(
     friction_penalty : float, optional
         Tangential penalty (N/mm^3: MPa of shear traction per mm of elastic slip); default:
         :data:`exofric.defaults.FRICTION_PENALTY_REL` x ``penalty`` (1e3 N/mm^3).
+    ends : {'plane-strain', 'closed', 'open'}
+        The tube's axial condition: plane strain (default, the paper's model), closed ends
+        (the caps carry P times the deformed cavity area) or open ends (no axial force),
+        with one uniform axial stretch (generalised plane strain; frictionless along the
+        axis). Forces are then per unit *deformed* length, the length inside the hole.
 
     Returns
     -------
@@ -946,6 +974,7 @@ def squeeze(
     check_positive("regulariser", regulariser)
     check_positive("rotation_regulariser", rotation_regulariser)
     mu = (check_friction("mu_wall", mu_wall), check_friction("mu_wire", mu_wire))
+    ends = check_ends(ends)
     if friction_penalty is not None:
         check_positive("friction_penalty", friction_penalty, "N/mm^3")
     try:
@@ -972,7 +1001,7 @@ def squeeze(
         sol, onset, coarse_n, est_pct, est_abs = _solve_levels(
             structure, fe_material, p, spec, coarse_spec, penalty, density, gravity, s,
             regulariser, onset_tol_mpa, angle, rotation_regulariser,
-            True if full_model else None, mu, friction_penalty)
+            True if full_model else None, mu, friction_penalty, ends)
     dt = time.perf_counter() - t0
     prob = sol.prob
     L = structure.length_mm
@@ -981,8 +1010,10 @@ def squeeze(
     disp: tuple[np.ndarray, ...] = ()
     vm: tuple[np.ndarray, ...] = ()
     if keep_fields:
-        disp = tuple(u.reshape(-1, 2).copy() for u in sol.states)
-        vm = tuple(von_mises(prob.body.cauchy_stress(u)).mean(axis=1) for u in sol.states)
+        n2 = prob.n_nodal
+        disp = tuple(u[:n2].reshape(-1, 2).copy() for u in sol.states)
+        vm = tuple(von_mises(prob.body.cauchy_stress(u[:n2], prob.axial_stretch(u))).mean(axis=1)
+                   for u in sol.states)
     weight = prob.weight_per_mm() if gravity != "none" else 0.0
     return SqueezeResult(
         pressure_mpa=p,
@@ -1033,4 +1064,6 @@ def squeeze(
         contact=tuple(sol.profiles),
         friction_dissipation_n_per_mm=(np.asarray(prob.dissipation, float)
                                        if prob.frictional else None),
+        ends=ends,
+        axial_stretch=sol.axial_stretch,
     )
