@@ -33,7 +33,8 @@ def register(app: typer.Typer) -> None:
         ),
         tube_od: float | None = typer.Option(
             None, "--tube-od", help="Undeformed tube outer diameter (mm); required with "
-            "inflation or ring data."
+            "inflation or ring data (a hyperelastic --model also reads it from a "
+            "'# tube_od_mm:' line of the inflation CSV or '# ring_od_mm:' of the ring CSV)."
         ),
         tube_id: float | None = typer.Option(
             None, "--tube-id", help="Tube inner diameter (mm): fixed for bisection/bounded, "
@@ -78,15 +79,17 @@ def register(app: typer.Typer) -> None:
         ),
         ring: Path | None = typer.Option(
             None, "--ring", help="Ring test CSV: displacement_mm,force_n (mm, N), a ring cut "
-            "from the tube pulled over two pins (needs --ring-width and --pin).",
+            "from the tube pulled over two pins (sizes from --ring-width and --pin, or from "
+            "'# width_mm: 5' and '# pin_mm: 3' lines in the file; '# ring_od_mm:' and "
+            "'# ring_id_mm:' for a ring not of the tube's own sizes).",
         ),
         ring_width: float | None = typer.Option(
             None, "--ring-width", help="Ring width, its axial length (mm)."
         ),
         pin: float | None = typer.Option(None, "--pin", help="Pin diameter of the ring test (mm)."),
         ring_section: str | None = typer.Option(
-            None, "--ring-section", help="Ring FE section: plane-stress (default) or "
-            "plane-strain.",
+            None, "--ring-section", help="Ring FE section: plane-stress (default), "
+            "generalised-plane-strain or plane-strain (docs/ring-test.md).",
         ),
         shore_prior: float | None = typer.Option(
             None, "--shore-prior", help="Shore A hardness as a prior on the shear modulus, "
@@ -246,7 +249,13 @@ def _joint(model: str, data: Path | None, tube_od: float | None, tube_id: float 
     """The joint material calibration: read the files, fit, print a table or JSON."""
     from exofric.calibration import InflationData, RingTest, calibrate_material
     from exofric.errors import InputError
-    from exofric.io import read_inflation_table, read_ring_test, read_stress_stretch
+    from exofric.io import (
+        RING_HEADER_KEYS,
+        read_header_sizes,
+        read_inflation_table,
+        read_ring_test,
+        read_stress_stretch,
+    )
 
     if data is None and opts["ring"] is None and all(
             opts[k] is None for k in ("tensile", "tensile_biaxial", "tensile_planar")):
@@ -267,6 +276,8 @@ def _joint(model: str, data: Path | None, tube_od: float | None, tube_id: float 
     inflation = None
     if data is not None:
         frame = read_inflation_table(data)
+        if tube_od is None:  # the file may state it: '# tube_od_mm: 8.3'
+            tube_od = read_header_sizes(data, ("tube_od_mm",)).get("tube_od_mm")
         inflation = InflationData.from_frame(frame)
         if inflation.shore is not None:
             raise InputError(f"data: {Path(data).name} has a shore column; give the hardness "
@@ -287,11 +298,22 @@ def _joint(model: str, data: Path | None, tube_od: float | None, tube_id: float 
         sources[mode] = str(path)
     ring = None
     if opts["ring"] is not None:
-        for k in ("ring_width", "pin"):
+        # the ring file may state its sizes ('# width_mm: 5', '# pin_mm: 3', '# ring_od_mm:',
+        # '# ring_id_mm:'); the options override them
+        sizes = read_header_sizes(opts["ring"], RING_HEADER_KEYS)
+        name = Path(opts["ring"]).name
+        for k, key in (("ring_width", "width_mm"), ("pin", "pin_mm")):
             if opts[k] is None:
-                raise InputError(f"{k}_mm is required with ring (mm)", param=f"{k}_mm")
+                if key not in sizes:
+                    raise InputError(f"{k}_mm is required with ring (mm): --{k.replace('_', '-')}"
+                                     f", or a comment line '{key}: ...' (after '#') at the top "
+                                     f"of {name}", param=f"{k}_mm")
+                opts[k] = sizes[key]
+        if tube_od is None and "ring_od_mm" in sizes:
+            tube_od = sizes["ring_od_mm"]  # a ring cut from the tube
         d, f = read_ring_test(opts["ring"])
         ring = RingTest(d, f, ring_width_mm=opts["ring_width"], pin_mm=opts["pin"],
+                        ring_od_mm=sizes.get("ring_od_mm"), ring_id_mm=sizes.get("ring_id_mm"),
                         section=opts["ring_section"] or "plane-stress")
         sources["ring"] = str(opts["ring"])
     fit_id = tube_id is None or fit_tube_id

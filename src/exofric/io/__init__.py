@@ -61,7 +61,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         read_squeeze_curve,
         read_step_response,
     )
-    from exofric.io._ring import read_ring_test
+    from exofric.io._ring import RING_HEADER_KEYS, read_header_sizes, read_ring_test
     from exofric.io._store import ParquetStore, QuarantinedFile
     from exofric.io._vtu import QUAD9_TO_VTK, write_vtu
 
@@ -75,7 +75,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
     ),
     "_material": ("read_stress_stretch",),
     "_rawlog": ("RAW_QUANTITIES", "parse_column_map", "read_raw_log", "write_raw_log"),
-    "_ring": ("read_ring_test",),
+    "_ring": ("RING_HEADER_KEYS", "read_header_sizes", "read_ring_test"),
     "_rig": (
         "read_friction_table", "read_inflation_table", "read_squeeze_curve", "read_step_response",
     ),
@@ -87,7 +87,8 @@ _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 __all__ = [
     "atomic_path", "jsonable", "parse_column_map", "ParquetStore", "QUAD9_TO_VTK",
     "QuarantinedFile", "RAW_QUANTITIES", "read_friction_table", "read_inflation_table",
-    "read_json", "read_raw_log", "read_ring_test", "read_squeeze_curve", "read_step_response",
+    "read_header_sizes", "read_json", "read_raw_log", "read_ring_test", "RING_HEADER_KEYS",
+    "read_squeeze_curve", "read_step_response",
     "read_stress_stretch", "read_table", "read_toml", "UNIT_SUFFIXES", "write_json",
     "write_raw_log", "write_text", "write_vtu",
 ]

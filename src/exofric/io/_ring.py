@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -9,13 +11,79 @@ import numpy as np
 from exofric.errors import InputError
 from exofric.io._files import read_table
 
-__all__ = ["read_ring_test"]
+_HEADER = re.compile(r"^\s*#\s*([A-Za-z][A-Za-z0-9_]*)\s*[:=]\s*(.*?)\s*$")
+
+__all__ = ["read_ring_test", "read_header_sizes", "RING_HEADER_KEYS"]
+
+#: Sizes a ring-test file may state in ``# key: value`` header comments (mm).
+RING_HEADER_KEYS = ("width_mm", "pin_mm", "ring_od_mm", "ring_id_mm")
+
+
+def read_header_sizes(path: str | Path, keys: Sequence[str]) -> dict[str, float]:
+    """Sizes (mm) stated in a CSV's header comments as ``# key: value`` lines.
+
+    A test file can carry its own geometry, e.g. a ring test's ``# width_mm: 5`` and
+    ``# pin_mm: 3`` or an inflation test's ``# tube_od_mm: 8.3``; command-line options
+    override it. Keys are matched case-insensitively; only comment lines before the first data
+    row count; each value must be a positive number.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+    keys : sequence of str
+        The keys to look for (e.g. :data:`RING_HEADER_KEYS`).
+
+    Returns
+    -------
+    dict of str to float
+        The keys found, with their values (mm).
+
+    Raises
+    ------
+    InputError
+        A stated value that is not a positive number (one line naming the file and the key).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "ring.csv"
+    >>> _ = p.write_text("# width_mm: 5\\n# Pin_mm = 3\\ndisplacement_mm,force_n\\n1,1\\n")
+    >>> read_header_sizes(p, RING_HEADER_KEYS)
+    {'width_mm': 5.0, 'pin_mm': 3.0}
+    """
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8-sig")
+    except OSError as exc:
+        raise InputError(f"{p}: cannot be read ({exc.strerror or exc})") from None
+    want = {k.lower(): k for k in keys}
+    out: dict[str, float] = {}
+    for line in text.splitlines():
+        if not line.strip():
+            continue
+        if not line.lstrip().startswith("#"):
+            break  # the header row: data follow
+        m = _HEADER.match(line)
+        if m is None or m.group(1).lower() not in want:
+            continue
+        key, raw = want[m.group(1).lower()], m.group(2).strip()
+        try:
+            v = float(raw)
+        except ValueError:
+            v = float("nan")
+        if not (np.isfinite(v) and v > 0.0):
+            raise InputError(f"{p.name}: header '# {key}:' must be a positive number (mm), got "
+                             f"{raw!r}", param=key)
+        out[key] = v
+    return out
 
 
 def read_ring_test(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     """Read a measured ring tensile test: ``displacement_mm`` and ``force_n``, checked.
 
-    A CSV with a header row; ``#`` lines are comments; other columns are ignored. The
+    A CSV with a header row; ``#`` lines are comments (the ring's sizes may be stated there,
+    see :func:`read_header_sizes`); other columns are ignored. The
     displacement is the increase of the pins' separation from where they first touch the
     bore (mm), >= 0 and strictly increasing (one loading curve); the force is the machine's
     load on one pin (N).
