@@ -290,3 +290,24 @@ def test_squeeze_plane_strain_default_unchanged() -> None:
                 ends="plane-strain")
     assert np.array_equal(a.squeeze_force_n_per_mm, b.squeeze_force_n_per_mm)
     assert a.to_dict()["axial_stretch"] == [1.0, 1.0]
+
+
+def test_open_end_patch_equals_a_fresh_evaluation() -> None:
+    """The solver's shortcut after an open-end refresh (patch the held evaluation for the new
+    frozen cap area instead of evaluating again) equals a fresh evaluation to 1e-12."""
+    prob = InflationProblem(OD, ID, MR, MeshSpec(2, 4), ends="open")
+    rng = np.random.default_rng(5)
+    u = 0.03 * rng.standard_normal(prob.n_dofs)
+    u[~prob.free] = 0.0
+    u[-1] = -0.02
+    prob.refresh(np.zeros(prob.n_dofs))  # an old frozen area
+    held = prob.evaluate(u, 0.3, True)
+    assert held is not None
+    prob.refresh(u)
+    patched = prob.patch_refreshed(held)
+    fresh = prob.evaluate(u, 0.3, True)
+    assert patched is not None and fresh is not None
+    assert patched[0] == pytest.approx(fresh[0], rel=1e-12, abs=1e-12)
+    np.testing.assert_allclose(patched[1], fresh[1], rtol=0, atol=1e-12)
+    assert patched[2] is not None and fresh[2] is not None
+    assert abs(patched[2] - fresh[2]).max() == 0.0

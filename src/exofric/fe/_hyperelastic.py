@@ -292,20 +292,29 @@ def ogden_plane_strain(
     return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
 
 
-def _monomial(coef: float, e: tuple[float, float, float], x: np.ndarray, second: bool
-              ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """``m = coef s^e0 J^e1 l^e2`` at ``x = (s, J, l)`` (..., 3), its gradient and Hessian.
+def _poly(coefs: tuple[float, ...], exps: tuple[tuple[float, float, float], ...],
+          x: np.ndarray, lnx: np.ndarray, second: bool
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """``sum_k c_k s^e0 J^e1 l^e2`` at ``x = (s, J, l)`` (..., 3), its gradient and Hessian.
 
-    ``dm/dx_i = e_i m / x_i`` and ``d2m/dx_i dx_j = (e_i e_j - delta_ij e_i) m / (x_i x_j)``.
+    All terms at once (``lnx = log x``): ``m_k = c_k exp(lnx . e_k)``, ``dm_k/dx_i = e_i m_k /
+    x_i``, ``d2m_k/dx_i dx_j = (e_i e_j - delta_ij e_i) m_k / (x_i x_j)``.
     """
-    ev = np.asarray(e, dtype=float)
-    m = coef * np.prod(x ** ev, axis=-1)
-    g = ev * m[..., None] / x
+    E = np.asarray(exps, dtype=float)  # (k, 3)
+    m = np.exp(lnx @ E.T) * np.asarray(coefs, dtype=float)  # (..., k)
+    W = m.sum(axis=-1)
+    G = (m @ E) / x
     if not second:
-        return m, g, None
-    ex = (np.outer(ev, ev) - np.diag(ev))
-    h = ex * m[..., None, None] / (x[..., :, None] * x[..., None, :])
-    return m, g, h
+        return W, G, None
+    Q = (E[:, :, None] * E[:, None, :] - E[:, :, None] * np.eye(3)).reshape(len(E), 9)
+    H = (m @ Q).reshape(*m.shape[:-1], 3, 3) / (x[..., :, None] * x[..., None, :])
+    return W, G, H
+
+
+#: Exponents of (s, J, l) of Ib1 = s J^-2/3 l^-2/3 + J^-2/3 l^4/3 and Ib2 = s J^-4/3 l^2/3 +
+#: J^2/3 l^-4/3 (see :func:`isochoric_derivatives`).
+_IB1 = ((1.0, -2.0 / 3.0, -2.0 / 3.0), (0.0, -2.0 / 3.0, 4.0 / 3.0))
+_IB2 = ((1.0, -4.0 / 3.0, 2.0 / 3.0), (0.0, 2.0 / 3.0, -4.0 / 3.0))
 
 
 def isochoric_derivatives(
@@ -359,64 +368,50 @@ def isochoric_derivatives(
     """
     x = np.stack(np.broadcast_arrays(np.asarray(s, float), np.asarray(J, float),
                                      np.asarray(lz, float)), axis=-1)
+    lnx = np.log(x)
     shape = x.shape[:-1]
+    name, co = model.name, model.coeffs
+    if name == "mooney-rivlin":
+        c10, c01 = co
+        W, G, H = _poly((c10, c10, c01, c01), _IB1 + _IB2, x, lnx, second)
+        return W - 3.0 * (c10 + c01), G, H
+    if not name.startswith("ogden"):  # neo-Hookean and Yeoh: a polynomial of Ib1 - 3
+        c10, c20, c30 = co
+        I1, g1, h1 = _poly((1.0, 1.0), _IB1, x, lnx, second)
+        xi = I1 - 3.0
+        W = ((c30 * xi + c20) * xi + c10) * xi
+        w1 = c10 + (2.0 * c20 + 3.0 * c30 * xi) * xi
+        G = w1[..., None] * g1
+        H = None
+        if h1 is not None:
+            w2 = 2.0 * c20 + 6.0 * c30 * xi
+            H = w2[..., None, None] * (g1[..., :, None] * g1[..., None, :]) \
+                + w1[..., None, None] * h1
+        return W, G, H
     W = np.zeros(shape)
     G = np.zeros((*shape, 3))
     H = np.zeros((*shape, 3, 3)) if second else None
-
-    def add(m: tuple[np.ndarray, np.ndarray, np.ndarray | None], f: float = 1.0) -> None:
-        nonlocal W
-        W = W + f * m[0]
-        G[...] += f * m[1]
-        if H is not None and m[2] is not None:
-            H[...] += f * m[2]
-
-    name, co = model.name, model.coeffs
-    if name.startswith("ogden"):
-        sv, Jv = x[..., 0], x[..., 1]
-        c = 0.5 * sv / Jv
-        gc = np.zeros((*shape, 3))
-        gc[..., 0], gc[..., 1] = 0.5 / Jv, -c / Jv
-        hc = np.zeros((*shape, 3, 3))
-        hc[..., 0, 1] = hc[..., 1, 0] = -0.5 / Jv**2
-        hc[..., 1, 1] = 2.0 * c / Jv**2
-        for mu, a in zip(co[0::2], co[1::2], strict=True):
-            A0 = 2.0 * mu / (a * a)
-            h0, h1, h2 = _chebyshev_t(0.5 * a, np.maximum(c - 1.0, 0.0))
-            m, gm, hm = _monomial(2.0 * A0, (0.0, a / 6.0, -a / 3.0), x, second)
-            W = W + m * h0
-            G[...] += h0[..., None] * gm + (m * h1)[..., None] * gc
-            if H is not None and hm is not None:
-                cross = gm[..., :, None] * gc[..., None, :]
-                H[...] += (h0[..., None, None] * hm + h1[..., None, None] * (cross + np.swapaxes(
-                    cross, -1, -2)) + (m * h2)[..., None, None] * (gc[..., :, None]
-                                                                   * gc[..., None, :])
-                           + (m * h1)[..., None, None] * hc)
-            add(_monomial(A0, (0.0, -a / 3.0, 2.0 * a / 3.0), x, second))
-            W = W - 3.0 * A0
-        return W, G, H
-    i1 = [_monomial(1.0, (1.0, -2.0 / 3.0, -2.0 / 3.0), x, second),
-          _monomial(1.0, (0.0, -2.0 / 3.0, 4.0 / 3.0), x, second)]
-    I1 = i1[0][0] + i1[1][0]
-    g1 = i1[0][1] + i1[1][1]
-    ha, hb = i1[0][2], i1[1][2]
-    h1m = ha + hb if ha is not None and hb is not None else None
-    if name == "mooney-rivlin":
-        c10, c01 = co
-        add((I1 - 3.0, g1, h1m), c10)
-        add(_monomial(1.0, (1.0, -4.0 / 3.0, 2.0 / 3.0), x, second), c01)
-        add(_monomial(1.0, (0.0, 2.0 / 3.0, -4.0 / 3.0), x, second), c01)
-        W = W - 3.0 * c01
-        return W, G, H
-    c10, c20, c30 = co
-    xi = I1 - 3.0
-    W = ((c30 * xi + c20) * xi + c10) * xi
-    w1 = c10 + (2.0 * c20 + 3.0 * c30 * xi) * xi
-    G[...] = w1[..., None] * g1
-    if H is not None and h1m is not None:
-        w2 = 2.0 * c20 + 6.0 * c30 * xi
-        H[...] = w2[..., None, None] * (g1[..., :, None] * g1[..., None, :]) \
-            + w1[..., None, None] * h1m
+    sv, Jv = x[..., 0], x[..., 1]
+    c = 0.5 * sv / Jv
+    gc = np.zeros((*shape, 3))
+    gc[..., 0], gc[..., 1] = 0.5 / Jv, -c / Jv
+    hc = np.zeros((*shape, 3, 3))
+    hc[..., 0, 1] = hc[..., 1, 0] = -0.5 / Jv**2
+    hc[..., 1, 1] = 2.0 * c / Jv**2
+    for mu, a in zip(co[0::2], co[1::2], strict=True):
+        A0 = 2.0 * mu / (a * a)
+        h0, h1, h2 = _chebyshev_t(0.5 * a, np.maximum(c - 1.0, 0.0))
+        # 2 A0 J^(a/6) l^(-a/3) T(c) + A0 J^(-a/3) l^(2a/3) - 3 A0
+        m, gm, hm = _poly((2.0 * A0,), ((0.0, a / 6.0, -a / 3.0),), x, lnx, second)
+        m3, g3, h3 = _poly((A0,), ((0.0, -a / 3.0, 2.0 * a / 3.0),), x, lnx, second)
+        W = W + m * h0 + m3 - 3.0 * A0
+        G += h0[..., None] * gm + (m * h1)[..., None] * gc + g3
+        if H is not None and hm is not None and h3 is not None:
+            cross = gm[..., :, None] * gc[..., None, :]
+            H += (h0[..., None, None] * hm + h1[..., None, None] * (cross + np.swapaxes(
+                cross, -1, -2)) + (m * h2)[..., None, None] * (gc[..., :, None]
+                                                               * gc[..., None, :])
+                  + (m * h1)[..., None, None] * hc + h3)
     return W, G, H
 
 

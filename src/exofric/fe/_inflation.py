@@ -231,6 +231,8 @@ class PressurizedTube:
         self.X = mesh.nodes.ravel()
         #: open ends: the frozen cavity area A* (mm^2) of the cap force (see :meth:`refresh`)
         self.area_star = 0.0
+        self._area_shift = 0.0
+        self._load: float | None = None  # pressure of the last evaluation (MPa)
         self._hx: tuple[np.ndarray, float] | None = None
         ed = self.body.edofs
         k = ed.shape[1]
@@ -310,9 +312,36 @@ class PressurizedTube:
         if self.ends != "open":
             return 0.0
         a = self.cavity_area(u)
-        change = abs(a - self.area_star)
+        self._area_shift = a - self.area_star
         self.area_star = a
-        return change
+        return abs(self._area_shift)
+
+    def patch_refreshed(self, evaluation: tuple[float, np.ndarray, sp.csc_matrix | None]
+                        ) -> tuple[float, np.ndarray, sp.csc_matrix | None] | None:
+        """The evaluation at the state just refreshed, updated for the new frozen cap area.
+
+        Open ends: the cap term ``P A* l`` shifts the energy by ``P dA* l`` and the axial
+        residual by ``P dA*``; the tangent does not depend on A*. Called by the solver with the
+        evaluation (energy, residual, tangent) it holds for the state of the last
+        :meth:`refresh` (at the load of the last evaluation); None if that cannot be patched.
+
+        Parameters
+        ----------
+        evaluation : tuple
+            ``(energy, residual, tangent)`` at that state under the old A*.
+
+        Returns
+        -------
+        tuple or None
+            The evaluation under the new A*.
+        """
+        if self.ends != "open" or self._hx is None or self._load is None:
+            return None
+        d = self._load * self._area_shift
+        energy, R, K = evaluation
+        R = R.copy()
+        R[-1] += d
+        return energy + d * self._hx[1], R, K
 
     def pressurized(
         self, u: np.ndarray, load: float, tangent: bool
@@ -343,6 +372,7 @@ class PressurizedTube:
         x = self.X + un
         Hx = self.H @ x
         self._hx = (Hx, lz)
+        self._load = float(load)
         area2 = float(x @ Hx)
         if not self.axial:
             R = scatter(self.body.edofs, st.fe, self.n_dofs) - load * Hx

@@ -751,9 +751,13 @@ def _newton_attempt(
         return base(A, b)
 
     refresh = getattr(problem, "refresh", None)
+    patch = getattr(problem, "patch_refreshed", None)
     for it in range(1, s.max_iter + 1):
         if refresh is not None and refresh(u) > 0.0:
-            cached = None  # friction: slip bounds frozen at u, so the trial's are stale
+            # friction: slip bounds frozen at u, so the trial's are stale; a problem that can
+            # update the trial's evaluation itself (open tube ends: a constant shift of the
+            # energy and the axial residual) spares the re-evaluation
+            cached = patch(cached) if patch is not None and cached is not None else None
         # the accepted full-step trial of the previous iteration already has the tangent
         out = cached if cached is not None else problem.evaluate(u, load, True)
         cached = None
