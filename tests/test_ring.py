@@ -285,3 +285,19 @@ def test_result_frame_and_dict() -> None:
     assert d["geometry"]["width_to_wall"] == pytest.approx(5.0 / 1.665)
     assert d["material"] == MAT.to_dict()
     assert np.all(np.diff(r.force_n) > 0)
+
+
+def test_wide_ring_in_plane_stress_warns() -> None:
+    """width/wall > 1 with plane stress: a PlausibilityWarning naming the ratio (the 3-D
+    reference shows the real ring stiffer); a narrow ring or the wide-ring section: none."""
+    import warnings
+
+    from exofric.errors import PlausibilityWarning
+
+    with pytest.warns(PlausibilityWarning, match=r"width/wall = 3 > 1"):
+        ring_test(8.3, 4.97, 5.0, 3.0, [0.5], MAT, mesh=COARSE)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        ring_test(8.3, 4.97, 1.5, 3.0, [0.5], MAT, mesh=COARSE)
+        ring_test(8.3, 4.97, 5.0, 3.0, [0.5], MAT, mesh=COARSE,
+                  section="generalised-plane-strain")
