@@ -599,6 +599,20 @@ class ElementState:
     kel: np.ndarray | None = None
     kll: np.ndarray | None = None
 
+    def with_axial(self) -> np.ndarray:
+        """Element tangents bordered by the axial stretch: (e, 2n + 1, 2n + 1), N/mm per mm.
+
+        The last row and column are ``kel`` and ``kll`` (generalised plane strain, the element
+        dofs followed by the axial one).
+        """
+        assert self.ke is not None and self.kel is not None and self.kll is not None
+        ne, k = self.ke.shape[:2]
+        out = np.empty((ne, k + 1, k + 1))
+        out[:, :k, :k] = self.ke
+        out[:, :k, k] = out[:, k, :k] = self.kel
+        out[:, k, k] = self.kll
+        return out
+
 
 class HyperelasticBody:
     """A meshed hyperelastic body in plane strain (precomputed element data).

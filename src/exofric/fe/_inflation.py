@@ -399,13 +399,9 @@ class PressurizedTube:
         assert st.ke is not None
         if not self.axial:
             return self.assembler.matrix([st.ke, -load * self.H.data, *extra_blocks])
-        assert st.kel is not None and st.kll is not None and self._hx is not None
+        assert self._hx is not None
         Hx, lz = self._hx
-        ne, k = st.ke.shape[:2]
-        ke = np.empty((ne, k + 1, k + 1))
-        ke[:, :k, :k] = st.ke
-        ke[:, :k, k] = ke[:, k, :k] = st.kel
-        ke[:, k, k] = st.kll
+        ke = st.with_axial()
         c = -load * Hx[self.hx_dofs]
         # closed ends: symmetric; open ends: the axial residual has no pressure term
         lx = c if self.ends == "closed" else np.zeros_like(c)

@@ -407,14 +407,7 @@ class RingProblem:
         K = None
         if tangent:
             assert st.ke is not None
-            ke = st.ke
-            if self.axial:
-                assert st.kel is not None and st.kll is not None
-                ne, k = ke.shape[:2]
-                ke = np.empty((ne, k + 1, k + 1))
-                ke[:, :k, :k] = st.ke
-                ke[:, :k, k] = ke[:, k, :k] = st.kel
-                ke[:, k, k] = st.kll
+            ke = st.with_axial() if self.axial else st.ke
             K = self.assembler.matrix([ke, cs.blocks])
         return st.energy + cs.energy, R, K
 
