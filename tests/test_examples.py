@@ -171,8 +171,9 @@ def _independent_loop(ex: ModuleType, two_dof: bool) -> tuple[np.ndarray, np.nda
     """The example's closed loop re-implemented without exofric.control.
 
     Supply: exact zero-order-hold step of tau dp/dt = u(t - theta) - p with theta an integer
-    number of samples; PI on e = r_m - y (r_m = r without feedforward, g_model(p_model) with
-    the 2-DOF model); u = u_ff + kp e + ki dt sum(previous e). The maps and the inverse are
+    number of samples; PI on e = r_m - y (r_m = r without feedforward; with the 2-DOF model
+    r_m = r - [g_model(p_ss) - g_model(p_model)], p_ss = g_model^-1(r) where the model pressure
+    settles); u = u_ff + kp e + ki dt sum(previous e). The maps and the inverse are
     inputs taken from the example; the test asserts the command never saturates, so the
     anti-windup is inert.
     """
@@ -191,7 +192,7 @@ def _independent_loop(ex: ModuleType, two_dof: bool) -> tuple[np.ndarray, np.nda
     integral = 0.0
     for k in range(n):
         y[k] = ex.true_map(p[k])
-        ref = ex.model_map(pm[k]) if two_dof else r
+        ref = r - (ex.model_map(u_ff) - ex.model_map(pm[k])) if two_dof else r
         e = ref - y[k]
         u[k] = u_ff + kp * e + integral
         integral += ki * e * dt

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from exofric import paper
-from exofric.errors import InputError, PlausibilityWarning
-from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction, torque
+from exofric.errors import InputError
+from exofric.friction import CubicFit, FrictionModel, SqueezeCurve, pressure_for_friction, torque
 
 EQ8 = paper.eq8()
 
@@ -123,30 +123,22 @@ def test_cubic_validation_and_to_dict() -> None:
 
 
 def test_curve_inverse_exact_on_fe_like_curve() -> None:
-    # A curve with zero force before contact at 0.15 MPa; PCHIP inverse must reproduce the
-    # tabulated nodes exactly and be close between nodes for a smooth curve.
+    # A curve with zero force before contact at 0.15 MPa: the inverse reproduces the tabulated
+    # nodes, gives the onset for N = 0, and is close to the smooth curve it samples.
     p = np.linspace(0.0, 0.6, 25)
     n = 600.0 * np.clip(p - 0.15, 0.0, None) ** 1.5
-    inv = CurveInverse.from_curve(p, n)
-    assert inv.pressure_mpa[0] == pytest.approx(0.15)           # last zero-force point kept
-    for pi, ni in zip(p[8:], n[8:], strict=True):
-        assert inv.pressure(ni) == pytest.approx(pi, abs=1e-12)
-    # between nodes: exact inverse is 0.15 + (N/600)^(2/3); PCHIP error < 2e-3 MPa
+    c = SqueezeCurve(p, n)
+    assert c.pressure(0.0) == pytest.approx(0.15)               # end of the zero plateau
+    for pi, ni in zip(p[7:], n[7:], strict=True):
+        assert c.pressure(ni) == pytest.approx(pi, abs=1e-12)
+    # between nodes: the sampled curve's inverse is 0.15 + (N/600)^(2/3); PCHIP error < 2e-3
     target = 100.0
     exact = 0.15 + (target / 600.0) ** (2 / 3)
-    assert inv.pressure(target) == pytest.approx(exact, abs=2e-3)
+    assert c.pressure(target) == pytest.approx(exact, abs=2e-3)
     m = FrictionModel(0.7, 2.0)
-    assert inv.pressure_for_friction(0.7 * target + 2.0, m) == pytest.approx(inv.pressure(target))
+    assert c.pressure_for_friction(0.7 * target + 2.0, m) == pytest.approx(c.pressure(target))
     with pytest.raises(InputError, match="outside the curve's range"):
-        inv.pressure_for_friction(1e4, m)
-
-
-def test_curve_inverse_refuses_non_increasing() -> None:
-    with pytest.raises(InputError, match="not strictly increasing"), \
-            pytest.warns(PlausibilityWarning, match="falls from 5 to 4 N"):
-        CurveInverse.from_curve([0.1, 0.2, 0.3, 0.4], [1.0, 5.0, 4.0, 6.0])
-    with pytest.raises(InputError, match="strictly increasing"):
-        CurveInverse.from_curve([0.1, 0.1, 0.3], [1.0, 5.0, 6.0])
+        c.pressure_for_friction(1e4, m)
 
 
 def test_torque_paper_numbers() -> None:

@@ -10,7 +10,7 @@ from scipy.interpolate import CubicSpline
 
 from exofric.control import CurveFrictionMap
 from exofric.errors import InputError, PlausibilityWarning, check_series
-from exofric.friction import CurveInverse, SqueezeCurve, match_squeeze
+from exofric.friction import SqueezeCurve, match_squeeze
 
 # Closed form: no force before contact onset P0, then N = A (P - P0)^2 (N, MPa).
 A, P0, PMAX = 1500.0, 0.15, 0.6
@@ -177,8 +177,9 @@ def test_users_share_the_interpolant() -> None:
     np.testing.assert_array_equal(fmap(x), 0.7 * c(x))
     # above the last pressure the map continues with the interpolant's end slope (C1)
     assert fmap(0.7) == pytest.approx(0.7 * (c(PMAX) + 0.1 * c.slope(PMAX)), rel=1e-12)
-    inv = CurveInverse.from_curve(p, n)
-    assert inv.pressure_mpa[0] == pytest.approx(P0)
+    # the map's inverse is the curve's: one inverse, exact on the same interpolant
+    for f in (0.7 * c(P0 + 0.01), 0.7 * c(0.33), 0.7 * c(PMAX)):
+        assert fmap.inverse(f) == c.pressure(f / 0.7)
 
 
 # ---------------------------------------------------------------------------- check_series

@@ -46,7 +46,6 @@ _HOME: dict[str, str] = {
     "InputError": "exofric.errors",
     "MeshSpec": "exofric.fe",
     "CubicFit": "exofric.friction",
-    "CurveInverse": "exofric.friction",
     "FrictionModel": "exofric.friction",
     "GammaFit": "exofric.friction",
     "fit_gamma": "exofric.friction",
@@ -77,7 +76,6 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.fe import MeshSpec
     from exofric.friction import (
         CubicFit,
-        CurveInverse,
         FrictionModel,
         GammaFit,
         fit_gamma,
@@ -101,7 +99,6 @@ __all__ = [
     "Controller",
     "ConvergenceError",
     "CubicFit",
-    "CurveInverse",
     "FrictionModel",
     "GammaFit",
     "InflationData",

@@ -1,7 +1,19 @@
-"""Exceptions and input checks shared by every stage of the pipeline.
+"""Exceptions, input checks and the command line's exit codes, shared by every stage.
 
 Every check raises :class:`InputError` with a one-line message that names the
 field and the allowed range, so the CLI can print it as-is and exit 2.
+
+Exit codes of ``exofric`` (:data:`EXIT_CODES`, defined here only):
+
+* 0 -- done;
+* 2 -- bad input (:class:`InputError`), found before any work: a bad value, file, device URL,
+  register map, or a device that cannot be reached or refuses the handshake;
+* 3 -- a solver did not converge (:class:`ConvergenceError`);
+* 4 -- ``control run`` stopped on a run-time fault (watchdog, a limit, a device that went
+  silent, dropped the connection or sent garbage) and the tube was vented;
+* 5 -- as 4 (or a run that ended otherwise), but the vent could not be confirmed: the tube may
+  still be pressurised;
+* 130 -- interrupted (Ctrl-C); a running control loop vented first.
 """
 
 from __future__ import annotations
@@ -15,6 +27,13 @@ if TYPE_CHECKING:  # numpy is imported where it is used: the CLI imports this mo
     from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "EXIT_CODES",
+    "EXIT_CONVERGENCE",
+    "EXIT_FAULT",
+    "EXIT_INPUT",
+    "EXIT_INTERRUPTED",
+    "EXIT_OK",
+    "EXIT_VENT_NOT_CONFIRMED",
     "ConvergenceError",
     "InputError",
     "PlausibilityWarning",
@@ -26,6 +45,29 @@ __all__ = [
     "check_seed",
     "check_series",
 ]
+
+#: Exit code: success.
+EXIT_OK = 0
+#: Exit code: bad input (:class:`InputError`), before any work.
+EXIT_INPUT = 2
+#: Exit code: a solver did not converge (:class:`ConvergenceError`).
+EXIT_CONVERGENCE = 3
+#: Exit code: a control run stopped on a run-time fault and vented
+#: (:class:`exofric.hardware.LoopFault`).
+EXIT_FAULT = 4
+#: Exit code: the vent could not be confirmed: the tube may still be pressurised.
+EXIT_VENT_NOT_CONFIRMED = 5
+#: Exit code: interrupted (Ctrl-C, SIGINT), after venting.
+EXIT_INTERRUPTED = 130
+#: Every exit code of the command line and what it means.
+EXIT_CODES: dict[int, str] = {
+    EXIT_OK: "done",
+    EXIT_INPUT: "bad input (one line names the field), found before any work",
+    EXIT_CONVERGENCE: "a solver did not converge",
+    EXIT_FAULT: "control run stopped on a fault (watchdog, limit, device fault); vented",
+    EXIT_VENT_NOT_CONFIRMED: "vent not confirmed: the tube may still be pressurised",
+    EXIT_INTERRUPTED: "interrupted (Ctrl-C); a running control loop vented first",
+}
 
 
 class InputError(ValueError):

@@ -180,8 +180,9 @@ def run(argv: Sequence[str] | None = None) -> int:
             return 3
         loop = sys.modules.get("exofric.hardware._loop")   # only if a loop ran
         if loop is not None and isinstance(exc, loop.LoopFault):
-            print(f"exofric: stopped: {' '.join(str(exc).split())}", file=sys.stderr)
-            return 4
+            head = "stopped" if getattr(exc, "vent_confirmed", True) else "VENT NOT CONFIRMED"
+            print(f"exofric: {head}: {' '.join(str(exc).split())}", file=sys.stderr)
+            return int(getattr(exc, "exit_code", 4))
         if os.environ.get("EXOFRIC_DEBUG"):
             raise
         # A bug, not the user's input: one line, never a traceback (EXOFRIC_DEBUG=1 shows it).

@@ -10,7 +10,7 @@ Plant TOMLs, squeeze curves and step CSVs are read by :mod:`exofric.io`.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 import typer
 
@@ -128,7 +128,9 @@ def _setup(target: float, structure: str, gamma: float | None, plant: str | None
     from exofric.reproduction import ControlSetup
 
     params = _plant_from_file(plant) if plant else {}
+    source = f"from {Path(plant).name}" if plant else "exofric's default (an assumption)"
     if step_csv:
+        source = f"identified from {Path(step_csv).name}"
         ident = _identify_csv(step_csv)
         params.update(gain=ident.gain, time_constant_s=ident.time_constant_s,
                       delay_s=ident.delay_s)
@@ -146,7 +148,8 @@ def _setup(target: float, structure: str, gamma: float | None, plant: str | None
     g = paper.scalar("gamma") if gamma is None else gamma
     setup = ControlSetup(pp, _structure_map(structure, g), target_n=target, dt=dt,
                          duration_s=duration, ff_mode=ff_mode,  # type: ignore[arg-type]
-                         tau_c_s=tau_c, band=band, antiwindup=antiwindup)  # type: ignore[arg-type]
+                         tau_c_s=tau_c, band=band, antiwindup=antiwindup,  # type: ignore[arg-type]
+                         plant_source=source)
     p_ff = setup.feedforward_pressure()
     if p_ff > pp.p_max_mpa:
         raise InputError(f"--target-friction {target:g} N needs {p_ff:.3f} MPa, above the plant's "
@@ -229,6 +232,7 @@ def register(app: typer.Typer) -> None:
             res = replace(res, tuning=replace(rule, gains=gains))
         written = _plot_cases([res], plot, f"target {setup.target_n:g} N") if plot else None
         d = res.to_dict()
+        d["plant"] = setup.plant_description()
         if written:
             d["plot"] = written
         note = _stuck_note(d, setup.target_n)
@@ -251,6 +255,7 @@ def register(app: typer.Typer) -> None:
                  ("ki", f"{gd['ki_mpa_per_n_s']:.5g}", "MPa/(N s)"),
                  ("kd", f"{gd['kd_mpa_s_per_n']:.5g}", "MPa s/N"),
                  ("paper settling time", _fmt(d["paper_settling_time_s"], ".2f"), "s")]))
+            console.print(f"plant: {d['plant']}")
             if note:
                 console.print(note)
 
@@ -275,6 +280,7 @@ def register(app: typer.Typer) -> None:
         written = (_plot_cases(list(res.cases), plot, f"target {setup.target_n:g} N")
                    if plot else None)
         d = res.to_dict()
+        d["plant"] = setup.plant_description()
         if written:
             d["plot"] = written
 
@@ -300,6 +306,7 @@ def register(app: typer.Typer) -> None:
                               f"the model (paper: {pred[k]:g} %)")
             console.print("settle: 2 % settling time; paper: Fig 12 as printed; OS: overshoot; "
                           "ss err: steady-state error; F, P: final friction and pressure.")
+            console.print(f"plant: {d['plant']}")
             for n in notes:
                 console.print(n)
 
@@ -449,10 +456,13 @@ def _register_run(ctl: typer.Typer) -> None:
         """Run the friction loop on a device at a fixed rate, safely (vents on faults). N, MPa.
 
         Gains: the IMC/SIMC rule on the paper's supply; --step-csv tunes on your own.
+        Exit codes: 0 done; 2 bad input (before the loop); 4 a run-time fault stopped the run
+        and the tube was vented; 5 the vent was not confirmed (the tube may still be
+        pressurised); 130 Ctrl-C (vented).
         """
         from exofric.control import Controller, ScheduledController, local_slope
         from exofric.errors import InputError, check_range
-        from exofric.hardware import SafetyLimits, open_device, run_loop
+        from exofric.hardware import LoopFault, SafetyLimits, open_device, run_loop
 
         kind = controller.lower()
         if kind not in ("pd", "pi", "pid"):
@@ -478,16 +488,25 @@ def _register_run(ctl: typer.Typer) -> None:
                 f"{' + gain scheduling' if schedule else ''}, target {target:g} N, "
                 f"{rate:g} Hz, kp {gains.kp:.4g} MPa/N, ki {gains.ki:.4g} MPa/(N s), "
                 f"kd {gains.kd:.4g} MPa s/N"]
-        with open_device(device, map_path) as dev:
+        dev = open_device(device, map_path)
+        try:
             res = run_loop(dev, ctrl, target, duration_s=duration, rate_hz=rate, limits=limits,
                            watchdog_s=watchdog, log_path=log, dry_run=dry_run, metadata=meta,
                            baseline_s=baseline)
+        except LoopFault as exc:        # vented (or not confirmed) and logged by the loop
+            _run_fault(exc, device, as_json)
+        except BaseException as exc:
+            _run_failed(exc, dev)
+            raise
+        finally:
+            _quiet_close(dev)
         d = res.to_dict()
         d.update({"device": device, "controller": kind, "feedforward": feedforward,
                   "schedule": schedule, "target_n": target})
 
         def render() -> None:
-            rows = [("controller", f"{kind.upper()}{' + model' if feedforward else ''}"
+            rows = [("device", str(d.get("plant") or device), ""),
+                    ("controller", f"{kind.upper()}{' + model' if feedforward else ''}"
                      f"{' + scheduling' if schedule else ''}", ""),
                     ("target friction", f"{target:g}", "N"),
                     ("final friction", _fmt(d.get("final_friction_n"), ".2f"), "N"),
@@ -495,9 +514,10 @@ def _register_run(ctl: typer.Typer) -> None:
                     ("overshoot", _fmt(d.get("overshoot_pct"), ".1f"), "%"),
                     ("steady-state error", _fmt(d.get("steady_state_error_n"), ".3f"), "N"),
                     ("loop rate / samples", f"{rate:g} / {d.get('n_samples')}", "Hz / -"),
+                    ("achieved rate", _fmt(d.get("achieved_rate_hz"), ".4g"), "Hz"),
                     ("jitter p50 / p99 / max", f"{d['jitter_p50_ms']:.3f} / "
                      f"{d['jitter_p99_ms']:.3f} / {d['jitter_max_ms']:.3f}", "ms"),
-                    ("overruns", str(d.get("overruns")), ""),
+                    ("overruns / skipped", f"{d.get('overruns')} / {d.get('skipped')}", ""),
                     ("stopped", f"{d.get('stopped_reason')} at {d.get('stopped_at_s')}", "s"),
                     ("vented", str(d.get("vented")), ""),
                     ("dry run", str(dry_run), "")]
@@ -506,3 +526,56 @@ def _register_run(ctl: typer.Typer) -> None:
             console.print(kv_table(f"control run on {device}", rows))
 
         emit(d, as_json, render)
+        if not res.vented:
+            _vent_not_confirmed(f"the run ended ({res.stopped_reason} at "
+                                f"{res.stopped_at_s:.3f} s) but the device did not confirm the "
+                                "vent (tried twice, the second time on a fresh connection)")
+
+
+def _vent_not_confirmed(what: str) -> NoReturn:
+    """One loud line on stderr and exit 5 (exofric.errors.EXIT_VENT_NOT_CONFIRMED)."""
+    import sys
+
+    from exofric.errors import EXIT_VENT_NOT_CONFIRMED
+
+    print(f"exofric: VENT NOT CONFIRMED: {what}: the tube may still be pressurised; close the "
+          "supply by hand", file=sys.stderr)
+    raise typer.Exit(EXIT_VENT_NOT_CONFIRMED)
+
+
+def _run_fault(exc: Any, device: str, as_json: bool) -> NoReturn:
+    """A LoopFault: the run's JSON (``--json``), one stderr line, exit 4 or 5."""
+    import sys
+
+    res = exc.result
+    if as_json and res is not None:
+        d = res.to_dict()
+        d.update({"device": device, "fault": " ".join(str(exc).split()),
+                  "exit_code": exc.exit_code})
+        emit(d, True, lambda: None)
+    msg = " ".join(str(exc).split())
+    head = "stopped" if exc.vent_confirmed else "VENT NOT CONFIRMED"
+    print(f"exofric: {head}: {msg}", file=sys.stderr)
+    raise typer.Exit(exc.exit_code)
+
+
+def _run_failed(exc: BaseException, dev: Any) -> None:
+    """Another exception out of run_loop: vent when the loop never started (it vents itself
+    once started); a Ctrl-C whose vent was not confirmed exits 5 instead of 130."""
+    res = getattr(exc, "result", None)
+    if res is None:                  # refused before the start: vent as `with` would
+        try:
+            dev.vent()
+        except Exception:  # noqa: BLE001, S110 - the original error is the one to report
+            pass
+        return
+    if isinstance(exc, KeyboardInterrupt) and not res.vented:
+        _vent_not_confirmed(f"interrupted at {res.stopped_at_s:.3f} s and the device did not "
+                            "confirm the vent")
+
+
+def _quiet_close(dev: Any) -> None:
+    try:
+        dev.close()
+    except Exception:  # noqa: BLE001, S110 - closing a dead connection must not hide the run
+        pass

@@ -629,7 +629,7 @@ def _register_invert(app: typer.Typer) -> None:
     ) -> None:
         """Pressure (MPa) that gives a target friction (N): inverse of Eq 9 (Sec. 5)."""
         from exofric.errors import InputError
-        from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction
+        from exofric.friction import CubicFit, FrictionModel, SqueezeCurve, pressure_for_friction
 
         if (cubic is None) == (squeeze is None):
             raise InputError("give exactly one of --cubic c3,c2,c1,c0 or --squeeze FILE")
@@ -646,9 +646,9 @@ def _register_invert(app: typer.Typer) -> None:
             d["pressure_mpa"] = pressure_for_friction(target_friction, fit, model)
         else:
             ps, ns = _squeeze_curve(str(squeeze))
-            inv = CurveInverse.from_curve(ps, ns)
             d["method"] = "curve (PCHIP)"
-            d["pressure_mpa"] = inv.pressure_for_friction(target_friction, model)
+            d["pressure_mpa"] = SqueezeCurve(ps, ns).pressure_for_friction(target_friction,
+                                                                          model)
             fit = CubicFit.fit(ps, ns, (lo, hi))
             try:
                 d["cubic_pressure_mpa"] = pressure_for_friction(target_friction, fit, model)

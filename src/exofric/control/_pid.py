@@ -4,9 +4,9 @@ The controller turns a friction error (N) into an inflation-pressure command (MP
 
     u = u_ff(r) + Kp e + Ki integral(e dt) - Kd dy_f/dt        (derivative on measurement)
 
-with e = r - y, an optional feedforward u_ff = g^-1(r) from the inverse friction model
-(paper Fig 12a "with the model"; static, or two-degree-of-freedom where the feedback acts on
-the deviation from the friction the model predicts, see :class:`ModelFeedforward`), a
+with e = r - y, an optional feedforward u_ff = g^-1(r) / K from the inverse model (paper
+Fig 12a "with the model"; static, or two-degree-of-freedom where the feedback acts on a model
+reference that settles at r, see :class:`ModelFeedforward` and ``docs/control.md``), a
 first-order filtered derivative, output limits and anti-windup (back-calculation, clamping or
 none).
 
@@ -104,33 +104,53 @@ class PIDGains:
 
 
 class ModelFeedforward:
-    """Model feedforward u_ff = g^-1(r), optionally two-degree-of-freedom (2-DOF).
+    """Model feedforward u_ff = g^-1(r) / K, optionally two-degree-of-freedom (2-DOF).
 
-    *Static* (``time_constant_s=None``): the command gets u_ff = g^-1(r) added and the
-    feedback acts on e = r - y (the plain "PID + model" of Fig 12a).
+    The feedforward inverts the whole model: the friction map g (N from MPa) and the static
+    gain K of the pressure supply (MPa of tube pressure per MPa of command), so that
+    u_ff = g^-1(r) / K is the command the model says holds the set-point r.
 
-    *2-DOF* (time constant given): the feedback acts on e = r_m - y, where
-    r_m = g(p_m) is the friction the model expects: p_m is the pressure model (lag + dead time,
-    e.g. the identified supply) driven by u_ff alone. With an exact model the feedback then
-    sees no error and does not fight the feedforward (Astrom & Hagglund 2006, Sec 5.2);
-    it only corrects what the model gets wrong (mismatch, disturbances).
+    *Static* (``time_constant_s=None``): u_ff is added to the command and the feedback acts on
+    e = r - y (the plain "PID + model" of Fig 12a).
+
+    *2-DOF* (time constant given): the feedback acts on e = r_m - y, with the model reference
+
+        r_m(t) = r - [g(p_ss) - g(p_m(t))],
+
+    where p_m is the pressure model (lag + dead time + saturation, gain K) driven by u_ff alone
+    and p_ss = clip(K u_ff, 0, p_max) is where it settles. The bracket is the friction the model
+    says is still to come; it decays to 0, so **r_m settles at the set-point r exactly**, by
+    construction, whatever the errors of the model (plant gain, lag, dead time, gamma, the
+    map's shape, saturation). With an exact model r_m = g(p_m) is the friction the plant
+    produces and the feedback sees no error and does not fight the feedforward (Astrom &
+    Hagglund 2006, Sec 5.2); with a wrong model the integral removes any constant offset,
+    because in steady state the feedback error is r - y itself. (An earlier version used
+    r_m = g(p_m): with an identified gain K = 0.968 it settled at g(K g^-1(r)), 8 % below r.)
 
     Parameters
     ----------
     pressure_for_friction : callable
         Inverse friction model P(F): N -> MPa (e.g. ``CubicFrictionMap.inverse``).
     friction_of_pressure : callable or None
-        Forward model F(P): MPa -> N; required for 2-DOF.
-    time_constant_s, delay_s, gain : float
-        Pressure model (s, s, MPa/MPa); ``time_constant_s=None`` for static feedforward.
+        Forward model F(P): MPa -> N; required for 2-DOF. It is called once per sample, in
+        time order, along the model pressure (a stateful hysteretic map works); a map with a
+        ``settled(p)`` method (:class:`~exofric.control.HystereticFrictionMap`) gives g(p_ss)
+        through it without changing its state, any other map is evaluated at p_ss once per
+        set-point.
+    time_constant_s, delay_s : float
+        Pressure model (s, s); ``time_constant_s=None`` for static feedforward.
+    gain : float
+        Static gain K of the supply (MPa/MPa, > 0): the command is g^-1(r) / K.
     p_max_mpa : float
         Saturation of the pressure model in MPa.
 
     Examples
     --------
     >>> ff = ModelFeedforward(lambda f: f / 100.0, lambda p: 100.0 * p, time_constant_s=1.0)
-    >>> ff.update(50.0, 0.1)        # (u_ff MPa, expected friction N): model still at rest
+    >>> ff.update(50.0, 0.1)        # (u_ff MPa, reference N): model at rest, all still to come
     (0.5, 0.0)
+    >>> ModelFeedforward(lambda f: f / 100.0, gain=0.5).update(20.0, 0.01)   # 0.2 MPa / 0.5
+    (0.4, 20.0)
     """
 
     def __init__(
@@ -145,6 +165,9 @@ class ModelFeedforward:
     ) -> None:
         self.pressure_for_friction = pressure_for_friction
         self.friction_of_pressure = friction_of_pressure
+        self.gain = check_range("gain (supply, MPa/MPa)", gain, 0.0, 1e3, lo_open=True)
+        self.p_max_mpa = check_range("p_max_mpa", p_max_mpa, 0.0, 100.0, lo_open=True,
+                                     unit="MPa")
         self._model: PlantParams | None = None
         if time_constant_s is not None:
             if friction_of_pressure is None:
@@ -153,11 +176,13 @@ class ModelFeedforward:
                                       delay_s=delay_s, p_max_mpa=p_max_mpa)
         self._r = math.nan
         self._u = 0.0
+        self._p_ss = 0.0
+        self._f_ss = math.nan
         self.reset()
 
     @property
     def two_dof(self) -> bool:
-        """True when the feedback acts on the model-predicted friction."""
+        """True when the feedback acts on the model reference r_m."""
         return self._model is not None
 
     def reset(self, command_mpa: float = 0.0) -> None:
@@ -173,12 +198,24 @@ class ModelFeedforward:
         --------
         >>> ff = ModelFeedforward(lambda f: f / 100.0, lambda p: 100.0 * p, time_constant_s=1.0)
         >>> ff.reset(0.3)
-        >>> ff.update(30.0, 0.1)        # model already at 0.3 MPa: expects 30 N
+        >>> ff.update(30.0, 0.1)        # model already at 0.3 MPa: nothing still to come
         (0.3, 30.0)
         """
         m = self._model
         self._plant = None if m is None else PressurePlant(
             m, min(max(m.gain * command_mpa, 0.0), m.p_max_mpa))
+        self._r = math.nan
+
+    def _settled_friction(self) -> float:
+        """g(p_ss) in N: the friction the model settles at under the current u_ff."""
+        fwd = self.friction_of_pressure
+        assert fwd is not None
+        settled = getattr(fwd, "settled", None)
+        if callable(settled):               # stateful map: from its current state, pure
+            return float(settled(self._p_ss))
+        if math.isnan(self._f_ss):          # pure map: once per set-point
+            self._f_ss = float(fwd(self._p_ss))
+        return self._f_ss
 
     def update(self, setpoint: float, dt: float) -> tuple[float, float]:
         """Feedforward command (MPa) and the reference for the feedback (N) for this sample.
@@ -196,8 +233,8 @@ class ModelFeedforward:
         Returns
         -------
         (float, float)
-            u_ff in MPa, and the feedback reference in N: r itself (static), or the friction
-            r_m the model expects at this sample (2-DOF).
+            u_ff in MPa, and the feedback reference in N: r itself (static), or the model
+            reference r_m = r - [g(p_ss) - g(p_m)] of this sample (2-DOF), which settles at r.
 
         Examples
         --------
@@ -205,15 +242,19 @@ class ModelFeedforward:
         (0.5, 50.0)
         """
         if setpoint != self._r:
-            self._u = float(self.pressure_for_friction(setpoint))
+            p_ff = float(self.pressure_for_friction(setpoint))
+            self._u = p_ff / self.gain
             self._r = setpoint
+            self._p_ss = min(max(p_ff, 0.0), self.p_max_mpa)
+            self._f_ss = math.nan
         if self._plant is None:
             return self._u, setpoint
         fwd = self.friction_of_pressure
         assert fwd is not None
         expected = float(fwd(self._plant.pressure_mpa))
+        to_come = self._settled_friction() - expected
         self._plant.advance(self._u, dt)
-        return self._u, expected
+        return self._u, setpoint - to_come
 
 
 class Controller:

@@ -35,7 +35,6 @@ from numpy.typing import ArrayLike, NDArray
 from exofric.errors import InputError, check_finite, check_positive, check_range
 from exofric.friction import (
     CubicFit,
-    CurveInverse,
     FrictionModel,
     SqueezeCurve,
     pressure_for_friction,
@@ -361,8 +360,9 @@ class CurveFrictionMap:
     the given points. Below the first pressure: straight line to (0 MPa, 0 N) (no pressure,
     no squeeze) if that point has N > 0, else 0. Above the last pressure: straight line with
     the interpolant's end slope dN/dP (C1 at the last point, as :class:`CubicFrictionMap`).
-    F is clipped to >= 0. The inverse covers the given points only
-    (:class:`~exofric.friction.CurveInverse`).
+    F is clipped to >= 0. The inverse covers the given points only: it is the exact inverse
+    of the same interpolant (:meth:`~exofric.friction.SqueezeCurve.pressure_for_friction`), so
+    ``g(g.inverse(F)) == F`` to round-off.
 
     Parameters
     ----------
@@ -392,7 +392,6 @@ class CurveFrictionMap:
         curve = SqueezeCurve(self.pressure_mpa, self.squeeze_force_n)
         object.__setattr__(self, "_curve", curve)
         object.__setattr__(self, "_slope", float(curve.slope(curve.pressure_range_mpa[1])))
-        object.__setattr__(self, "_inverse", CurveInverse.from_squeeze_curve(curve))
 
     def __call__(self, pressure_mpa: Any) -> Any:
         """Friction in N at pressure(s) in MPa (float in, float out; array in, array out)."""
@@ -425,8 +424,8 @@ class CurveFrictionMap:
         >>> round(g.inverse(20.0), 12)
         0.3
         """
-        inv: CurveInverse = self._inverse  # type: ignore[attr-defined]
-        return inv.pressure_for_friction(friction_n, FrictionModel(self.gamma * self.scale))
+        curve: SqueezeCurve = self._curve  # type: ignore[attr-defined]
+        return curve.pressure_for_friction(friction_n, FrictionModel(self.gamma * self.scale))
 
     def scaled(self, factor: float) -> CurveFrictionMap:
         """The same map multiplied by ``factor``.

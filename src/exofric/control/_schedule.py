@@ -86,14 +86,18 @@ def friction_inverse(friction_map: FrictionFn, friction_n: float, *, p_max_mpa: 
                      tol_mpa: float = INVERSE_TOL_MPA) -> float:
     """Smallest pressure (MPa) in [0, p_max] at which a monotone map reaches ``friction_n`` (N).
 
-    Bisection on the forward map, so it works over the map's whole domain (also below the
-    fit range of an Eq 9 cubic, down to contact onset), unlike the maps' own ``inverse``.
-    Targets <= F(0) give 0 MPa; targets above F(p_max) give p_max (the best reachable).
+    A map with its own exact ``inverse`` (:class:`~exofric.control.CurveFrictionMap`: the root
+    of the squeeze curve's interpolant; :class:`~exofric.control.CubicFrictionMap`: the cubic's
+    root) is inverted by it wherever it answers, so the feedforward, the scheduling and
+    ``exofric invert`` agree to round-off. Elsewhere (an Eq 9 cubic below its fit range, down
+    to contact onset; a bare callable) it bisects the forward map to ``tol_mpa``. Targets
+    <= F(0) give 0 MPa (nothing to hold: vent); targets above F(p_max) give p_max (the best
+    reachable).
 
     Parameters
     ----------
     friction_map : callable
-        Friction F(P): pressure in MPa -> N, non-decreasing.
+        Friction F(P): pressure in MPa -> N, non-decreasing; optionally with ``inverse``.
     friction_n : float
         Target friction in N.
     p_max_mpa : float
@@ -117,6 +121,14 @@ def friction_inverse(friction_map: FrictionFn, friction_n: float, *, p_max_mpa: 
         return lo
     if f > float(friction_map(hi)):
         return hi
+    exact = getattr(friction_map, "inverse", None)
+    if callable(exact):
+        try:
+            p = float(exact(f))
+        except InputError:          # outside the range its own inverse covers
+            p = math.nan
+        if lo <= p <= hi:
+            return p
     for _ in range(200):
         if hi - lo <= tol_mpa:
             break
@@ -423,6 +435,34 @@ class HystereticFrictionMap:
         f = lo if f < lo else (hi if f > hi else f)
         self.friction_n = f
         return f
+
+    def settled(self, pressure_mpa: float) -> float:
+        """Friction in N the map settles at if the pressure moves monotonically to ``pressure_mpa``.
+
+        ``clip(F_now, F_up(P), F_down(P))`` from the current state, which it leaves unchanged
+        (the 2-DOF :class:`~exofric.control.ModelFeedforward` asks it where its model reference
+        settles).
+
+        Parameters
+        ----------
+        pressure_mpa : float
+            Final pressure in MPa.
+
+        Returns
+        -------
+        float
+            Friction in N.
+
+        Examples
+        --------
+        >>> h = HystereticFrictionMap.from_play(lambda p: 100.0 * p, 0.05)
+        >>> _ = h(0.4); h.settled(0.3), h.friction_n     # down to 0.3 MPa: the down branch
+        (35.0, 35.0)
+        """
+        p = float(pressure_mpa)
+        lo, hi = float(self.up(p)), float(self.down(p))
+        f = self.friction_n
+        return lo if f < lo else (hi if f > hi else f)
 
 
 class HysteresisInverse:
@@ -912,7 +952,8 @@ def compare_strategies(
                             inv = HysteresisInverse.from_play(model_map, hysteresis_mpa,
                                                               p_max_mpa=pmax)
                             fwd = HystereticFrictionMap.from_play(model_map, hysteresis_mpa)
-                        ff = (ModelFeedforward(inv) if ff_mode == "static" else
+                        ff = (ModelFeedforward(inv, gain=plant.gain, p_max_mpa=pmax)
+                              if ff_mode == "static" else
                               ModelFeedforward(inv, fwd, time_constant_s=plant.time_constant_s,
                                                delay_s=plant.delay_s, gain=plant.gain,
                                                p_max_mpa=pmax))

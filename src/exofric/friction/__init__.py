@@ -9,9 +9,9 @@ torque in Nm, arm radius in m.
 * :func:`pressure_for_friction` -- the paper's Section 5 inverse: the pressure that gives a
   target friction, via N = (F - F0) / gamma and the cubic inverse.
 * :class:`SqueezeCurve` -- a validated tabulated squeeze curve N(P) with monotone (PCHIP)
-  interpolation, its slope dN/dP and its inverse P(N); the one interpolant of FE curves.
-* :class:`CurveInverse` -- the exact inverse of a tabulated (FE) curve N(P) by monotone (PCHIP)
-  interpolation of P against N, which the paper lacked.
+  interpolation, its slope dN/dP and its exact inverse P(N) (:meth:`SqueezeCurve.pressure`,
+  :meth:`SqueezeCurve.pressure_for_friction`): the one interpolant of FE curves and the one
+  inverse of it, which the paper lacked.
 * :func:`fit_gamma` -> :class:`GammaFit` -- gamma (Eq 7) from rig data with a CI (cluster-robust
   with replicate pulls, or errors-in-variables) and a :class:`LackOfFit` F test.
 * :func:`predict` -> :class:`PredictionSet` -- friction of other structures (Table 3) and the
@@ -64,7 +64,6 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         fit_interfaces,
         simulate_interface_rig,
     )
-    from exofric.friction._inverse import CurveInverse
     from exofric.friction._model import CubicFit, FrictionModel, pressure_for_friction
     from exofric.friction._predict import (
         ApplicabilityWarning,
@@ -99,7 +98,6 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "IdentifiabilityWarning", "InterfaceCurves", "InterfaceFit", "InterfaceFrictionModel",
         "InterfaceRigRun", "InterfaceTest", "fit_interfaces", "simulate_interface_rig",
     ),
-    "_inverse": ("CurveInverse",),
     "_model": ("CubicFit", "FrictionModel", "pressure_for_friction"),
     "_predict": (
         "ApplicabilityWarning", "Deviation", "MeasuredCurve", "Prediction", "PredictionSet",
@@ -118,7 +116,6 @@ _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "anova_vs_base", "AnovaResult", "ApplicabilityWarning", "capstan_factor", "CubicFit",
-    "CurveInverse",
     "Deviation", "deviation", "fit_gamma", "fit_interfaces", "FrictionModel", "GammaFit",
     "IdentifiabilityWarning", "InterfaceCurves", "InterfaceFit", "InterfaceFrictionModel",
     "InterfaceRigRun", "InterfaceTest", "LackOfFit", "match_squeeze",

@@ -23,6 +23,7 @@ from exofric import defaults
 from exofric.errors import InputError, check_finite, check_series, warn_implausible
 
 if TYPE_CHECKING:
+    from exofric.friction._model import FrictionModel
     from exofric.simulate import SqueezeResult
 
 __all__ = ["SqueezeCurve"]
@@ -290,5 +291,56 @@ class SqueezeCurve:
                                  "no pressure is singled out")
             return float(pp[int(rise[0]) - 1])
         i = int(np.flatnonzero(nn >= v)[0])
+        if nn[i] == v:
+            # node i is the first to reach v and the piece before it rises from below v
+            # monotonically: it reaches v only at its end (no bracket needed, none of its
+            # round-off)
+            return float(pp[i])
         f = self._interp()
-        return float(brentq(lambda x: float(f(x)) - v, pp[i - 1], pp[i], xtol=1e-12))
+        a, b = float(pp[i - 1]), float(pp[i])
+        # the piece is monotone from nn[i-1] < v to nn[i] > v: one root; round-off of the
+        # polynomial at the nodes cannot flip the bracket's signs by more than an ulp
+        if float(f(b)) - v <= 0.0:
+            return b
+        if float(f(a)) - v >= 0.0:
+            return a
+        return float(brentq(lambda x: float(f(x)) - v, a, b, xtol=1e-12))
+
+    def pressure_for_friction(self, target_n: float, model: FrictionModel) -> float:
+        """Pressure (MPa) for friction ``target_n`` (N): :meth:`pressure` of N = (F - F0)/gamma.
+
+        The one inverse of a friction map built on a squeeze curve: the feedforward of
+        :class:`~exofric.control.CurveFrictionMap`, ``exofric invert --squeeze`` and the design
+        search all come here, so ``model.friction(curve(P)) == F`` to round-off.
+
+        Parameters
+        ----------
+        target_n : float
+            Required friction force F in N.
+        model : FrictionModel
+            gamma (unitless) and offset F0 (N) that turn F into a squeezing force N.
+
+        Returns
+        -------
+        float
+            Pressure in MPa (the contact onset for F = F0 on a curve starting at 0 N).
+
+        Raises
+        ------
+        InputError
+            The target friction is outside the range the curve reaches (message in N).
+
+        Examples
+        --------
+        >>> from exofric.friction import FrictionModel
+        >>> c = SqueezeCurve([0.2, 0.4], [10.0, 30.0])
+        >>> round(c.pressure_for_friction(10.0, FrictionModel(0.5)), 12)   # N = 20 N
+        0.3
+        """
+        f = check_finite("target friction (N)", target_n)
+        lo, hi = self.force_range_n
+        n = model.squeeze(f)
+        if not lo <= n <= hi:
+            raise InputError(f"target friction {f:g} N is outside the curve's range "
+                             f"[{model.friction(max(lo, 0.0)):.4g}, {model.friction(hi):.4g}] N")
+        return self.pressure(n)

@@ -7,13 +7,31 @@
   :func:`encode_registers`, :func:`decode_registers` -- the Modbus register map (TOML; the
   shipped default is :data:`DEFAULT_MAP_PATH`).
 * :func:`run_loop` -- fixed-rate, deadline-scheduled control loop with limits
-  (:class:`SafetyLimits`), a watchdog, venting on faults and Ctrl-C, and a rig-log CSV;
-  returns a :class:`LoopResult`. :class:`RealClock`, :class:`SimClock` are its clocks.
+  (:class:`SafetyLimits`), a watchdog, venting on faults and Ctrl-C (retried on a fresh
+  connection), a rig-log CSV and honest timing (achieved rate; a warning above 1 % skipped or
+  overrun cycles); returns a :class:`LoopResult`. :class:`RealClock`, :class:`SimClock` are
+  its clocks.
 * :class:`SimulatedDevice`, :class:`ModbusSimServer`, :class:`SerialSimDevice`,
   :class:`SimRig` -- simulated rigs backed by a pressure plant and a friction map, with
-  sensor-fault injection (for tests and dry runs).
-* Errors: :class:`DeviceError` (an InputError: exit 2), :class:`SensorStale`,
-  :class:`LoopFault` (watchdog or limit: the CLI exits 4).
+  fault injection (stale, silent, nan, range, junk, drop, mute; ``sim://?fault=nan@2.0``).
+* Errors: :class:`DeviceError` (an InputError: exit 2 when the device is opened),
+  :class:`SensorStale` (counted by the watchdog), :class:`DeviceFault` (connection lost,
+  junk, out of range: in the loop it stops the run at once), :class:`LoopFault` (watchdog,
+  limit or device fault, after venting).
+
+Exit codes of ``exofric control run`` (defined in :data:`exofric.errors.EXIT_CODES`):
+
+* 0 -- the run completed and the device confirmed the vent;
+* 2 -- bad input found before the loop starts: bad option, URL or register map, an
+  unreachable device, a refused handshake, a set-point above the limits;
+* 3 -- (not used by ``control run``) a solver did not converge;
+* 4 -- a run-time fault stopped the run and the tube was vented: watchdog (silent or frozen
+  sensor, NaN readings), pressure or force limit, device fault (connection dropped, junk or
+  out-of-range values, a refused write); one line on stderr names the fault and the time in s
+  since the start; the log keeps every sample up to it;
+* 5 -- the vent could not be confirmed, even on a fresh connection: the tube may still be
+  pressurised (close the supply by hand); one loud line on stderr;
+* 130 -- Ctrl-C: vented (5 instead when the vent was not confirmed), log written.
 
 Units: pressure MPa (gauge), force N, time s (jitter in ms).
 
@@ -36,6 +54,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.hardware._device import (
         Device,
         DeviceError,
+        DeviceFault,
         LoopFault,
         Reading,
         SensorStale,
@@ -58,7 +77,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
 # Lazy facade (PEP 562): pymodbus and pyserial load only with the backend that needs them.
 _MODULES: dict[str, tuple[str, ...]] = {
     "_clock": ("Clock", "RealClock", "SimClock"),
-    "_device": ("Device", "DeviceError", "LoopFault", "Reading", "SensorStale",
+    "_device": ("Device", "DeviceError", "DeviceFault", "LoopFault", "Reading", "SensorStale",
                 "default_friction_map", "open_device", "parse_url"),
     "_loop": ("LoopResult", "SafetyLimits", "run_loop"),
     "_modbus": ("DEFAULT_MAP_PATH", "RegisterMap", "RegisterSpec", "decode_registers",
@@ -70,8 +89,9 @@ _HOME = {name: mod for mod, names in _MODULES.items() for name in names}
 
 __all__ = [
     "Clock", "DEFAULT_MAP_PATH", "decode_registers", "default_friction_map", "Device",
-    "DeviceError", "encode_registers", "load_register_map", "LoopFault", "LoopResult",
-    "ModbusSimServer", "open_device", "parse_url", "PROTOCOL_VERSION", "Reading", "RealClock",
+    "DeviceError", "DeviceFault", "encode_registers", "load_register_map", "LoopFault",
+    "LoopResult", "ModbusSimServer", "open_device", "parse_url", "PROTOCOL_VERSION", "Reading",
+    "RealClock",
     "RegisterMap", "RegisterSpec", "run_loop", "SafetyLimits", "SensorStale",
     "SerialSimDevice", "SimClock", "SimRig", "SimulatedDevice",
 ]

@@ -5,16 +5,21 @@ A *device* is whatever sits between the control loop and the rig: it reads the t
 and can vent (open the tube to exhaust). Backends are chosen by URL:
 
 * ``sim://?speed=1`` -- the simulated plant in process (``speed`` x real time; 0 = as fast as
-  possible on a simulated clock);
+  possible on a simulated clock; ``fault=KIND@T`` injects a fault T s after the start, see
+  :class:`~exofric.hardware.SimRig`);
 * ``modbus-tcp://HOST:PORT?unit=1`` and ``modbus-rtu:///dev/ttyX?baud=115200&unit=1`` --
   pymodbus (sync client) with a register map TOML (see :func:`load_register_map`);
 * ``serial:///dev/ttyX?baud=115200`` -- pyserial, the exofric line protocol
   (``examples/serial-protocol.md``).
 
 Errors: :class:`DeviceError` (an :class:`~exofric.errors.InputError`: the CLI exits 2) for a
-device that cannot be reached or does not match its map; :class:`SensorStale` (a DeviceError)
-when a read times out or the device says its sensor is stale -- the control loop's watchdog
-counts these and stops with a :class:`LoopFault` after ``watchdog_s``.
+device that cannot be reached or does not match its map when it is opened;
+:class:`SensorStale` (a DeviceError) when a read times out or the device says its sensor is
+stale -- the control loop's watchdog counts these and stops with a :class:`LoopFault` after
+``watchdog_s``; :class:`DeviceFault` (a DeviceError) for what a retry will not cure: the
+connection or port is gone, an answer that cannot be parsed, a value outside the sensor's
+declared range. Once the loop runs, every DeviceError other than SensorStale stops it at once:
+vent (retried on a fresh connection, :meth:`reconnect`), :class:`LoopFault` ``'device fault'``.
 """
 
 from __future__ import annotations
@@ -33,8 +38,9 @@ if TYPE_CHECKING:
     from exofric.control import PressurePlant
 
 __all__ = [
-    "DEFAULT_CONNECT_TIMEOUT_S", "DEFAULT_IO_TIMEOUT_S", "Device", "DeviceError", "DeviceURL",
-    "LoopFault", "Reading", "SensorStale", "default_friction_map", "open_device", "parse_url",
+    "DEFAULT_CONNECT_TIMEOUT_S", "DEFAULT_IO_TIMEOUT_S", "Device", "DeviceError", "DeviceFault",
+    "DeviceURL", "LoopFault", "Reading", "SensorStale", "VENT_NOT_CONFIRMED",
+    "default_friction_map", "open_device", "parse_url",
 ]
 
 #: Connect timeout in s for Modbus TCP (an unreachable host fails after this).
@@ -90,17 +96,49 @@ class SensorStale(DeviceError):
         super().__init__(message, "device")
 
 
-class LoopFault(RuntimeError):
-    """The control loop stopped on a fault (watchdog or a limit) and vented the device.
+class DeviceFault(DeviceError):
+    """The device failed in a way a retry will not cure.
 
-    The CLI maps it to exit code 4 and prints the one-line message (reason and time). The
-    message ends in ``(vented)``, or in ``(NOT vented: the vent failed)`` when ``result``
-    says the vent did not succeed -- then close the supply by hand.
+    The connection or the port is gone, an answer cannot be parsed (junk on the line), or a
+    value lies outside the sensor's declared range. Raised while the device is opened it is a
+    :class:`DeviceError` (exit 2); raised in the control loop it stops the run at once:
+    vent, :class:`LoopFault` ``'device fault'`` (exit 4, or 5 when the vent is not confirmed).
+
+    Parameters
+    ----------
+    message : str
+        One line naming the device and what failed.
+
+    Examples
+    --------
+    >>> isinstance(DeviceFault("modbus-tcp://10.0.0.9:502: connection lost"), DeviceError)
+    True
+    """
+
+    def __init__(self, message: str) -> None:
+        super().__init__(message, "device")
+
+
+#: The end of a :class:`LoopFault` message when the vent was not confirmed.
+VENT_NOT_CONFIRMED = ("NOT vented: vent not confirmed: the tube may still be pressurised; "
+                      "close the supply by hand")
+
+
+class LoopFault(RuntimeError):
+    """The control loop stopped on a fault and vented the device.
+
+    Reasons: ``'watchdog'`` (no valid or no new reading for ``watchdog_s``), ``'pressure
+    limit'``, ``'force limit'``, ``'device fault'`` (a :class:`DeviceError` other than
+    :class:`SensorStale` in the loop: connection lost, junk, a value out of the declared range).
+    The CLI prints the one-line message (reason and time in s since the start) and exits 4
+    (:attr:`exit_code`). The message ends in ``(vented)``, or, when ``result`` says the vent
+    could not be confirmed (even on a fresh connection), in ``(NOT vented: vent not confirmed:
+    the tube may still be pressurised; close the supply by hand)`` -- then the CLI exits 5.
 
     Parameters
     ----------
     reason : str
-        ``'watchdog'``, ``'pressure limit'`` or ``'force limit'``.
+        ``'watchdog'``, ``'pressure limit'``, ``'force limit'`` or ``'device fault'``.
     time_s : float
         Time of the fault in s since the loop started.
     detail : str
@@ -111,18 +149,30 @@ class LoopFault(RuntimeError):
     Examples
     --------
     >>> f = LoopFault("watchdog", 3.02, "sensor unchanged for 0.5 s")
-    >>> str(f), f.time_s
-    ('watchdog at 3.020 s: sensor unchanged for 0.5 s (vented)', 3.02)
+    >>> str(f), f.time_s, f.exit_code
+    ('watchdog at 3.020 s: sensor unchanged for 0.5 s (vented)', 3.02, 4)
     """
 
     def __init__(self, reason: str, time_s: float, detail: str, result: Any = None) -> None:
         vented = bool(getattr(result, "vented", True))
-        how = "vented" if vented else "NOT vented: the vent failed"
+        how = "vented" if vented else VENT_NOT_CONFIRMED
         super().__init__(f"{reason} at {time_s:.3f} s: {detail} ({how})")
         self.reason = reason
         self.time_s = time_s
         self.detail = detail
         self.result = result
+
+    @property
+    def vent_confirmed(self) -> bool:
+        """Whether the device confirmed the vent (True when there is no result)."""
+        return bool(getattr(self.result, "vented", True))
+
+    @property
+    def exit_code(self) -> int:
+        """The CLI's exit code: 4 (vented) or 5 (vent not confirmed); see exofric.errors."""
+        from exofric.errors import EXIT_FAULT, EXIT_VENT_NOT_CONFIRMED
+
+        return EXIT_FAULT if self.vent_confirmed else EXIT_VENT_NOT_CONFIRMED
 
 
 @dataclass(frozen=True)
@@ -156,7 +206,9 @@ class Device(Protocol):
     """What the control loop needs from a rig (all backends satisfy it).
 
     Units: pressure MPa (gauge), force N. A context manager: leaving the ``with`` block
-    vents and closes.
+    vents and closes. Optional, used by the loop where present (the backends have both):
+    ``reconnect()`` -- drop the connection and open a fresh one (the vent's retry after a
+    fault); ``describe()`` -- a short line naming the URL and what is behind it.
 
     Examples
     --------
@@ -215,6 +267,13 @@ class DeviceBase:
 
     def close(self) -> None:  # pragma: no cover - overridden
         raise NotImplementedError
+
+    def reconnect(self) -> None:
+        """Open a fresh connection (default: nothing to do)."""
+
+    def describe(self) -> str:
+        """The URL (backends add what is behind it)."""
+        return self.url
 
     def read_pressure_mpa(self) -> float:
         """Tube pressure in MPa (one :meth:`read`)."""
@@ -314,7 +373,7 @@ class DeviceURL:
         return v
 
 
-_KEYS = {"sim": {"speed"}, "modbus-tcp": {"unit", "timeout"},
+_KEYS = {"sim": {"speed", "fault"}, "modbus-tcp": {"unit", "timeout"},
          "modbus-rtu": {"unit", "baud", "timeout", "parity", "stopbits"},
          "serial": {"baud", "timeout"}}
 
@@ -397,6 +456,24 @@ def default_friction_map() -> Any:
                             paper.scalar("gamma"))
 
 
+def _sim_fault(u: DeviceURL) -> tuple[str, float | None]:
+    """``sim://?fault=KIND@T`` -> (KIND, T in s); ('stale', None) without ``fault``."""
+    from exofric.hardware._sim import FAULTS
+
+    raw = u.query.get("fault")
+    if raw is None:
+        return "stale", None
+    kind, _, at = raw.partition("@")
+    try:
+        t = float(at) if at else 0.0
+    except ValueError:
+        t = math.nan
+    if kind not in FAULTS or not (math.isfinite(t) and 0.0 <= t <= 1e6):
+        raise DeviceError(f"{u.text}: fault must be KIND@T with KIND one of {', '.join(FAULTS)}"
+                          f" and T in [0, 1e6] s (e.g. fault=nan@2.0), got {raw!r}")
+    return kind, t
+
+
 def open_device(
     url: str,
     map_path: str | Path | None = None,
@@ -409,7 +486,8 @@ def open_device(
     Parameters
     ----------
     url : str
-        Device URL: ``sim://?speed=1``, ``modbus-tcp://HOST:PORT?unit=1&timeout=0.25``,
+        Device URL: ``sim://?speed=1`` (``&fault=nan@2.0``: inject a fault, see
+        :class:`~exofric.hardware.SimRig`), ``modbus-tcp://HOST:PORT?unit=1&timeout=0.25``,
         ``modbus-rtu:///dev/ttyX?baud=115200&unit=1``, ``serial:///dev/ttyX?baud=115200``
         (``timeout`` in s per request).
     map_path : str, Path or None
@@ -447,8 +525,10 @@ def open_device(
     if u.scheme == "sim":
         from exofric.hardware._sim import SimulatedDevice
 
+        kind, at_s = _sim_fault(u)
         return SimulatedDevice(plant=plant, friction=friction,
-                               speed=u.number("speed", 1.0, 0.0, 1e4), url=u.text)
+                               speed=u.number("speed", 1.0, 0.0, 1e4), url=u.text,
+                               freeze_after_s=at_s, fault=kind)
     if u.scheme.startswith("modbus"):
         from exofric.hardware._modbus import ModbusDevice, load_register_map
 

@@ -4,7 +4,11 @@ Scheduling: sample k is due at ``start + k dt`` (dt = 1/rate); the loop sleeps u
 records the jitter (actual - scheduled wake-up time), reads the device, steps the controller
 with the *measured* elapsed time and writes the set-point. When a sample's work ends after the
 next deadline the loop counts an *overrun* and moves to the next future grid point (skipped
-samples are counted), so lateness never accumulates into drift.
+samples are counted), so lateness never accumulates into drift. Timing is reported honestly:
+the achieved rate (cycles run per second between the first and the last) is in the result, and
+when more than 1 % of the grid points were skipped or more than 1 % of the cycles overran, a
+warning (``warnings`` of the result; a :class:`~exofric.errors.PlausibilityWarning` when the
+run completes) states the achieved rate against the requested one.
 
 Safety, in this order every sample:
 
@@ -18,11 +22,17 @@ Safety, in this order every sample:
   above ``max_force_n`` (or needing a model pressure above ``max_pressure_mpa``) is refused
   before start (:class:`~exofric.errors.InputError`); a non-finite controller output is an
   error (vent, stop) and never reaches the device;
-* Ctrl-C (KeyboardInterrupt) and any exception -> vent, write the log, re-raise.
+* device faults -- a :class:`~exofric.hardware.DeviceError` other than ``SensorStale`` from a
+  read or a set-point write (connection lost, junk on the line, a value outside the declared
+  range, a refused write): vent, stop at once, :class:`LoopFault` ``'device fault'``;
+* Ctrl-C (KeyboardInterrupt) and any other exception -> vent, write the log, re-raise (with
+  the run so far as the exception's ``result`` attribute).
 
 Every stop vents (a completed run too, unless ``vent_at_end=False``); a failed vent is tried
-once more, and a Ctrl-C that lands inside it does not cut it short. The result's ``vented``
-and the log's ``vented:`` line say whether it succeeded.
+once more on a fresh connection (the device's ``reconnect()``: Modbus re-opens its client,
+serial re-opens the port and repeats the handshake), and a Ctrl-C that lands inside it does
+not cut it short. The result's ``vented`` and the log's ``vented:`` line say whether the device
+confirmed it; a LoopFault whose vent was not confirmed says so (the CLI exits 5, not 4).
 
 The log (CSV, the rig-log schema of :func:`exofric.io.read_raw_log`): ``time_s``,
 ``pressure_mpa``, ``force_n``, ``setpoint_n``, ``command_mpa``, ``p_term_mpa``, ``i_term_mpa``,
@@ -36,6 +46,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import math
+import warnings as _warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -44,9 +55,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric import defaults as D
-from exofric.errors import InputError, check_range
+from exofric.errors import InputError, PlausibilityWarning, check_range
 from exofric.hardware._clock import RealClock
-from exofric.hardware._device import LoopFault, SensorStale
+from exofric.hardware._device import DeviceError, LoopFault, SensorStale
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -66,6 +77,8 @@ LOOP_MAX_FORCE_N = D.LOOP_MAX_FORCE_N
 LOOP_WATCHDOG_S = D.LOOP_WATCHDOG_S
 #: Partial-log flush interval in samples.
 _FLUSH_EVERY = 50
+#: Skipped grid points (of all) or overrun cycles (of those run) above this fraction warn.
+TIMING_WARN_FRACTION = 0.01
 
 
 @dataclass(frozen=True)
@@ -129,7 +142,7 @@ class LoopResult:
         Grid points skipped to catch up after overruns.
     stopped_reason : str
         ``'completed'``, ``'watchdog'``, ``'pressure limit'``, ``'force limit'``,
-        ``'interrupted'`` or ``'error'``.
+        ``'device fault'``, ``'interrupted'`` or ``'error'``.
     stopped_at_s : float
         Time in s of the stop (since the first sample).
     vented : bool
@@ -144,6 +157,15 @@ class LoopResult:
         The log written.
     samples : dict of str to ndarray
         The log's columns (see ``LOG_COLUMNS``; s, MPa, N, ms).
+    cycles : int
+        Loop cycles run (grid points not skipped; a cycle without a valid reading logs no row).
+    achieved_rate_hz : float
+        Cycles per second actually run: (cycles - 1) / (time of the last cycle - time of the
+        first), in Hz; NaN with fewer than two cycles.
+    warnings : tuple of str
+        Timing warnings (skipped or overrun cycles above 1 %, with the achieved rate).
+    plant : str
+        What the device is: its URL and what is behind it (``device.describe()``).
 
     Examples
     --------
@@ -171,9 +193,14 @@ class LoopResult:
     metrics: Any
     log_path: str | None
     samples: dict[str, np.ndarray] = field(repr=False)
+    cycles: int = 0
+    achieved_rate_hz: float = math.nan
+    warnings: tuple[str, ...] = ()
+    plant: str = ""
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (the CLI's ``--json``): metrics, jitter (ms), overruns, vented."""
+        """JSON-ready summary (the CLI's ``--json``): metrics, jitter (ms), overruns, vented,
+        the achieved rate (Hz) and the timing warnings."""
         m = self.metrics.to_dict() if self.metrics is not None else {}
         return {
             "device": self.device, "rate_hz": self.rate_hz, "duration_s": self.duration_s,
@@ -185,9 +212,12 @@ class LoopResult:
             "target_friction_n": m.get("target_friction_n"),
             "jitter_p50_ms": self.jitter_p50_ms, "jitter_p99_ms": self.jitter_p99_ms,
             "jitter_max_ms": self.jitter_max_ms, "overruns": self.overruns,
-            "skipped": self.skipped, "stopped_reason": self.stopped_reason,
+            "skipped": self.skipped, "cycles": self.cycles,
+            "achieved_rate_hz": (None if math.isnan(self.achieved_rate_hz)
+                                 else self.achieved_rate_hz),
+            "stopped_reason": self.stopped_reason,
             "stopped_at_s": self.stopped_at_s, "vented": self.vented, "dry_run": self.dry_run,
-            "log_path": self.log_path,
+            "log_path": self.log_path, "plant": self.plant, "warnings": list(self.warnings),
         }
 
     def to_frame(self) -> pd.DataFrame:
@@ -205,15 +235,18 @@ def _fmt(v: float) -> str:
     return "" if v != v else repr(float(v))
 
 
-#: Vent attempts at the end of a run (a failed vent is retried).
+#: Vent attempts at the end of a run (a failed vent is retried on a fresh connection).
 _VENT_ATTEMPTS = 2
 
 
 def _safe_vent(device: Any) -> tuple[bool, KeyboardInterrupt | None]:
-    """Vent, retrying once; (vented, a Ctrl-C that arrived meanwhile, to re-raise)."""
+    """Vent, retrying once on a fresh connection (``device.reconnect()`` where there is one);
+    (vented, a Ctrl-C that arrived meanwhile, to re-raise)."""
     interrupt: KeyboardInterrupt | None = None
-    for _ in range(_VENT_ATTEMPTS):
+    for attempt in range(_VENT_ATTEMPTS):
         try:
+            if attempt > 0 and hasattr(device, "reconnect"):
+                device.reconnect()
             device.vent()
             return True, interrupt
         except KeyboardInterrupt as exc:  # a second Ctrl-C must not cut the vent short
@@ -221,6 +254,16 @@ def _safe_vent(device: Any) -> tuple[bool, KeyboardInterrupt | None]:
         except Exception:  # noqa: BLE001, S112 - not vented: retried, then reported
             continue
     return False, interrupt
+
+
+def _plant_of(device: Any) -> str:
+    """``device.describe()`` (its URL and what is behind it), else its URL."""
+    url = str(getattr(device, "url", type(device).__name__))
+    describe = getattr(device, "describe", None)
+    try:
+        return str(describe()) if callable(describe) else url
+    except Exception:  # noqa: BLE001 - a description must never stop a run
+        return url
 
 
 def _terms(controller: Any, u: float) -> tuple[float, float, float, float]:
@@ -306,9 +349,10 @@ def run_loop(
     InputError
         Bad arguments, or a set-point above the limits (refused before start).
     LoopFault
-        Watchdog or limit trip (device vented, log written; ``.result`` holds the run).
+        Watchdog, limit or device fault (device vented -- or ``.vent_confirmed`` False --, log
+        written; ``.result`` holds the run).
     KeyboardInterrupt
-        Ctrl-C, after venting and writing the log.
+        Ctrl-C, after venting and writing the log (``.result`` holds the run).
 
     Examples
     --------
@@ -355,8 +399,10 @@ def run_loop(
     clk = clock if clock is not None else getattr(device, "clock", None) or RealClock()
 
     started = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
+    plant = _plant_of(device)
     head = ["exofric control run (rig log)", f"started: {started}",
-            f"device: {getattr(device, 'url', type(device).__name__)}", *_describe(controller),
+            f"device: {getattr(device, 'url', type(device).__name__)}", f"plant: {plant}",
+            *_describe(controller),
             f"rate_hz: {rate_hz:g}", f"duration_s: {duration_s:g}",
             f"limits: max_pressure_mpa={lim.max_pressure_mpa:g}, trip_pressure_mpa="
             f"{lim.trip_mpa:g}, max_force_n={lim.max_force_n:g}", f"watchdog_s: {watchdog_s:g}",
@@ -371,7 +417,9 @@ def run_loop(
         fh.flush()
 
     rows: list[tuple[float, ...]] = []
-    state: dict[str, Any] = {"reason": "completed", "t_stop": 0.0, "overruns": 0, "skipped": 0}
+    state: dict[str, Any] = {"reason": "completed", "t_stop": 0.0, "overruns": 0, "skipped": 0,
+                             "cycles": 0, "t_first": math.nan, "t_last": math.nan,
+                             "plant": plant}
     fault: tuple[str, float, str] | None = None
     failure: BaseException | None = None
     start = 0.0
@@ -392,10 +440,17 @@ def run_loop(
             t_now = clk.now()
             t_rel = t_now - start
             state["t_stop"] = t_rel
+            state["cycles"] += 1
+            if state["cycles"] == 1:
+                state["t_first"] = t_now
+            state["t_last"] = t_now
             try:
                 r = device.read()
             except SensorStale as exc:
                 r, last_err = None, str(exc)
+            except DeviceError as exc:      # connection lost, junk, out of range: stop now
+                fault = ("device fault", clk.now() - start, " ".join(str(exc).split()))
+                break
             if r is not None and not (math.isfinite(r.pressure_mpa)
                                       and math.isfinite(r.force_n)):
                 # NaN compares False with every limit: it must not pass as a reading
@@ -441,7 +496,12 @@ def run_loop(
                                          f"force {r.force_n:g} N): stopped and vented")
                     cmd = min(max(u, 0.0), lim.max_pressure_mpa)
                     if not dry_run:
-                        device.write_setpoint_mpa(cmd)
+                        try:
+                            device.write_setpoint_mpa(cmd)
+                        except DeviceError as exc:      # not confirmed: stop now
+                            fault = ("device fault", clk.now() - start,
+                                     " ".join(str(exc).split()))
+                            break
                     terms = tuple(_terms(controller, u))
                 row = (t_rel, r.pressure_mpa, r.force_n, target, cmd, *terms,
                        1000.0 * (t_now - t_sched))
@@ -481,7 +541,9 @@ def run_loop(
                 f"vented: {str(vented).lower()}", f"samples: {result.n_samples}",
                 f"jitter_ms: p50={result.jitter_p50_ms:.3f}, p99={result.jitter_p99_ms:.3f}, "
                 f"max={result.jitter_max_ms:.3f}",
-                f"overruns: {result.overruns}, skipped: {result.skipped}"]
+                f"overruns: {result.overruns}, skipped: {result.skipped}, cycles: "
+                f"{result.cycles}, achieved_rate_hz: {result.achieved_rate_hz:.4g}",
+                *[f"warning: {w}" for w in result.warnings]]
         try:
             from exofric.io import write_raw_log
 
@@ -491,9 +553,15 @@ def run_loop(
             if failure is None:
                 raise
     if failure is not None:
+        try:
+            failure.result = result      # type: ignore[attr-defined]  # the run so far
+        except AttributeError:           # pragma: no cover - an exception with __slots__
+            pass
         raise failure
     if fault is not None:
         raise LoopFault(fault[0], fault[1], fault[2], result)
+    for w in result.warnings:            # a completed run: say it on stderr too
+        _warnings.warn(w, PlausibilityWarning, stacklevel=2)
     return result
 
 
@@ -515,8 +583,22 @@ def _result(device: Any, rows: list[tuple[float, ...]], rate_hz: float, state: d
             metrics = step_metrics(t, f, float(r[-1]))
         except InputError:
             metrics = None
+    cycles = int(state.get("cycles", 0))
+    span = float(state.get("t_last", math.nan)) - float(state.get("t_first", math.nan))
+    achieved = (cycles - 1) / span if cycles >= 2 and span > 0.0 else math.nan
+    skipped, overruns = int(state["skipped"]), int(state["overruns"])
+    warns: list[str] = []
+    if cycles and (skipped > TIMING_WARN_FRACTION * (cycles + skipped)
+                   or overruns > TIMING_WARN_FRACTION * cycles):
+        got = "-" if math.isnan(achieved) else f"{achieved:.4g}"
+        warns.append(f"control loop ran at {got} Hz of the requested {rate_hz:g} Hz: "
+                     f"{skipped} of {cycles + skipped} cycles skipped, {overruns} of {cycles} "
+                     "overran their period (the machine is loaded or the device is slow; "
+                     "lower the rate or free the machine)")
+    url = str(getattr(device, "url", type(device).__name__))
+    plant = str(state.get("plant") or _plant_of(device))
     return LoopResult(
-        device=str(getattr(device, "url", type(device).__name__)), rate_hz=float(rate_hz),
+        device=url, rate_hz=float(rate_hz),
         duration_s=float(t[-1] - t[0]) if t.size else 0.0,
         n_samples=int(samples["time_s"].size),
         jitter_p50_ms=float(pct[0]), jitter_p99_ms=float(pct[1]),
@@ -524,4 +606,5 @@ def _result(device: Any, rows: list[tuple[float, ...]], rate_hz: float, state: d
         overruns=int(state["overruns"]), skipped=int(state["skipped"]),
         stopped_reason=str(state["reason"]), stopped_at_s=float(state["t_stop"]),
         vented=bool(vented), dry_run=bool(dry_run), metrics=metrics,
-        log_path=None if log is None else str(log), samples=samples)
+        log_path=None if log is None else str(log), samples=samples, cycles=cycles,
+        achieved_rate_hz=float(achieved), warnings=tuple(warns), plant=plant)

@@ -41,6 +41,7 @@ from exofric.hardware._device import (
     DEFAULT_IO_TIMEOUT_S,
     DeviceBase,
     DeviceError,
+    DeviceFault,
     DeviceURL,
     Reading,
     SensorStale,
@@ -486,13 +487,19 @@ class ModbusDevice(DeviceBase):
         return out
 
     def _request(self, what: str, call: Any, *args: Any, **kwargs: Any) -> Any:
-        from pymodbus.exceptions import ModbusException
+        from pymodbus.exceptions import ConnectionException, ModbusException
 
         try:
             rr = call(*args, device_id=self.unit_id, **kwargs)
-        except ModbusException as exc:
+        except ConnectionException as exc:       # closed by the peer, refused, unplugged
+            raise DeviceFault(f"{self.url}: {what}: connection lost "
+                              f"({' '.join(str(exc).split())})") from None
+        except ModbusException as exc:           # no answer in time, a garbled frame
             raise SensorStale(f"{self.url}: {what}: no valid answer within {self.timeout_s:g} s "
                               f"({' '.join(str(exc).split())})") from None
+        except (OSError, ValueError, struct.error) as exc:   # the port or a frame broke
+            raise DeviceFault(f"{self.url}: {what}: {type(exc).__name__}: "
+                              f"{' '.join(str(exc).split())}") from None
         if rr.isError():
             code = getattr(rr, "exception_code", None)
             if code == 2:
@@ -512,11 +519,13 @@ class ModbusDevice(DeviceBase):
         Raises
         ------
         SensorStale
-            No valid answer within the timeout, or a device exception other than an illegal
-            address.
+            No valid answer within the timeout, a non-finite float, or a device exception other
+            than an illegal address.
+        DeviceFault
+            The connection is lost, or a value lies outside the declared sensor range (the map
+            does not match the device, or the sensor sends garbage).
         DeviceError
-            Illegal address, or a value outside the declared sensor range (the map does not
-            match the device).
+            Illegal address (the map does not match the device).
         """
         values: dict[str, float] = {}
         for table, lo, count, specs in self._groups:
@@ -538,7 +547,7 @@ class ModbusDevice(DeviceBase):
             if not math.isfinite(v):        # a float32 NaN/inf: the sensor has no value
                 raise SensorStale(f"{self.url}: {s.describe()} reads {v} (no valid value)")
             if s.range is not None and not s.range[0] <= v <= s.range[1]:
-                raise DeviceError(f"{self.url}: {s.describe()} reads {v:g} {s.unit}, outside its "
+                raise DeviceFault(f"{self.url}: {s.describe()} reads {v:g} {s.unit}, outside its "
                                   f"declared range [{s.range[0]:g}, {s.range[1]:g}] {s.unit}: "
                                   f"the register map {Path(self.map.source).name} does not "
                                   "match the device")
@@ -596,6 +605,26 @@ class ModbusDevice(DeviceBase):
         if error is not None:
             raise error
         self._vented = True
+
+    def reconnect(self) -> None:
+        """Close the connection (TCP socket or serial port) and open a fresh one.
+
+        Raises
+        ------
+        DeviceFault
+            The device refuses the new connection (or the port cannot be opened).
+        """
+        try:
+            self.client.close()
+        except Exception:  # noqa: BLE001, S110 - the old connection is dead anyway
+            pass
+        if not self.client.connect():
+            raise DeviceFault(f"{self.url}: reconnect refused (no connection within "
+                              f"{self.timeout_s:g} s)")
+
+    def describe(self) -> str:
+        """The URL and the register map."""
+        return f"{self.url} (register map {Path(self.map.source).name})"
 
     def close(self) -> None:
         """Close the connection."""

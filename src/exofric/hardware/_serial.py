@@ -12,8 +12,11 @@ terminated, host first; every command gets exactly one answer line:
 * ``W <ms>`` -> ``OK`` (device watchdog: vent when no command arrives for ``ms``; 0 = off)
   or ``ERR <text>``.
 
-A refused ``S`` or ``W`` is a :class:`DeviceError`; ``ERR`` to ``R`` (e.g. ``ERR stale``)
-and a missing answer are :class:`SensorStale`, counted by the control loop's watchdog.
+A refused ``S`` or ``W`` is a :class:`DeviceError`; ``ERR`` to ``R`` (e.g. ``ERR stale``),
+a missing answer and a well-formed ``D`` line with a non-finite value (``nan``) are
+:class:`SensorStale`, counted by the control loop's watchdog; an answer that cannot be parsed
+(junk on the line) and a port that fails (unplugged) are :class:`DeviceFault`: the loop vents
+(on a reopened port when the old one is dead) and stops at once.
 """
 
 from __future__ import annotations
@@ -29,6 +32,7 @@ from exofric.hardware._device import (
     DEFAULT_IO_TIMEOUT_S,
     DeviceBase,
     DeviceError,
+    DeviceFault,
     DeviceURL,
     Reading,
     SensorStale,
@@ -66,23 +70,49 @@ class SerialDevice(DeviceBase):
     """
 
     def __init__(self, url: DeviceURL) -> None:
-        import serial
-
         self.url = url.text
         self.timeout_s = url.number("timeout", DEFAULT_IO_TIMEOUT_S, 0.001, 60.0, "s")
-        baud = int(url.number("baud", DEFAULT_BAUD, 50, 4e6, "bit/s"))
-        try:
-            self.port: Any = serial.Serial(url.path, baudrate=baud, timeout=self.timeout_s,
-                                           write_timeout=self.timeout_s)
-        except (serial.SerialException, OSError, ValueError) as exc:
-            why = " ".join(str(exc).split())
-            raise DeviceError(f"{self.url}: cannot open the port ({why})") from None
+        self._path = url.path
+        self._baud = int(url.number("baud", DEFAULT_BAUD, 50, 4e6, "bit/s"))
+        self.port: Any = self._open(DeviceError)
         try:
             self.identity = self._handshake()
             self._command(f"W {DEVICE_WATCHDOG_MS}", expect="OK")
         except DeviceError:
             self.port.close()
             raise
+
+    def _open(self, error: type[DeviceError]) -> Any:
+        import serial
+
+        try:
+            return serial.Serial(self._path, baudrate=self._baud, timeout=self.timeout_s,
+                                 write_timeout=self.timeout_s)
+        except (serial.SerialException, OSError, ValueError) as exc:
+            why = " ".join(str(exc).split())
+            raise error(f"{self.url}: cannot open the port ({why})") from None
+
+    def reconnect(self) -> None:
+        """Close the port, reopen it and repeat the handshake (up to 2 s: boards reset).
+
+        Raises
+        ------
+        DeviceFault
+            The port cannot be reopened or the device does not answer the handshake.
+        """
+        try:
+            self.port.close()
+        except Exception:  # noqa: BLE001, S110 - the old port is dead anyway
+            pass
+        self.port = self._open(DeviceFault)
+        try:
+            self.identity = self._handshake()
+        except DeviceError as exc:
+            raise DeviceFault(str(exc)) from None
+
+    def describe(self) -> str:
+        """The URL and the firmware's handshake line."""
+        return f"{self.url} ({self.identity})"
 
     def _handshake(self) -> str:
         end = time.monotonic() + DEFAULT_CONNECT_TIMEOUT_S
@@ -112,6 +142,7 @@ class SerialDevice(DeviceBase):
         import serial
 
         port = self.port
+        word = line.split()[0] if line.split() else repr(line)
         try:
             if port.in_waiting:
                 port.reset_input_buffer()      # a late answer to an earlier, timed-out command
@@ -123,9 +154,11 @@ class SerialDevice(DeviceBase):
             finally:
                 if timeout_s is not None:
                     port.timeout = self.timeout_s
-        except (serial.SerialException, OSError) as exc:
-            raise SensorStale(f"{self.url}: {line.split()[0]!r}: "
-                              f"{' '.join(str(exc).split())}") from None
+        except serial.SerialTimeoutException as exc:     # a write that did not drain in time
+            raise SensorStale(f"{self.url}: {word!r}: {' '.join(str(exc).split())}") from None
+        except (serial.SerialException, OSError) as exc:  # the port is gone (unplugged)
+            raise DeviceFault(f"{self.url}: {word!r}: port failed "
+                              f"({' '.join(str(exc).split())})") from None
         if not raw.endswith(b"\n"):
             raise SensorStale(f"{self.url}: no answer to {line.split()[0]!r} within "
                               f"{timeout_s or self.timeout_s:g} s")
@@ -136,7 +169,7 @@ class SerialDevice(DeviceBase):
                 raise SensorStale(msg)
             raise DeviceError(msg)
         if expect is not None and answer != expect:
-            raise DeviceError(f"{self.url}: expected {expect!r} to {line.split()[0]!r}, got "
+            raise DeviceFault(f"{self.url}: expected {expect!r} to {line.split()[0]!r}, got "
                               f"{answer!r}")
         return answer
 
@@ -151,9 +184,9 @@ class SerialDevice(DeviceBase):
         Raises
         ------
         SensorStale
-            No answer within the timeout, or ``ERR``.
-        DeviceError
-            A malformed answer.
+            No answer within the timeout, ``ERR``, or a non-finite value (``nan``, ``inf``).
+        DeviceFault
+            A malformed answer (junk on the line) or a failed port.
         """
         answer = self._command("R")
         words = answer.split()
@@ -161,11 +194,12 @@ class SerialDevice(DeviceBase):
             if len(words) != 4 or words[0] != "D":
                 raise ValueError
             t_ms, p, f = int(words[1]), float(words[2]), float(words[3])
-            if not (math.isfinite(p) and math.isfinite(f)):
-                raise ValueError
         except ValueError:
-            raise DeviceError(f"{self.url}: malformed answer to 'R': {answer!r} (expected "
+            raise DeviceFault(f"{self.url}: malformed answer to 'R': {answer[:60]!r} (expected "
                               "'D <t_ms> <p_mpa> <f_n>')") from None
+        if not (math.isfinite(p) and math.isfinite(f)):
+            raise SensorStale(f"{self.url}: 'R' reads pressure {p} MPa, force {f} N "
+                              "(no valid value)")
         return Reading(p, f, t_ms)
 
     def write_setpoint_mpa(self, pressure_mpa: float) -> None:

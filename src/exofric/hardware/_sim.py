@@ -3,14 +3,26 @@
 All three are backed by a :class:`SimRig`: a pressure plant (``pressure_mpa``,
 ``advance(command_mpa, dt)``; default :class:`exofric.control.PneumaticPlant`) followed by a
 friction map F(P) (default: the paper's Eq 9), advanced to the current time whenever the
-sensors are read or a set-point is written. Fault injection: ``freeze_after_s`` freezes the
-sensor after that many seconds -- ``fault="stale"`` keeps answering with the last sample (same
-values, same sample counter), ``fault="silent"`` stops answering reads.
+sensors are read or a set-point is written. Fault injection (:data:`FAULTS`): ``fault`` starts
+``freeze_after_s`` seconds after the rig was made --
+
+* ``stale`` -- the sensor freezes: the last sample again (same values, same counter);
+* ``silent`` -- reads get no answer (Modbus TCP: an exception reply; writes still work);
+* ``nan`` -- the load cell reads NaN (a live counter: the sensor updates but has no value);
+* ``range`` -- the pressure sensor rails at :data:`RAIL_MPA` (3.2767 MPa, int16 full scale of
+  0.1 kPa counts): outside the shipped map's declared range, above any trip pressure;
+* ``junk`` -- answers that cannot be parsed (serial: a garbage line; Modbus: registers of
+  0xDEAD, outside the declared range; ``sim://``: a :class:`DeviceFault`);
+* ``drop`` -- the connection drops once (Modbus TCP: the server closes it and accepts a new
+  one; serial: the pty goes away for good; ``sim://``: a DeviceFault, then reconnects);
+* ``mute`` -- the device dies: no answer to anything, the vent included (Modbus TCP: requests
+  are never answered; serial: no line at all; ``sim://``: reads, vents and reconnects fail).
 """
 
 from __future__ import annotations
 
 import asyncio
+import math
 import os
 import select
 import threading
@@ -19,14 +31,24 @@ import tty
 from typing import Any
 
 from exofric.hardware._clock import RealClock, SimClock
-from exofric.hardware._device import DeviceBase, Reading, SensorStale, default_friction_map
+from exofric.hardware._device import (
+    DeviceBase,
+    DeviceFault,
+    Reading,
+    SensorStale,
+    default_friction_map,
+)
 from exofric.hardware._modbus import RegisterMap, decode_registers, encode_registers
 from exofric.hardware._modbus import load_register_map as _load_map
 from exofric.hardware._serial import PROTOCOL_VERSION
 
-__all__ = ["ModbusSimServer", "SerialSimDevice", "SimRig", "SimulatedDevice"]
+__all__ = ["FAULTS", "RAIL_MPA", "ModbusSimServer", "SerialSimDevice", "SimRig",
+           "SimulatedDevice"]
 
-_FAULTS = ("stale", "silent")
+#: The injectable faults (see the module docstring).
+FAULTS = ("stale", "silent", "nan", "range", "junk", "drop", "mute")
+#: Pressure in MPa the ``range`` fault reads (an int16 of 0.1 kPa counts at full scale).
+RAIL_MPA = 3.2767
 
 
 class SimRig:
@@ -43,9 +65,9 @@ class SimRig:
     clock : Clock or None
         Time source (default real time).
     freeze_after_s : float or None
-        Freeze the sensor this many seconds (on ``clock``) after the rig was made.
-    fault : {'stale', 'silent'}
-        How the frozen sensor behaves: last sample again, or no answer.
+        The fault starts this many seconds (on ``clock``) after the rig was made.
+    fault : str
+        One of :data:`FAULTS` (see the module docstring); default ``'stale'``.
 
     Examples
     --------
@@ -62,8 +84,8 @@ class SimRig:
             from exofric.control import PneumaticParams, PneumaticPlant
 
             plant = PneumaticPlant(PneumaticParams())
-        if fault not in _FAULTS:
-            raise ValueError(f"fault must be stale or silent, got {fault!r}")
+        if fault not in FAULTS:
+            raise ValueError(f"fault must be one of {', '.join(FAULTS)}, got {fault!r}")
         self.plant = plant
         self.friction = friction if friction is not None else default_friction_map()
         self.clock = clock if clock is not None else RealClock()
@@ -73,6 +95,7 @@ class SimRig:
         self.command_mpa = 0.0
         self.vented = True
         self.setpoints: list[float] = []
+        self.vents = 0
         self._t0 = self.clock.now()
         self._t = self._t0
         self._count = 0
@@ -98,7 +121,7 @@ class SimRig:
 
     @property
     def frozen(self) -> bool:
-        """True once the injected sensor fault is active."""
+        """True once the injected fault is active."""
         f = self.freeze_after_s
         return f is not None and self.clock.now() - self._t0 >= f
 
@@ -106,12 +129,17 @@ class SimRig:
         """The sensors now: pressure (MPa), force (N), sample counter; None when silent."""
         with self.lock:
             self._advance()
-            if self.frozen and self._last is not None:
-                return None if self.fault == "silent" else self._last
+            faulty = self.frozen and self._last is not None
+            if faulty and self.fault in ("stale", "silent", "mute"):
+                return None if self.fault != "stale" else self._last
             p = float(self.plant.pressure_mpa)
             self._count += 1
             self._sample_t = self._t
             self._last = Reading(p, float(self.friction(p)), self._count)
+            if faulty and self.fault == "nan":
+                return Reading(p, math.nan, self._count)
+            if faulty and self.fault == "range":
+                return Reading(RAIL_MPA, self._last.force_n, self._count)
             return self._last
 
     def set_command(self, pressure_mpa: float) -> None:
@@ -129,11 +157,12 @@ class SimRig:
             self.setpoints.append(self.command_mpa)
 
     def vent(self) -> None:
-        """Set-point 0 and the vented state."""
+        """Set-point 0 and the vented state (counted in :attr:`vents`)."""
         with self.lock:
             self._advance()
             self.command_mpa = 0.0
             self.vented = True
+            self.vents += 1
 
 
 class SimulatedDevice(DeviceBase):
@@ -149,9 +178,9 @@ class SimulatedDevice(DeviceBase):
     url : str
         The URL it was opened with.
     freeze_after_s : float or None
-        Sensor fault after this many simulated seconds (see :class:`SimRig`).
-    fault : {'stale', 'silent'}
-        The fault's kind.
+        The injected fault starts after this many simulated seconds (see :class:`SimRig`).
+    fault : str
+        The fault's kind, one of :data:`FAULTS` (``sim://?fault=KIND@T``).
 
     Examples
     --------
@@ -168,12 +197,22 @@ class SimulatedDevice(DeviceBase):
         self.clock: Any = SimClock() if speed == 0 else RealClock(speed)
         self.rig = SimRig(plant, friction, clock=self.clock, freeze_after_s=freeze_after_s,
                           fault=fault)
+        self._dropped = False
+
+    def _dead(self) -> bool:
+        return self.rig.frozen and self.rig.fault == "mute"
 
     def read(self) -> Reading:
-        """Pressure (MPa) and force (N) now; SensorStale when the silent fault is on."""
-        r = self.rig.sample()
+        """Pressure (MPa) and force (N) now; SensorStale or DeviceFault when a fault is on."""
+        rig = self.rig
+        if rig.frozen and rig.fault in ("junk", "drop") and not self._dropped:
+            self._dropped = rig.fault == "drop"
+            raise DeviceFault(f"{self.url}: " + ("connection lost (injected)"
+                                                  if rig.fault == "drop" else
+                                                  "unparseable answer (injected junk)"))
+        r = rig.sample()
         if r is None:
-            raise SensorStale(f"{self.url}: no answer (injected silent sensor)")
+            raise SensorStale(f"{self.url}: no answer (injected {rig.fault} sensor)")
         return r
 
     def write_setpoint_mpa(self, pressure_mpa: float) -> None:
@@ -184,14 +223,45 @@ class SimulatedDevice(DeviceBase):
         pressure_mpa : float
             Set-point in MPa (>= 0).
         """
-        self.rig.set_command(self._check_setpoint(pressure_mpa))
+        p = self._check_setpoint(pressure_mpa)
+        if self._dead():
+            raise SensorStale(f"{self.url}: no answer to the set-point (injected dead device)")
+        self.rig.set_command(p)
 
     def vent(self) -> None:
-        """Vent the simulated tube."""
+        """Vent the simulated tube (DeviceFault when the injected ``mute`` fault is on)."""
+        if self._dead():
+            raise DeviceFault(f"{self.url}: no answer to the vent (injected dead device)")
         self.rig.vent()
+
+    def reconnect(self) -> None:
+        """Nothing to reopen (DeviceFault when the injected ``mute`` fault is on)."""
+        if self._dead():
+            raise DeviceFault(f"{self.url}: reconnect refused (injected dead device)")
+
+    def describe(self) -> str:
+        """The URL and the plant behind it."""
+        return f"{self.url} ({_plant_text(self.rig.plant)})"
 
     def close(self) -> None:
         """Nothing to release."""
+
+
+def _plant_text(plant: Any) -> str:
+    """A short description of a simulated plant."""
+    p = getattr(plant, "params", None)
+    name = type(plant).__name__
+    if name == "PneumaticPlant" and p is not None:
+        return (f"physical pneumatic plant: {p.valve} on a {p.supply_mpa:g} MPa supply, "
+                f"{p.line_volume_mm3 + p.tube_volume_mm3:.0f} mm^3 line and tube")
+    if name == "PressurePlant" and p is not None:
+        return (f"first-order plant: tau {p.time_constant_s:g} s, dead time {p.delay_s:g} s, "
+                f"p_max {p.p_max_mpa:g} MPa")
+    return f"simulated plant {name}"
+
+
+#: Modbus function codes that write (their read-back of the new values is not a sensor read).
+_WRITE_CODES = frozenset({5, 6, 15, 16, 22, 23})
 
 
 def _table_of(func_code: int) -> str:
@@ -216,9 +286,12 @@ class ModbusSimServer:
     unit : int
         Modbus unit (device) id served.
     freeze_after_s : float or None
-        Sensor fault after this many seconds of serving (see :class:`SimRig`).
-    fault : {'stale', 'silent'}
-        Stale registers, or an exception reply (gateway target failed to respond).
+        The injected fault starts after this many seconds of serving (see :class:`SimRig`).
+    fault : str
+        One of :data:`FAULTS`: ``stale`` registers, ``silent`` (an exception reply to reads:
+        gateway target failed to respond), ``nan`` (float32 force NaN), ``range`` (pressure
+        at :data:`RAIL_MPA`), ``junk`` (0xDEAD in every register read), ``drop`` (the server
+        closes the connection once), ``mute`` (no request is answered any more).
 
     Examples
     --------
@@ -235,6 +308,8 @@ class ModbusSimServer:
         self.rig = SimRig(plant, friction, freeze_after_s=freeze_after_s, fault=fault)
         self.port = port
         self.requests = 0
+        self._dropped = False
+        self._server: Any = None
         self._ready = threading.Event()
         self._error: BaseException | None = None
         self._loop: asyncio.AbstractEventLoop | None = None
@@ -274,6 +349,14 @@ class ModbusSimServer:
         table = _table_of(func_code)
         sig = self.map.signals
         rig = self.rig
+        if rig.frozen and rig.fault == "mute" and self._stop is not None:
+            await self._stop.wait()         # a dead device: never answered, nothing applied
+            return ExcCodes.DEVICE_FAILURE
+        if rig.frozen and rig.fault == "drop" and not self._dropped and self._server:
+            self._dropped = True            # the connection drops once; new ones are served
+            for conn in list(self._server.active_connections.values()):
+                conn.close()
+            return None
         if set_values is not None and len(set_values):
             regs = list(registers)
             off = address - start
@@ -300,9 +383,12 @@ class ModbusSimServer:
                 else:
                     rig.set_command(max(p, 0.0))
             return None
+        if func_code in _WRITE_CODES:       # pymodbus reads back what a write set: no sample
+            return None
         reading = rig.sample()
         if reading is None:
             return ExcCodes.GATEWAY_NO_RESPONSE
+        junk = rig.frozen and rig.fault == "junk"
         for name, val in (("pressure", reading.pressure_mpa), ("force", reading.force_n),
                           ("heartbeat", reading.sample_id)):
             spec = sig.get(name)
@@ -310,7 +396,9 @@ class ModbusSimServer:
                 continue
             s = spec
             off = s.address - start
-            if name == "heartbeat":
+            if junk:
+                registers[off:off + s.count] = [0xDEAD] * s.count
+            elif name == "heartbeat":
                 registers[off:off + s.count] = encode_registers(s, int(val) % 65536, raw=True)
             else:
                 registers[off:off + s.count] = encode_registers(s, float(val))
@@ -323,6 +411,7 @@ class ModbusSimServer:
             self._loop = asyncio.get_running_loop()
             self._stop = asyncio.Event()
             server = ModbusTcpServer(self._device(), address=("127.0.0.1", self.port))
+            self._server = server
             await server.serve_forever(background=True)
             self.port = int(server.transport.sockets[0].getsockname()[1])  # type: ignore
             self._ready.set()
@@ -360,9 +449,12 @@ class SerialSimDevice:
     plant, friction : object or None
         Pressure plant (MPa) and friction map F(P) (MPa -> N); see :class:`SimRig`.
     freeze_after_s : float or None
-        Sensor fault after this many seconds (see :class:`SimRig`).
-    fault : {'stale', 'silent'}
-        ``R`` answers the last sample again, or gets no answer.
+        The injected fault starts after this many seconds (see :class:`SimRig`).
+    fault : str
+        One of :data:`FAULTS`: ``R`` answers the last sample again (``stale``), gets no answer
+        (``silent``), ``nan`` for the force (``nan``), the pressure at :data:`RAIL_MPA`
+        (``range``), a garbage line (``junk``); ``drop`` closes the pty (the port is gone);
+        ``mute`` answers nothing at all.
 
     Examples
     --------
@@ -395,6 +487,10 @@ class SerialSimDevice:
         if not words:
             return "ERR empty command"
         cmd, rig = words[0], self.rig
+        if rig.frozen and rig.fault == "mute":
+            return None
+        if cmd == "R" and rig.frozen and rig.fault == "junk":
+            return "D 12?4 0.2.9 #~!"
         if cmd == "?":
             from exofric import __version__
 
@@ -436,6 +532,9 @@ class SerialSimDevice:
             if (self.watchdog_ms and not self.rig.vented
                     and now - self._last_cmd > self.watchdog_ms / 1000.0):
                 self.rig.vent()
+            if self.rig.frozen and self.rig.fault == "drop":
+                self._close_fds()           # unplugged: the port is gone for good
+                return
             if not ready:
                 continue
             try:
@@ -461,11 +560,15 @@ class SerialSimDevice:
         """Stop answering and close the pty pair."""
         self._running = False
         self._thread.join(2.0)
+        self._close_fds()
+
+    def _close_fds(self) -> None:
         for fd in (self._master, self._slave):
             try:
                 os.close(fd)
             except OSError:
                 pass
+        self._master = self._slave = -1
 
     def __enter__(self) -> SerialSimDevice:
         return self

@@ -22,7 +22,7 @@ import numpy as np
 
 from exofric import paper
 from exofric.control import CurveFrictionMap
-from exofric.friction import CubicFit, CurveInverse, FrictionModel, pressure_for_friction
+from exofric.friction import CubicFit, FrictionModel, SqueezeCurve, pressure_for_friction
 from exofric.reproduction._compare import Comparison
 from exofric.reproduction._fig12 import CompareResult, ControlSetup, compare
 from exofric.simulate import SqueezeResult
@@ -122,7 +122,7 @@ def stage_cubic(test5: SqueezeResult, gamma: float, target_n: float) -> CubicSta
         "eq9_mpa": pressure_for_friction(target_n, eq8, FrictionModel(g_paper)),
         "eq8_without_gamma_mpa": eq8.inverse(target_n),
         "our_cubic_mpa": pressure_for_friction(target_n, ours, FrictionModel(gamma)),
-        "our_exact_curve_mpa": CurveInverse.from_curve(p, n).pressure_for_friction(
+        "our_exact_curve_mpa": SqueezeCurve(p, n).pressure_for_friction(
             target_n, FrictionModel(gamma)),
     }
     names = ("c3 (P^3)", "c2 (P^2)", "c1 (P)", "c0")

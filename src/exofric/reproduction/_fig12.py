@@ -127,6 +127,9 @@ class ControlSetup:
         Settling band (fraction of the step, default 0.02).
     antiwindup : str
         Anti-windup scheme of the controllers.
+    plant_source : str
+        Where the plant's numbers come from, for :meth:`plant_description` (e.g.
+        ``"identified from step.csv"``).
 
     Examples
     --------
@@ -146,6 +149,7 @@ class ControlSetup:
     tau_c_s: float | None = None
     band: float = 0.02
     antiwindup: AntiWindup = "back-calculation"
+    plant_source: str = "exofric's default (an assumption)"
 
     def __post_init__(self) -> None:
         check_positive("target_n (target friction)", self.target_n, "N")
@@ -178,6 +182,25 @@ class ControlSetup:
         g = CubicFrictionMap(CubicFit(paper.eq8(), *paper.load()["eq8"]["fit_range_mpa"]),
                              paper.scalar("gamma"))
         return replace(cls(PlantParams(), g), **changes)
+
+    def plant_description(self) -> str:
+        """The simulated plant in words: which model, its numbers and where they came from.
+
+        Printed beside every settling time, so that times from different plants (this
+        lag + dead time; the physical pneumatic plant of ``control run --device sim://``) are
+        not compared unknowingly.
+
+        Examples
+        --------
+        >>> ControlSetup.default().plant_description()[:60]
+        'simulated supply, lag + dead time: gain 1 MPa/MPa, lag 0.8 s'
+        """
+        pp = self.plant
+        kind = "on/off valves by PWM" if pp.pwm_period_s > 0 else "lag + dead time"
+        return (f"simulated supply, {kind}: gain {pp.gain:.4g} MPa/MPa, lag "
+                f"{pp.time_constant_s:.4g} s, dead time {pp.delay_s:.4g} s, {self.plant_source};"
+                " `control run --device sim://` uses the physical pneumatic plant instead, so "
+                "its times differ")
 
     @property
     def true_map(self) -> FrictionMapLike:
@@ -212,7 +235,7 @@ class ControlSetup:
         """The model feedforward (2-DOF with the plant's lag/delay, or static)."""
         p = self.plant
         if self.ff_mode == "static":
-            return ModelFeedforward(self.model_map.inverse)
+            return ModelFeedforward(self.model_map.inverse, gain=p.gain, p_max_mpa=p.p_max_mpa)
         return ModelFeedforward(self.model_map.inverse, self.model_map,
                                 time_constant_s=p.time_constant_s, delay_s=p.delay_s,
                                 gain=p.gain, p_max_mpa=p.p_max_mpa)
