@@ -50,6 +50,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from exofric._lsq import correlation as correlation_matrix
+from exofric._lsq import lsq_covariance, standard_errors
 from exofric.errors import (
     ConvergenceError,
     InputError,
@@ -1337,11 +1339,9 @@ def calibrate_material(
     if stderr_from == "residuals" and dof <= 0:
         notes.append(f"{n} residuals for {p} parameters: standard errors from the noise levels")
     s2 = 2.0 * cost / dof if stderr_from == "residuals" and dof > 0 else 1.0
-    cov = np.linalg.pinv(J.T @ J) * s2
-    se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    with np.errstate(all="ignore"):
-        corr = cov / np.outer(se, se)
-    np.fill_diagonal(corr, 1.0)
+    cov = lsq_covariance(J, s2)
+    se = standard_errors(cov)
+    corr = correlation_matrix(cov)
     grad_mu = np.zeros(p)  # mu is linear in the parameters of every model
     mu_at = _unchecked(name, x[: prob.n_model]).shear_modulus_mpa
     for k in range(prob.n_model):

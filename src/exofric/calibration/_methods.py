@@ -30,6 +30,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
+from exofric._lsq import correlation, lsq_covariance, residual_variance, standard_errors
 from exofric.calibration._result import InflationData, Trial, relative_errors_pct
 from exofric.errors import ConvergenceError, InputError
 
@@ -406,17 +407,11 @@ def _least_squares(
     J = jac(res.x)
     n, p = J.shape
     notes: list[str] = []
-    jtj_inv = np.linalg.pinv(J.T @ J)
-    dof = n - p
-    if dof > 0:
-        s2 = float(np.sum(res.fun**2)) / dof
-        stderr = np.sqrt(np.diag(jtj_inv) * s2)
-    else:
-        stderr = np.full(p, np.nan)
+    jtj_inv = lsq_covariance(J)
+    stderr = standard_errors(jtj_inv * residual_variance(res.fun, p))    # NaN without dof
+    if n <= p:
         notes.append(f"{n} points for {p} parameters: no degrees of freedom for standard errors")
-    corr = None
-    if p == 2:
-        corr = float(jtj_inv[0, 1] / np.sqrt(jtj_inv[0, 0] * jtj_inv[1, 1]))
+    corr = float(correlation(jtj_inv)[0, 1]) if p == 2 else None
     if res.status <= 0:
         notes.append(f"least squares stopped before converging ({res.message})")
     for k in range(p):

@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric import defaults
+from exofric._lsq import lsq_covariance, residual_variance, standard_errors
 from exofric.control._plant import PlantParams
 from exofric.errors import InputError, check_series, warn_implausible
 
@@ -302,13 +303,7 @@ def identify_step(
     h = 1e-6 * np.maximum(np.abs(z), [1e-3, 1e-3, tau, max(tau, 1e-3)])
     jac = np.column_stack([(full(z + hi_) - full(z - hi_)) / (2.0 * hi_[i])
                            for i, hi_ in enumerate(np.diag(h))])
-    n, m = t.size, 4
-    s2 = float(resid @ resid) / max(n - m, 1)
-    try:
-        cov = s2 * np.linalg.inv(jac.T @ jac)
-        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    except np.linalg.LinAlgError:
-        se = np.full(4, np.nan)
+    se = standard_errors(lsq_covariance(jac, residual_variance(resid, 4, min_dof=1)))
     ss_tot = float(np.sum((p - p.mean()) ** 2))
     r2 = 1.0 - float(resid @ resid) / ss_tot
     if r2 < defaults.PLAUSIBLE_IDENTIFY_MIN_R2:  # the rule: see defaults
@@ -324,5 +319,5 @@ def identify_step(
         step_mpa=step, r2=r2, rmse_mpa=float(np.sqrt(np.mean(resid**2))),
         stderr_time_constant_s=float(se[2]), stderr_delay_s=float(se[3]),
         stderr_gain=math.nan if gain_assumed else float(se[1]),
-        n_samples=int(n), gain_assumed=gain_assumed,
+        n_samples=int(t.size), gain_assumed=gain_assumed,
     )

@@ -50,6 +50,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric import defaults as D
+from exofric._lsq import lsq_covariance, residual_variance, standard_errors
 from exofric.control._identify import IdentifiedPlant, identify_step
 from exofric.errors import (
     InputError,
@@ -1181,6 +1182,64 @@ def identify_charge(
     check_range("temperature_k", temperature_k, 150.0, 500.0, unit="K")
     patm = check_range("atmosphere_mpa", atmosphere_mpa, 0.0, 1.0, lo_open=True, unit="MPa")
     b0 = check_range("critical_ratio", critical_ratio, 0.0, 0.99, hi_open=True)
+    data, added, step_only = _charge_runs(time_s, pressure_mpa, command_mpa, added_volume_mm3,
+                                          sup)
+    fit_v, fit_cf = volume_mm3 is None, c_dm3_per_s_bar is None
+    if fit_v and fit_cf and np.unique(added).size < 2:
+        raise InputError("C and the volume are not separately identifiable from one volume's "
+                         "transients (only C/V is): give volume_mm3 or c_dm3_per_s_bar, or runs "
+                         "with two different known added_volume_mm3", param="volume_mm3")
+    v_given = math.nan if volume_mm3 is None else check_positive("volume_mm3", volume_mm3,
+                                                                  "mm^3")
+    c_given = math.nan if c_dm3_per_s_bar is None else check_positive(
+        "c_dm3_per_s_bar", c_dm3_per_s_bar, "dm^3/(s bar)")
+    gas = _ChargeGas(sup + patm, patm, polytropic_n, temperature_k)
+    params = _charge_parameters(data, gas, v_given, c_given, b0, fit_b)
+    p_all = np.concatenate([p for _, p, _ in data])
+
+    def resid(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        d = params.unpack(x)
+        return np.concatenate(_charge_model(d, data, added, gas, v_given, c_given, b0)) - p_all
+
+    sol = least_squares(resid, params.x0, bounds=(params.lo, params.hi),
+                        diff_step=1e-6, x_scale="jac", xtol=1e-12, ftol=1e-12, gtol=1e-12,
+                        max_nfev=400)
+    r = resid(sol.x)
+    se = standard_errors(lsq_covariance(sol.jac, residual_variance(r, len(params.names),
+                                                                   min_dof=1)))
+    d = params.unpack(sol.x)
+    sed = dict(zip(params.names, (float(v) for v in se), strict=True))
+    nan = math.nan
+    cf = math.exp(d["log_cf"]) if "log_cf" in d else c_given
+    cvnt = math.exp(d["log_cv"]) if "log_cv" in d else nan
+    vol = math.exp(d["log_v"]) if "log_v" in d else v_given
+    ss_tot = float(np.sum((p_all - p_all.mean()) ** 2))
+    fixed = tuple(k for k, f in (("c_fill", not fit_cf), ("volume", not fit_v)) if f)
+    return ChargeFit(
+        c_fill_dm3_per_s_bar=cf, c_vent_dm3_per_s_bar=cvnt, volume_mm3=vol,
+        critical_ratio=d.get("b", b0), b_fitted=fit_b, delay_s=d["delay"],
+        p0_mpa=tuple(d[f"p0_{i}"] for i in range(len(data))),
+        stderr_c_fill=cf * sed["log_cf"] if "log_cf" in sed else nan,
+        stderr_c_vent=cvnt * sed["log_cv"] if "log_cv" in sed else nan,
+        stderr_volume_mm3=vol * sed["log_v"] if "log_v" in sed else nan,
+        stderr_critical_ratio=sed.get("b", nan), stderr_delay_s=sed["delay"],
+        fixed=fixed, r2=1.0 - float(r @ r) / ss_tot if ss_tot > 0 else nan,
+        rmse_mpa=float(np.sqrt(np.mean(r**2))), n_samples=int(r.size),
+        time_s=np.concatenate([t for t, _, _ in data]), pressure_mpa=p_all,
+        fitted_mpa=r + p_all,
+        run=np.concatenate([np.full(t.size, i, dtype=np.int64)
+                            for i, (t, _, _) in enumerate(data)]),
+        fopdt=_first_run_fopdt(data[0], step_only),
+    )
+
+
+_Run = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+
+
+def _charge_runs(time_s: Any, pressure_mpa: Any, command_mpa: Any, added_volume_mm3: Any,
+                 sup: float) -> tuple[list[_Run], NDArray[np.float64], bool]:
+    """Validated runs (t s, p MPa, on/off command), added volumes (mm^3), whether the
+    commands were implied (one valve step at t = 0) rather than given."""
     runs_t = list(time_s) if _is_runs(time_s) else [time_s]
     runs_p = list(pressure_mpa) if _is_runs(pressure_mpa) else [pressure_mpa]
     if len(runs_p) != len(runs_t):
@@ -1199,151 +1258,126 @@ def identify_charge(
     if added.size != nr or not np.all(np.isfinite(added)) or np.any(added < 0.0):
         raise InputError(f"added_volume_mm3 must be {nr} value(s) >= 0 mm^3, got "
                          f"{added_volume_mm3!r}", param="added_volume_mm3")
-    data = []
-    for i in range(nr):
-        t, p = check_series("time_s", runs_t[i], "pressure_mpa", runs_p[i], x_unit="s",
-                            y_unit="MPa", min_points=10, where="charge log")
-        if runs_u[i] is None:
-            if not (t[0] <= 0.0 < t[-1]):
-                raise InputError("without command_mpa the valve step is at t = 0 s: time_s "
-                                 "must span it", param="time_s")
-            rising = float(np.mean(p[-max(3, p.size // 20):])) > float(np.mean(p[:3]))
-            u = np.where(t >= 0.0, 1.0 if rising else 0.0, 0.0 if rising else 1.0)
-        else:
-            _, u = check_series("time_s", t, "command_mpa", runs_u[i], x_unit="s",
-                                y_unit="MPa", where="charge log")
-        st = u > 0.0
-        if not np.any(st[1:] != st[:-1]):
-            raise InputError("command_mpa never switches the valves: no transient to fit",
-                             param="command_mpa")
-        top = float(np.median(np.sort(p)[-min(10, p.size):]))
-        if top > 1.02 * sup + 0.005:
-            raise InputError(f"pressure_mpa rises to {top:g} MPa, above the supply "
-                             f"{sup:g} MPa: wrong supply_mpa or units", param="pressure_mpa")
-        resid_noise = float(np.median(np.abs(np.diff(p)))) * 1.5
-        if float(np.ptp(p)) <= max(10.0 * resid_noise, 1e-3 * sup):
-            raise InputError("pressure_mpa shows no charge or discharge transient",
-                             param="pressure_mpa")
-        data.append((t, p, u))
+    return [_charge_run(t, p, u, sup) for t, p, u in zip(runs_t, runs_p, runs_u, strict=True)], \
+        added, command_mpa is None
+
+
+def _charge_run(time_s: Any, pressure_mpa: Any, command_mpa: Any, sup: float) -> _Run:
+    """One run checked: series, a valve switch, no pressure above the supply, a transient."""
+    t, p = check_series("time_s", time_s, "pressure_mpa", pressure_mpa, x_unit="s",
+                        y_unit="MPa", min_points=10, where="charge log")
+    if command_mpa is None:
+        if not (t[0] <= 0.0 < t[-1]):
+            raise InputError("without command_mpa the valve step is at t = 0 s: time_s "
+                             "must span it", param="time_s")
+        rising = float(np.mean(p[-max(3, p.size // 20):])) > float(np.mean(p[:3]))
+        u = np.where(t >= 0.0, 1.0 if rising else 0.0, 0.0 if rising else 1.0)
+    else:
+        _, u = check_series("time_s", t, "command_mpa", command_mpa, x_unit="s",
+                            y_unit="MPa", where="charge log")
+    st = u > 0.0
+    if not np.any(st[1:] != st[:-1]):
+        raise InputError("command_mpa never switches the valves: no transient to fit",
+                         param="command_mpa")
+    top = float(np.median(np.sort(p)[-min(10, p.size):]))
+    if top > 1.02 * sup + 0.005:
+        raise InputError(f"pressure_mpa rises to {top:g} MPa, above the supply "
+                         f"{sup:g} MPa: wrong supply_mpa or units", param="pressure_mpa")
+    resid_noise = float(np.median(np.abs(np.diff(p)))) * 1.5
+    if float(np.ptp(p)) <= max(10.0 * resid_noise, 1e-3 * sup):
+        raise InputError("pressure_mpa shows no charge or discharge transient",
+                         param="pressure_mpa")
+    return t, p, u
+
+
+@dataclass(frozen=True)
+class _ChargeGas:
+    """The gas side of a charge fit: absolute supply and atmosphere (MPa), n, T (K)."""
+
+    supply_abs_mpa: float
+    atmosphere_mpa: float
+    polytropic_n: float
+    temperature_k: float
+
+
+@dataclass(frozen=True)
+class _ChargeParameters:
+    """The fitted parameters of a charge fit: names, start values and bounds."""
+
+    names: tuple[str, ...]
+    x0: NDArray[np.float64]
+    lo: NDArray[np.float64]
+    hi: NDArray[np.float64]
+
+    def unpack(self, x: NDArray[np.float64]) -> dict[str, float]:
+        return dict(zip(self.names, (float(v) for v in x), strict=True))
+
+
+def _charge_parameters(data: list[_Run], gas: _ChargeGas, v_given: float, c_given: float,
+                       b0: float, fit_b: bool) -> _ChargeParameters:
+    """Which parameters to fit, with start values (V from the given C or C from the given V,
+    via the initial charge slope) and bounds; log-parameters for C and V."""
+    sup = gas.supply_abs_mpa - gas.atmosphere_mpa
+    fit_v, fit_cf = math.isnan(v_given), math.isnan(c_given)
     # a port is fitted when a run switches it open, or starts with it open away from its end
     has_fill = any(np.any(np.diff((u > 0.0).astype(int)) > 0)
                    or (u[0] > 0.0 and p[0] < 0.9 * sup) for _, p, u in data)
     has_vent = any(np.any(np.diff((u > 0.0).astype(int)) < 0)
                    or (u[0] <= 0.0 and p[0] > 0.1 * sup) for _, p, u in data)
-    fit_v = volume_mm3 is None
-    fit_cf = c_dm3_per_s_bar is None
-    if fit_v and fit_cf and np.unique(added).size < 2:
-        raise InputError("C and the volume are not separately identifiable from one volume's "
-                         "transients (only C/V is): give volume_mm3 or c_dm3_per_s_bar, or runs "
-                         "with two different known added_volume_mm3", param="volume_mm3")
-    v_given = math.nan if volume_mm3 is None else check_positive("volume_mm3", volume_mm3,
-                                                                  "mm^3")
-    c_given = math.nan if c_dm3_per_s_bar is None else check_positive(
-        "c_dm3_per_s_bar", c_dm3_per_s_bar, "dm^3/(s bar)")
-
-    # start values: V from the given C, or C from the given V, via the initial charge slope
-    gain0 = polytropic_n * R_AIR_J_PER_KG_K * temperature_k * 1e3
-    k1 = _flow_factor(1.0, temperature_k)
+    gain0 = gas.polytropic_n * R_AIR_J_PER_KG_K * gas.temperature_k * 1e3
+    k1 = _flow_factor(1.0, gas.temperature_k)
     rate = []
     for t, p, u in data:
         i0 = int(np.flatnonzero(u > 0.0)[0]) if np.any(u > 0.0) else 0
         seg = p[i0: i0 + max(5, p.size // 10)]
         dt = float(np.median(np.diff(t)))
         slope = float(np.ptp(seg)) / max(dt * (seg.size - 1), 1e-9)
-        rate.append(slope / (gain0 * k1 * (sup + patm)))      # = C / V in 1/mm^3 per C unit
+        rate.append(slope / (gain0 * k1 * gas.supply_abs_mpa))   # = C / V per C unit
     cv = max(float(np.median(rate)), 1e-12)
     v_start = v_given if not fit_v else (c_given / cv if not fit_cf else 0.05 / cv)
     c_start = c_given if not fit_cf else cv * v_start
-    names: list[str] = []
-    x0: list[float] = []
-    lo: list[float] = []
-    hi: list[float] = []
-
-    def add(name: str, v: float, a: float, b_: float) -> None:
-        names.append(name)
-        x0.append(min(max(v, a + 1e-9), b_ - 1e-9))
-        lo.append(a)
-        hi.append(b_)
-
+    rows: list[tuple[str, float, float, float]] = []
     if fit_cf and has_fill:
-        add("log_cf", math.log(c_start), -20.0, 10.0)
+        rows.append(("log_cf", math.log(c_start), -20.0, 10.0))
     if has_vent:
-        add("log_cv", math.log(c_start), -20.0, 10.0)
+        rows.append(("log_cv", math.log(c_start), -20.0, 10.0))
     if fit_v:
-        add("log_v", math.log(v_start), 0.0, 30.0)
+        rows.append(("log_v", math.log(v_start), 0.0, 30.0))
     if fit_b:
-        add("b", b0, 0.0, 0.95)
+        rows.append(("b", b0, 0.0, 0.95))
     span = min(float(t[-1] - t[0]) for t, _, _ in data)
-    add("delay", 0.0, 0.0, 0.2 * span)
+    rows.append(("delay", 0.0, 0.0, 0.2 * span))
     for i, (_, p, _) in enumerate(data):
-        add(f"p0_{i}", float(np.median(p[:3])), -patm + 1e-3, sup + 0.5)
-    rl = DEFAULT_LAMINAR_RATIO
+        rows.append((f"p0_{i}", float(np.median(p[:3])), -gas.atmosphere_mpa + 1e-3, sup + 0.5))
+    lo = np.array([r[2] for r in rows])
+    hi = np.array([r[3] for r in rows])
+    x0 = np.clip([r[1] for r in rows], lo + 1e-9, hi - 1e-9)
+    return _ChargeParameters(tuple(r[0] for r in rows), x0, lo, hi)
 
-    def unpack(x: NDArray[np.float64]) -> dict[str, float]:
-        d = dict(zip(names, (float(v) for v in x), strict=True))
-        return d
 
-    def model(x: NDArray[np.float64]) -> list[NDArray[np.float64]]:
-        d = unpack(x)
-        cf = math.exp(d["log_cf"]) if "log_cf" in d else (c_given if not fit_cf else 1.0)
-        cvnt = math.exp(d["log_cv"]) if "log_cv" in d else 1.0
-        vol = math.exp(d["log_v"]) if "log_v" in d else v_given
-        b = d.get("b", b0)
-        out = []
-        for i, (t, _, u) in enumerate(data):
-            out.append(_onoff_model(t, u, d[f"p0_{i}"], d["delay"],
-                                    _flow_factor(cf, temperature_k),
-                                    _flow_factor(cvnt, temperature_k), b,
-                                    vol + float(added[i]), polytropic_n, temperature_k,
-                                    sup + patm, patm, max(rl, b + 1e-6)))
-        return out
-
-    p_all = np.concatenate([p for _, p, _ in data])
-
-    def resid(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        return np.concatenate(model(x)) - p_all
-
-    sol = least_squares(resid, np.array(x0), bounds=(np.array(lo), np.array(hi)),
-                        diff_step=1e-6, x_scale="jac", xtol=1e-12, ftol=1e-12, gtol=1e-12,
-                        max_nfev=400)
-    x = sol.x
-    r = resid(x)
-    n, m = r.size, len(names)
-    s2 = float(r @ r) / max(n - m, 1)
-    try:
-        cov = s2 * np.linalg.pinv(sol.jac.T @ sol.jac)
-        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    except np.linalg.LinAlgError:
-        se = np.full(m, np.nan)
-    d = unpack(x)
-    sed = dict(zip(names, (float(v) for v in se), strict=True))
-    nan = math.nan
-    cf = math.exp(d["log_cf"]) if "log_cf" in d else c_given
-    cvnt = math.exp(d["log_cv"]) if "log_cv" in d else nan
+def _charge_model(d: dict[str, float], data: list[_Run], added: NDArray[np.float64],
+                  gas: _ChargeGas, v_given: float, c_given: float,
+                  b0: float) -> list[NDArray[np.float64]]:
+    """The modelled pressure (MPa) of every run at the parameters ``d``."""
+    cf = math.exp(d["log_cf"]) if "log_cf" in d else (c_given if not math.isnan(c_given)
+                                                      else 1.0)
+    cvnt = math.exp(d["log_cv"]) if "log_cv" in d else 1.0
     vol = math.exp(d["log_v"]) if "log_v" in d else v_given
-    ss_tot = float(np.sum((p_all - p_all.mean()) ** 2))
-    fopdt: IdentifiedPlant | None
-    t0, p0, u0 = data[0]
+    b = d.get("b", b0)
+    tk = gas.temperature_k
+    return [_onoff_model(t, u, d[f"p0_{i}"], d["delay"], _flow_factor(cf, tk),
+                         _flow_factor(cvnt, tk), b, vol + float(added[i]), gas.polytropic_n, tk,
+                         gas.supply_abs_mpa, gas.atmosphere_mpa,
+                         max(DEFAULT_LAMINAR_RATIO, b + 1e-6))
+            for i, (t, _, u) in enumerate(data)]
+
+
+def _first_run_fopdt(run: _Run, step_only: bool) -> IdentifiedPlant | None:
+    """The first-order-plus-dead-time fit of the first run, None where it does not apply."""
+    t0, p0, u0 = run
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", PlausibilityWarning)
-            fopdt = identify_step(t0, p0, None if runs_u[0] is None else u0)
+            return identify_step(t0, p0, None if step_only else u0)
     except (InputError, ValueError, np.linalg.LinAlgError):
-        fopdt = None
-    fixed = tuple(k for k, f in (("c_fill", not fit_cf), ("volume", not fit_v)) if f)
-    return ChargeFit(
-        c_fill_dm3_per_s_bar=cf, c_vent_dm3_per_s_bar=cvnt, volume_mm3=vol,
-        critical_ratio=d.get("b", b0), b_fitted=fit_b, delay_s=d["delay"],
-        p0_mpa=tuple(d[f"p0_{i}"] for i in range(nr)),
-        stderr_c_fill=cf * sed["log_cf"] if "log_cf" in sed else nan,
-        stderr_c_vent=cvnt * sed["log_cv"] if "log_cv" in sed else nan,
-        stderr_volume_mm3=vol * sed["log_v"] if "log_v" in sed else nan,
-        stderr_critical_ratio=sed.get("b", nan), stderr_delay_s=sed["delay"],
-        fixed=fixed, r2=1.0 - float(r @ r) / ss_tot if ss_tot > 0 else nan,
-        rmse_mpa=float(np.sqrt(np.mean(r**2))), n_samples=int(n),
-        time_s=np.concatenate([t for t, _, _ in data]), pressure_mpa=p_all,
-        fitted_mpa=r + p_all,
-        run=np.concatenate([np.full(t.size, i, dtype=np.int64)
-                            for i, (t, _, _) in enumerate(data)]),
-        fopdt=fopdt,
-    )
+        return None

@@ -44,9 +44,10 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         ClearanceSqueeze,
         squeeze_with_clearance,
     )
+    from exofric.simulate._common import check_friction
     from exofric.simulate._inflate import InflationResult, inflate
     from exofric.simulate._ring import RingResult, ring_test
-    from exofric.simulate._squeeze import SqueezeResult, check_friction, squeeze
+    from exofric.simulate._squeeze import SqueezeResult, squeeze
     from exofric.simulate._stretch import StretchWarning, check_stretch
     from exofric.simulate._tolerance import TOLERANCE_NAMES, ToleranceResult, squeeze_tolerances
 
@@ -63,7 +64,8 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "_inflate": ("InflationResult", "inflate"),
     "_tolerance": ("TOLERANCE_NAMES", "ToleranceResult", "squeeze_tolerances"),
     "_ring": ("RingResult", "ring_test"),
-    "_squeeze": ("SqueezeResult", "check_friction", "squeeze"),
+    "_common": ("check_friction",),
+    "_squeeze": ("SqueezeResult", "squeeze"),
     "_stretch": ("StretchWarning", "check_stretch"),
 }
 _HOME = {name: mod for mod, names in _MODULES.items() for name in names}

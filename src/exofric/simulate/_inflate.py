@@ -25,12 +25,13 @@ from exofric.fe import (
 from exofric.geometry import check_size_mm
 from exofric.material import HyperelasticModel, MooneyRivlin
 from exofric.simulate._analytic import incompressible_inflation, incompressible_limit_pressure
+from exofric.simulate._common import fe_material_of, opt_list, resolve_accuracy
 from exofric.simulate._stretch import check_stretch
 
 if TYPE_CHECKING:
     import pandas as pd
 
-    from exofric.simulate._squeeze import FEMaterial
+    from exofric.simulate._common import FEMaterial
 
 __all__ = ["InflationResult", "inflate"]
 
@@ -139,7 +140,6 @@ class InflationResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (unit-suffixed keys)."""
-        from exofric.simulate._squeeze import _opt_list as opt_list
 
         return {
             "pressure_mpa": self.pressure_mpa.tolist(),
@@ -293,7 +293,6 @@ def inflate(
     if idm >= od:
         raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {idm:g}")
     ends = check_ends(ends)
-    from exofric.simulate._squeeze import fe_material_of
 
     fe_material = fe_material_of(material)
     p = check_pressures("pressures_mpa", pressures_mpa, allow_zero=True)
@@ -304,7 +303,6 @@ def inflate(
             f"(mu ln(OD/ID)): free inflation has no equilibrium near and above it; "
             f"allowed range [0, {0.99 * plim:.4g}) MPa"
         )
-    from exofric.simulate._squeeze import resolve_accuracy
 
     level, spec, coarse_spec = resolve_accuracy(accuracy, mesh, defaults.INFLATION_ACCURACY)
     s = settings or NewtonSettings(**defaults.INFLATION_NEWTON)

@@ -25,6 +25,7 @@ from exofric.fe import (
 )
 from exofric.geometry import check_size_mm
 from exofric.material import HyperelasticModel, MooneyRivlin
+from exofric.simulate._common import fe_material_of
 from exofric.simulate._stretch import StretchWarning
 
 if TYPE_CHECKING:
@@ -344,7 +345,6 @@ def ring_test(
             "narrow ring) under-predicts a wider ring's force, most at small pin displacements "
             "(a 3-D model of width/wall = 3: -12 % at 0.5 mm, -1.6 % at 3 mm; "
             "docs/ring-test.md); section 'generalised-plane-strain' bounds it from above")
-    from exofric.simulate._squeeze import fe_material_of
 
     fe_material_of(material)  # refuses another type (InputError)
     spec = mesh or RING_MESH

@@ -7,7 +7,6 @@ N/mm, totals = per depth x tube length.
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, cast
 
@@ -19,15 +18,11 @@ from exofric.errors import (
     InputError,
     check_positive,
     check_pressures,
-    warn_implausible,
 )
 from exofric.fe import (
     GRAVITY_OPTIONS,
-    MU_MAX,
-    MU_WARN,
     MeshSpec,
     NewtonSettings,
-    PlaneStrainMaterial,
     SolverStats,
     SqueezeProblem,
     check_ends,
@@ -40,6 +35,13 @@ from exofric.fe import (
 )
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
+from exofric.simulate._common import (
+    FEMaterial,
+    check_friction,
+    fe_material_of,
+    opt_list,
+    resolve_accuracy,
+)
 from exofric.simulate._stretch import check_stretch
 
 if TYPE_CHECKING:
@@ -295,9 +297,9 @@ class SqueezeResult:
             "accuracy": self.accuracy,
             "gravity": self.gravity,
             "estimate_mesh": None if self.estimate_mesh is None else self.estimate_mesh.to_dict(),
-            "n_error_estimate_pct": _opt_list(self.n_error_estimate_pct),
-            "n_error_estimate_n_per_mm": _opt_list(self.n_error_estimate_n_per_mm),
-            "coarse_squeeze_force_n_per_mm": _opt_list(self.coarse_squeeze_force_n_per_mm),
+            "n_error_estimate_pct": opt_list(self.n_error_estimate_pct),
+            "n_error_estimate_n_per_mm": opt_list(self.n_error_estimate_n_per_mm),
+            "coarse_squeeze_force_n_per_mm": opt_list(self.coarse_squeeze_force_n_per_mm),
             "solver_stats": self.solver_stats.to_dict(),
             "wire_angle_deg": self.wire_angle_deg,
             "squeeze_force_direction_deg": _nan_list(self.squeeze_force_direction_deg),
@@ -395,60 +397,6 @@ class SqueezeResult:
         from exofric.plots import plot_squeeze_force
 
         return plot_squeeze_force(self, ax)
-
-
-def check_friction(name: str, value: float) -> float:
-    """A Coulomb coefficient (unitless): finite, in [0, 2]; warns above 1.5.
-
-    The one check of every friction coefficient a user gives (``mu_wall``, ``mu_wire`` of the
-    squeeze, ``mu_tube``, ``mu_wall`` of the interface law, ``mu_arc`` of the capstan).
-
-    Parameters
-    ----------
-    name : str
-        Parameter name for the messages (e.g. ``"mu_wall"``).
-    value : float
-        The coefficient (unitless).
-
-    Returns
-    -------
-    float
-
-    Raises
-    ------
-    InputError
-        Not a number, NaN/inf, negative, or above :data:`exofric.fe.MU_MAX` (one line naming
-        ``name``).
-
-    Examples
-    --------
-    >>> check_friction("mu_wall", 0.3)
-    0.3
-    """
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number (unitless friction coefficient), got "
-                         f"{value!r}", param=name) from None
-    if not np.isfinite(v):
-        raise InputError(f"{name} must be a finite friction coefficient (unitless), got {v}",
-                         param=name)
-    if v < 0.0:
-        raise InputError(f"{name} must be >= 0 (unitless friction coefficient), got {v:g}",
-                         param=name)
-    if v > MU_MAX:
-        raise InputError(f"{name} must be <= {MU_MAX:g} (unitless friction coefficient), got "
-                         f"{v:g}", param=name)
-    if v > MU_WARN:
-        warn_implausible(f"{name} = {v:g} is above {MU_WARN:g}: implausible for a Coulomb "
-                         "coefficient of silicone or steel on metal (measured 0.2-1.2); check "
-                         "the value")
-    return v
-
-
-def _opt_list(a: np.ndarray | None) -> list[float] | None:
-    """An optional array as a JSON list (None stays None)."""
-    return None if a is None else np.asarray(a, dtype=float).tolist()
 
 
 def _nan_list(a: np.ndarray | None) -> list[float | None] | None:
@@ -620,32 +568,6 @@ def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings,
         prob.spring_k = k
 
 
-#: What the FE problems take: the paper's MooneyRivlin as is, any other model adapted.
-FEMaterial = MooneyRivlin | PlaneStrainMaterial
-
-
-def fe_material_of(material: Any) -> FEMaterial:
-    """The FE's view of a tube material: a MooneyRivlin unchanged, a model adapted.
-
-    Parameters
-    ----------
-    material : MooneyRivlin or HyperelasticModel
-        Tube material (MPa, 1/MPa).
-
-    Returns
-    -------
-    MooneyRivlin or PlaneStrainMaterial
-
-    Raises
-    ------
-    InputError
-        Another type.
-    """
-    if isinstance(material, MooneyRivlin):
-        return material
-    return PlaneStrainMaterial(material)
-
-
 def _solve_mesh(structure: Structure, material: FEMaterial, p: np.ndarray, spec: MeshSpec,
                 penalty: float, density: float, gravity: str, settings: NewtonSettings,
                 spring_rel: float, release: bool = True, wire_angle_deg: float = 0.0,
@@ -768,46 +690,6 @@ def _relative_pct(fine: np.ndarray, coarse: np.ndarray) -> np.ndarray:
         pct = np.where(fine > 0.0, 100.0 * diff / np.where(fine > 0.0, fine, 1.0),
                        np.where(diff > 0.0, 100.0, 0.0))
     return np.asarray(pct)
-
-
-def resolve_accuracy(accuracy: str | None, mesh: MeshSpec | None,
-                     levels: Mapping[str, Mapping[str, Any]]) -> tuple[str, MeshSpec,
-                                                                       MeshSpec | None]:
-    """(level name, mesh returned, nested coarse mesh for the estimate or None).
-
-    Parameters
-    ----------
-    accuracy : {'draft', 'standard', 'fine'} or None
-        Named level; None means :data:`exofric.defaults.ACCURACY` unless ``mesh`` is given.
-    mesh : MeshSpec or None
-        An explicit mesh (then no error estimate: ``accuracy`` is ``"mesh"``).
-    levels : mapping
-        :data:`exofric.defaults.SQUEEZE_ACCURACY` or :data:`exofric.defaults.INFLATION_ACCURACY`.
-
-    Returns
-    -------
-    tuple of (str, MeshSpec, MeshSpec or None)
-
-    Examples
-    --------
-    >>> from exofric import defaults
-    >>> name, m, c = resolve_accuracy(None, None, defaults.SQUEEZE_ACCURACY)
-    >>> name, m.n_circ, c.n_circ
-    ('standard', 32, 16)
-    """
-    if mesh is not None and accuracy is not None:
-        raise InputError("give accuracy or mesh, not both (accuracy names a pair of meshes)",
-                         param="accuracy")
-    if mesh is not None:
-        return "mesh", mesh, None
-    name = defaults.ACCURACY if accuracy is None else str(accuracy)
-    if name not in levels:
-        raise InputError(f"accuracy must be one of {', '.join(levels)}, got {accuracy!r}",
-                         param="accuracy")
-    lvl = dict(levels[name])
-    fr, fc = lvl.pop("coarsen")
-    spec = MeshSpec(**lvl)
-    return name, spec, spec.coarsened(fr, fc)
 
 
 def _solve_levels(
