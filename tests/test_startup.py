@@ -120,7 +120,8 @@ def test_stage_facades_load_only_what_is_asked(stmt: str, absent: tuple[str, ...
 
 
 def _facades() -> list[Path]:
-    return sorted(p for p in SRC.glob("*/__init__.py") if "_MODULES" in p.read_text())
+    return sorted(p for p in SRC.glob("*/__init__.py")
+                  if "_MODULES" in (t := p.read_text()) or "lazy_package(" in t)
 
 
 def test_there_are_facades() -> None:
@@ -143,7 +144,8 @@ def test_facade_map_matches_its_type_checking_imports(init: Path) -> None:
                 for a in imp.names:
                     typed[a.asname or a.name] = imp.module.rsplit(".", 1)[1]
     mod = importlib.import_module(pkg)
-    assert typed == mod._HOME
+    if hasattr(mod, "_HOME"):      # a hand-written map (packages not yet on lazy_package)
+        assert typed == mod._HOME
     assert set(mod.__all__) == set(typed)
     for name, home in typed.items():
         assert getattr(mod, name) is getattr(importlib.import_module(f"{pkg}.{home}"), name)

@@ -26,47 +26,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 from exofric._version import __version__
-
-# Lazy facade (SPEC 1 style): ``import exofric`` stays cheap (the CLI and every Dask worker
-# import it), and each name is loaded from its one home on first use.
-_HOME: dict[str, str] = {
-    "CalibrationResult": "exofric.calibration",
-    "InflationData": "exofric.calibration",
-    "calibrate": "exofric.calibration",
-    "Controller": "exofric.control",
-    "PIDGains": "exofric.control",
-    "PlantParams": "exofric.control",
-    "SweepSpec": "exofric.design",
-    "parse_sweep": "exofric.design",
-    "run_sweep": "exofric.design",
-    "search_designs": "exofric.design",
-    "ConvergenceError": "exofric.errors",
-    "InputError": "exofric.errors",
-    "MeshSpec": "exofric.fe",
-    "CubicFit": "exofric.friction",
-    "FrictionModel": "exofric.friction",
-    "GammaFit": "exofric.friction",
-    "fit_gamma": "exofric.friction",
-    "predict": "exofric.friction",
-    "pressure_for_friction": "exofric.friction",
-    "reduce_log": "exofric.friction",
-    "simulate_raw_log": "exofric.friction",
-    "simulate_rig": "exofric.friction",
-    "torque": "exofric.friction",
-    "BASE": "exofric.geometry",
-    "Structure": "exofric.geometry",
-    "MooneyRivlin": "exofric.material",
-    "shore_to_modulus": "exofric.material",
-    "ReproduceConfig": "exofric.reproduction",
-    "ReproduceResult": "exofric.reproduction",
-    "reproduce": "exofric.reproduction",
-    "InflationResult": "exofric.simulate",
-    "SqueezeResult": "exofric.simulate",
-    "inflate": "exofric.simulate",
-    "squeeze": "exofric.simulate",
-}
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.calibration import CalibrationResult, InflationData, calibrate
@@ -93,42 +54,8 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
 
 
 
-__all__ = [
-    "BASE",
-    "CalibrationResult",
-    "Controller",
-    "ConvergenceError",
-    "CubicFit",
-    "FrictionModel",
-    "GammaFit",
-    "InflationData",
-    "InflationResult",
-    "InputError",
-    "MeshSpec",
-    "MooneyRivlin",
-    "PIDGains",
-    "PlantParams",
-    "ReproduceConfig",
-    "ReproduceResult",
-    "Structure",
-    "SqueezeResult",
-    "SweepSpec",
-    "__version__",
-    "calibrate",
-    "fit_gamma",
-    "inflate",
-    "parse_sweep",
-    "predict",
-    "pressure_for_friction",
-    "reduce_log",
-    "reproduce",
-    "run_sweep",
-    "search_designs",
-    "shore_to_modulus",
-    "simulate_raw_log",
-    "simulate_rig",
-    "squeeze",
-    "torque",
-]
 
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# Lazy facade (SPEC 1 style): ``import exofric`` stays cheap (the CLI and every Dask worker
+# import it), and each name is loaded from its one home on first use. The TYPE_CHECKING imports
+# above are the one list of names: __all__ and the facade are derived from them.
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__, extra=("__version__",))

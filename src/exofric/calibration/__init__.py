@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.calibration._api import METHODS, calibrate
@@ -64,32 +64,9 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         relative_errors_pct,
     )
 
+
 # Lazy facade (PEP 562): ``CalibrationResult`` or ``InflationData`` do not load scipy.optimize
-# (``calibrate`` does); each name is loaded from its module on first use (exofric/__init__.py does
-# the same one level up).
-_MODULES: dict[str, tuple[str, ...]] = {
-    "_api": ("METHODS", "calibrate"),
-    "_material": (
-        "CONDITION_LIMIT", "CORRELATION_LIMIT", "DatasetFit", "Identifiability",
-        "MaterialCalibration", "MisfitProfile", "RingTest", "calibrate_material",
-    ),
-    "_methods": ("Evaluator", "Fit", "bisection", "bounded", "joint", "known_hardness"),
-    "_models": (
-        "DEFAULT_MODEL", "MODEL_KINDS", "C10Convention", "CachedModel", "ModelFn", "make_model",
-        "material_for", "paper_table1_model",
-    ),
-    "_result": ("CalibrationResult", "InflationData", "Trial", "relative_errors_pct"),
-}
-_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
-
-__all__ = [
-    "bisection", "bounded", "C10Convention", "CachedModel", "calibrate", "CalibrationResult",
-    "DEFAULT_MODEL", "Evaluator", "Fit", "InflationData", "joint", "known_hardness", "make_model",
-    "material_for", "METHODS", "MODEL_KINDS", "ModelFn", "paper_table1_model",
-    "relative_errors_pct", "Trial",
-    # joint material calibration (inflation + tensile + ring + Shore prior)
-    "calibrate_material", "CONDITION_LIMIT", "CORRELATION_LIMIT", "DatasetFit",
-    "Identifiability", "MaterialCalibration", "MisfitProfile", "RingTest",
-]
-
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# (``calibrate`` does); each name is loaded from its module on first use.
+# The TYPE_CHECKING imports above are the one list of public names: __all__ and the facade
+# are derived from them (exofric._lazy.lazy_package).
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.control._identify import IdentifiedPlant, fopdt_response, identify_step
@@ -68,40 +68,9 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.control._simulate import PlantLike, SimulationResult, setpoint_profile, simulate
     from exofric.control._tuning import CONTROLLERS, TuningResult, itae_gains, rule_gains
 
+
 # Lazy facade (PEP 562): importing one name does not load the whole stage; each name is loaded
-# from its module on first use (exofric/__init__.py does the same one level up).
-_MODULES: dict[str, tuple[str, ...]] = {
-    "_identify": ("IdentifiedPlant", "fopdt_response", "identify_step"),
-    "_metrics": ("StepMetrics", "itae", "step_metrics"),
-    "_pid": ("AntiWindup", "Controller", "ModelFeedforward", "PIDGains"),
-    "_plant": (
-        "CubicFrictionMap", "CurveFrictionMap", "PlantParams", "PressurePlant", "local_slope",
-    ),
-    "_pneumatic": (
-        "ChargeFit", "Orifice", "PneumaticParams", "PneumaticPlant", "identify_charge",
-        "simulate_charge", "tube_volume_table",
-    ),
-    "_schedule": (
-        "HysteresisInverse", "HystereticFrictionMap", "ScheduledController", "StrategyRow",
-        "StrategyTable", "compare_strategies", "friction_inverse",
-    ),
-    "_simulate": ("PlantLike", "SimulationResult", "setpoint_profile", "simulate"),
-    "_tuning": ("CONTROLLERS", "TuningResult", "itae_gains", "rule_gains"),
-}
-_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
-
-__all__ = [
-    "AntiWindup", "Controller", "CONTROLLERS", "CubicFrictionMap", "CurveFrictionMap",
-    "fopdt_response", "IdentifiedPlant", "identify_step", "itae", "itae_gains", "local_slope",
-    "ModelFeedforward", "PIDGains", "PlantParams", "PressurePlant", "rule_gains",
-    "setpoint_profile", "simulate", "SimulationResult", "step_metrics", "StepMetrics",
-    "TuningResult",
-    # gain scheduling, hysteresis-aware feedforward, strategy comparison (_schedule)
-    "compare_strategies", "friction_inverse", "HysteresisInverse", "HystereticFrictionMap",
-    "PlantLike", "ScheduledController", "StrategyRow", "StrategyTable",
-    # the physical pneumatic plant and its identification (_pneumatic)
-    "ChargeFit", "identify_charge", "Orifice", "PneumaticParams", "PneumaticPlant",
-    "simulate_charge", "tube_volume_table",
-]
-
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# from its module on first use.
+# The TYPE_CHECKING imports above are the one list of public names: __all__ and the facade
+# are derived from them (exofric._lazy.lazy_package).
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)

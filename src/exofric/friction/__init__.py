@@ -43,7 +43,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.friction._curve import SqueezeCurve
@@ -89,43 +89,9 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.friction._stats import AnovaResult, anova_vs_base, one_way_anova
     from exofric.friction._torque import TorqueCheck, capstan_factor, torque
 
+
 # Lazy facade (PEP 562): importing one name does not load the whole stage; each name is loaded
-# from its module on first use (exofric/__init__.py does the same one level up).
-_MODULES: dict[str, tuple[str, ...]] = {
-    "_curve": ("SqueezeCurve",),
-    "_fit": ("GammaFit", "LackOfFit", "fit_gamma", "match_squeeze", "relative_errors"),
-    "_interfaces": (
-        "IdentifiabilityWarning", "InterfaceCurves", "InterfaceFit", "InterfaceFrictionModel",
-        "InterfaceRigRun", "InterfaceTest", "fit_interfaces", "simulate_interface_rig",
-    ),
-    "_model": ("CubicFit", "FrictionModel", "pressure_for_friction"),
-    "_predict": (
-        "ApplicabilityWarning", "Deviation", "MeasuredCurve", "Prediction", "PredictionSet",
-        "deviation", "paper_structures", "predict", "structures_from_dict",
-    ),
-    "_rawrig": ("RawRigConfig", "RawRigLog", "simulate_raw_log"),
-    "_reduce": (
-        "ReduceSettings", "RigReduction", "friction_curve", "integrated_autocorr_time",
-        "pool_pulls", "reduce_log",
-    ),
-    "_rig": ("RigConfig", "RigRun", "simulate_rig"),
-    "_stats": ("AnovaResult", "anova_vs_base", "one_way_anova"),
-    "_torque": ("TorqueCheck", "capstan_factor", "torque"),
-}
-_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
-
-__all__ = [
-    "anova_vs_base", "AnovaResult", "ApplicabilityWarning", "capstan_factor", "CubicFit",
-    "Deviation", "deviation", "fit_gamma", "fit_interfaces", "FrictionModel", "GammaFit",
-    "IdentifiabilityWarning", "InterfaceCurves", "InterfaceFit", "InterfaceFrictionModel",
-    "InterfaceRigRun", "InterfaceTest", "LackOfFit", "match_squeeze",
-    "MeasuredCurve", "one_way_anova", "paper_structures", "predict", "Prediction", "PredictionSet",
-    "pressure_for_friction", "RawRigConfig", "RawRigLog", "ReduceSettings", "reduce_log",
-    "friction_curve", "integrated_autocorr_time", "pool_pulls", "relative_errors", "RigConfig",
-    "RigReduction",
-    "RigRun",
-    "simulate_interface_rig", "simulate_raw_log", "simulate_rig",
-    "SqueezeCurve", "structures_from_dict", "torque", "TorqueCheck",
-]
-
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# from its module on first use.
+# The TYPE_CHECKING imports above are the one list of public names: __all__ and the facade
+# are derived from them (exofric._lazy.lazy_package).
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)

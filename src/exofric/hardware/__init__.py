@@ -47,7 +47,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.hardware._clock import Clock, RealClock, SimClock
@@ -74,26 +74,8 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.hardware._serial import PROTOCOL_VERSION
     from exofric.hardware._sim import ModbusSimServer, SerialSimDevice, SimRig, SimulatedDevice
 
+
 # Lazy facade (PEP 562): pymodbus and pyserial load only with the backend that needs them.
-_MODULES: dict[str, tuple[str, ...]] = {
-    "_clock": ("Clock", "RealClock", "SimClock"),
-    "_device": ("Device", "DeviceError", "DeviceFault", "LoopFault", "Reading", "SensorStale",
-                "default_friction_map", "open_device", "parse_url"),
-    "_loop": ("LoopResult", "SafetyLimits", "run_loop"),
-    "_modbus": ("DEFAULT_MAP_PATH", "RegisterMap", "RegisterSpec", "decode_registers",
-                "encode_registers", "load_register_map"),
-    "_serial": ("PROTOCOL_VERSION",),
-    "_sim": ("ModbusSimServer", "SerialSimDevice", "SimRig", "SimulatedDevice"),
-}
-_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
-
-__all__ = [
-    "Clock", "DEFAULT_MAP_PATH", "decode_registers", "default_friction_map", "Device",
-    "DeviceError", "DeviceFault", "encode_registers", "load_register_map", "LoopFault",
-    "LoopResult", "ModbusSimServer", "open_device", "parse_url", "PROTOCOL_VERSION", "Reading",
-    "RealClock",
-    "RegisterMap", "RegisterSpec", "run_loop", "SafetyLimits", "SensorStale",
-    "SerialSimDevice", "SimClock", "SimRig", "SimulatedDevice",
-]
-
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# The TYPE_CHECKING imports above are the one list of public names: __all__ and the facade
+# are derived from them (exofric._lazy.lazy_package).
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)

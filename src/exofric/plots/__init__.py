@@ -38,7 +38,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.plots._calibrate import (
@@ -71,38 +71,9 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.plots._rig import plot_reduction
     from exofric.plots._ring import plot_ring_test
 
+
 # Lazy facade (PEP 562): ``save`` or one figure does not load every plotting module; each name is
-# loaded from its module on first use (exofric/__init__.py does the same one level up).
-_MODULES: dict[str, tuple[str, ...]] = {
-    "_calibrate": ("plot_calibration", "plot_material_calibration", "plot_table1"),
-    "_common": ("save",),
-    "_control": ("plot_control_cases", "plot_simulation"),
-    "_design": ("map_axes", "plot_design_map"),
-    "_fe": (
-        "draw_section", "plot_contact_pressure", "plot_inflation", "plot_inflation_curve",
-        "plot_tube_ends",
-        "plot_squeeze",
-        "plot_squeeze_curves", "plot_squeeze_force", "section_polygons",
-    ),
-    "_friction": ("plot_cubic_fit", "plot_gamma_fit", "plot_predictions", "plot_torque"),
-    "_interfaces": ("plot_interface_fit",),
-    "_material": ("plot_material_fit",),
-    "_rig": ("plot_reduction",),
-    "_ring": ("plot_ring_test",),
-}
-_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
-
-__all__ = [
-    "draw_section", "map_axes", "plot_calibration", "plot_contact_pressure",
-    "plot_control_cases", "plot_cubic_fit",
-    "plot_design_map", "plot_gamma_fit", "plot_inflation", "plot_inflation_curve",
-    "plot_tube_ends",
-    "plot_interface_fit", "plot_material_calibration", "plot_material_fit", "plot_predictions",
-    "plot_reduction",
-    "plot_ring_test",
-    "plot_simulation", "plot_squeeze",
-    "plot_squeeze_curves",
-    "plot_squeeze_force", "plot_table1", "plot_torque", "save", "section_polygons",
-]
-
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# loaded from its module on first use.
+# The TYPE_CHECKING imports above are the one list of public names: __all__ and the facade
+# are derived from them (exofric._lazy.lazy_package).
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.report._build import (
@@ -32,22 +32,9 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.report._html import render_html
     from exofric.report._style import REPORT_CSS, comparison_cells, fmt
 
+
 # Lazy facade (PEP 562): ``fmt`` and the HTML helpers do not load the figures and the pipeline;
-# each name is loaded from its module on first use (exofric/__init__.py does the same one level
-# up).
-_MODULES: dict[str, tuple[str, ...]] = {
-    "_build": (
-        "FigureFile", "ReportFiles", "find_notes_dir", "make_figures", "read_notes",
-        "write_report",
-    ),
-    "_html": ("render_html",),
-    "_style": ("REPORT_CSS", "comparison_cells", "fmt"),
-}
-_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
-
-__all__ = [
-    "comparison_cells", "FigureFile", "find_notes_dir", "fmt", "make_figures", "read_notes",
-    "render_html", "REPORT_CSS", "ReportFiles", "write_report",
-]
-
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# each name is loaded from its module on first use.
+# The TYPE_CHECKING imports above are the one list of public names: __all__ and the facade
+# are derived from them (exofric._lazy.lazy_package).
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.reproduction._compare import Comparison, paper_checks, printed_decimals
@@ -72,33 +72,9 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         stage_table2,
     )
 
+
 # Lazy facade (PEP 562): importing one name does not load every stage of the pipeline; each name
-# is loaded from its module on first use (exofric/__init__.py does the same one level up).
-_MODULES: dict[str, tuple[str, ...]] = {
-    "_compare": ("Comparison", "paper_checks", "printed_decimals"),
-    "_control": ("ControlStage", "CubicStage", "stage_control", "stage_cubic"),
-    "_fig12": (
-        "PAPER_SETTLING_S", "CaseResult", "CompareResult", "ControlSetup", "FrictionMapLike",
-        "compare", "run_case",
-    ),
-    "_pipeline": (
-        "FAST_INFLATION_MESH", "FAST_SQUEEZE_MESH", "STAGES", "ReproduceConfig", "ReproduceResult",
-        "StageTime", "reproduce", "software_versions",
-    ),
-    "_predict": ("PredictionStage", "TorqueStage", "stage_prediction", "stage_torque"),
-    "_squeeze": ("ID_STEP_MM", "GammaStage", "SqueezeStage", "stage_gamma", "stage_squeeze"),
-    "_stages": ("CalibrationStage", "Table2Stage", "stage_calibration", "stage_table2"),
-}
-_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
-
-__all__ = [
-    "CalibrationStage", "CaseResult", "compare", "CompareResult", "Comparison", "ControlSetup",
-    "ControlStage", "CubicStage", "FAST_INFLATION_MESH", "FAST_SQUEEZE_MESH", "FrictionMapLike",
-    "GammaStage", "ID_STEP_MM", "paper_checks", "PAPER_SETTLING_S", "PredictionStage",
-    "printed_decimals", "reproduce", "ReproduceConfig", "ReproduceResult", "run_case",
-    "software_versions", "SqueezeStage", "stage_calibration", "stage_control", "stage_cubic",
-    "stage_gamma", "stage_prediction", "stage_squeeze", "stage_table2", "stage_torque", "STAGES",
-    "StageTime", "Table2Stage", "TorqueStage",
-]
-
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# is loaded from its module on first use.
+# The TYPE_CHECKING imports above are the one list of public names: __all__ and the facade
+# are derived from them (exofric._lazy.lazy_package).
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)

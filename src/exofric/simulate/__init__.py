@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from exofric._lazy import facade
+from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.simulate._analytic import (
@@ -51,48 +51,9 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.simulate._stretch import StretchWarning, check_stretch
     from exofric.simulate._tolerance import TOLERANCE_NAMES, ToleranceResult, squeeze_tolerances
 
+
 # Lazy facade (PEP 562): ``squeeze`` does not load the inflation and its closed-form references;
-# each name is loaded from its module on first use (exofric/__init__.py does the same one level
-# up).
-_MODULES: dict[str, tuple[str, ...]] = {
-    "_analytic": (
-        "InflationCurve", "compressible_inflation", "incompressible_inflation",
-        "incompressible_limit_pressure", "incompressible_pressure", "TubeInflationCurve",
-        "tube_inflation",
-    ),
-    "_clearance": ("ClearanceDistribution", "ClearanceSqueeze", "squeeze_with_clearance"),
-    "_inflate": ("InflationResult", "inflate"),
-    "_tolerance": ("TOLERANCE_NAMES", "ToleranceResult", "squeeze_tolerances"),
-    "_ring": ("RingResult", "ring_test"),
-    "_common": ("check_friction",),
-    "_squeeze": ("SqueezeResult", "squeeze"),
-    "_stretch": ("StretchWarning", "check_stretch"),
-}
-_HOME = {name: mod for mod, names in _MODULES.items() for name in names}
-
-__all__ = [
-    "ClearanceDistribution",
-    "ClearanceSqueeze",
-    "InflationCurve",
-    "InflationResult",
-    "SqueezeResult",
-    "StretchWarning",
-    "check_friction",
-    "check_stretch",
-    "compressible_inflation",
-    "incompressible_inflation",
-    "squeeze_tolerances",
-    "squeeze_with_clearance",
-    "TOLERANCE_NAMES",
-    "ToleranceResult",
-    "incompressible_limit_pressure",
-    "incompressible_pressure",
-    "inflate",
-    "squeeze",
-    "RingResult",
-    "ring_test",
-    "TubeInflationCurve",
-    "tube_inflation",
-]
-
-__getattr__, __dir__ = facade(__name__, _HOME, __all__)
+# each name is loaded from its module on first use.
+# The TYPE_CHECKING imports above are the one list of public names: __all__ and the facade
+# are derived from them (exofric._lazy.lazy_package).
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)
