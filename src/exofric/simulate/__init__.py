@@ -3,6 +3,9 @@
 * :func:`inflate` -> :class:`InflationResult` -- free inflation of the tube (quarter model).
 * :func:`squeeze` -> :class:`SqueezeResult` -- the tube-wire-hole squeeze N(P) (half model,
   paper §3.4, Figs 6-7).
+* :class:`SqueezeSetup` -- everything a squeeze depends on but the pressures (structure,
+  material, ends, friction, accuracy, gravity, ...), validated once; ``setup.solve(P)`` is
+  :func:`squeeze`, and every :class:`SqueezeResult` carries its ``setup``.
 * :func:`incompressible_inflation`, :func:`compressible_inflation` -- exact and 1D-BVP
   references for the free inflation; :func:`tube_inflation` -> :class:`TubeInflationCurve` --
   the incompressible thick tube with closed or open ends (generalised plane strain).
@@ -47,6 +50,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.simulate._common import check_friction
     from exofric.simulate._inflate import InflationResult, inflate
     from exofric.simulate._ring import RingResult, ring_test
+    from exofric.simulate._setup import SqueezeSetup
     from exofric.simulate._squeeze import SqueezeResult, squeeze
     from exofric.simulate._stretch import StretchWarning, check_stretch
     from exofric.simulate._tolerance import TOLERANCE_NAMES, ToleranceResult, squeeze_tolerances

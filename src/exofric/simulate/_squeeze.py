@@ -15,17 +15,13 @@ import numpy as np
 from exofric import defaults
 from exofric.errors import (
     ConvergenceError,
-    InputError,
-    check_positive,
     check_pressures,
 )
 from exofric.fe import (
-    GRAVITY_OPTIONS,
     MeshSpec,
     NewtonSettings,
     SolverStats,
     SqueezeProblem,
-    check_ends,
     collect_stats,
     nodal_weights,
     solve_path,
@@ -36,12 +32,10 @@ from exofric.fe import (
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
 from exofric.simulate._common import (
-    FEMaterial,
-    check_friction,
-    fe_material_of,
     opt_list,
     resolve_accuracy,
 )
+from exofric.simulate._setup import SqueezeSetup
 from exofric.simulate._stretch import check_stretch
 
 if TYPE_CHECKING:
@@ -88,16 +82,13 @@ class SqueezeResult:
         Degrees of freedom of the model (incl. constrained).
     solve_time_s : float
         Wall time of the solve alone (s).
-    structure : Structure
-        Hole, tube and wire (mm).
-    material : MooneyRivlin or HyperelasticModel
-        Tube material.
+    setup : SqueezeSetup
+        What was solved (structure, material, ends, friction, accuracy, gravity, ...); its
+        fields are also this result's properties ``structure``, ``material``, ``penalty``
+        (N/mm^3), ``density`` (t/mm^3), ``gravity``, ``wire_angle_deg`` (deg), ``mu_wall``,
+        ``mu_wire`` and ``ends``.
     mesh : MeshSpec
         Mesh used.
-    penalty : float
-        Contact penalty used (N/mm^3).
-    density : float
-        Tube density used for the self-weight (t/mm^3).
     symmetry : str
         Which symmetry was used.
     nodes : ndarray (n, 2)
@@ -111,8 +102,6 @@ class SqueezeResult:
     accuracy : str
         The named accuracy level (``'draft'``, ``'standard'``, ``'fine'``) or ``'mesh'``
         for an explicit mesh.
-    gravity : str
-        Orientation of gravity: ``'none'``, ``'toward-wall'`` or ``'toward-wire'``.
     estimate_mesh : MeshSpec or None
         The nested coarser mesh of the error estimate (None for an explicit mesh).
     n_error_estimate_pct : ndarray or None
@@ -128,18 +117,12 @@ class SqueezeResult:
         Newton attempts, failed attempts, iterations, linear solves and the wall time (s)
         spent in them and in the failed ones, over both meshes, the onset bracketing and the
         regulariser's release.
-    wire_angle_deg : float
-        Angle of the wire centre from the top of the hole (deg, positive toward +x; 0: the
-        half model).
     squeeze_force_direction_deg : ndarray or None
         Direction of the tube's resultant force on the wire (deg from +y, positive toward +x;
         0 for the half model, NaN where N = 0).
     wall_force_direction_deg : ndarray or None
         Direction of the hole wall's resultant force on the tube (deg from +y, positive toward
         +x; NaN where it is 0).
-    mu_wall, mu_wire : float
-        Coulomb coefficients of the tube on the wall and on the wire (unitless; 0:
-        frictionless).
     friction_penalty : float
         Tangential penalty (N/mm^3).
     wire_pressure_integral_n_per_mm, wall_pressure_integral_n_per_mm : ndarray or None
@@ -161,9 +144,6 @@ class SqueezeResult:
     friction_dissipation_n_per_mm : ndarray or None
         Frictional work of each committed load sub-step (N mm per mm depth, full section;
         >= 0), None without friction (per unit reference length with closed or open ends).
-    ends : str
-        ``'plane-strain'`` (the paper's), ``'closed'`` or ``'open'``: the tube's axial
-        condition; with closed or open ends the forces are per unit deformed length.
     axial_stretch : ndarray or None
         Axial stretch of the tube (unitless) per pressure (1 in plane strain).
 
@@ -190,28 +170,21 @@ class SqueezeResult:
     weight_n_per_mm: float
     dofs: int
     solve_time_s: float
-    structure: Structure
-    material: MooneyRivlin | HyperelasticModel
+    setup: SqueezeSetup
     mesh: MeshSpec
-    penalty: float
-    density: float
     symmetry: str
     nodes: np.ndarray = field(repr=False)
     elements: np.ndarray = field(repr=False)
     displacements: tuple[np.ndarray, ...] = field(default=(), repr=False)
     von_mises_mpa: tuple[np.ndarray, ...] = field(default=(), repr=False)
     accuracy: str = "mesh"
-    gravity: str = "toward-wall"
     estimate_mesh: MeshSpec | None = None
     n_error_estimate_pct: np.ndarray | None = None
     n_error_estimate_n_per_mm: np.ndarray | None = None
     coarse_squeeze_force_n_per_mm: np.ndarray | None = field(default=None, repr=False)
     solver_stats: SolverStats = field(default_factory=SolverStats, repr=False)
-    wire_angle_deg: float = 0.0
     squeeze_force_direction_deg: np.ndarray | None = None
     wall_force_direction_deg: np.ndarray | None = None
-    mu_wall: float = 0.0
-    mu_wire: float = 0.0
     friction_penalty: float = defaults.CONTACT_PENALTY_N_PER_MM3 * defaults.FRICTION_PENALTY_REL
     wire_pressure_integral_n_per_mm: np.ndarray | None = None
     wall_pressure_integral_n_per_mm: np.ndarray | None = None
@@ -221,8 +194,54 @@ class SqueezeResult:
     stick_fraction_wall: np.ndarray | None = None
     contact: tuple[dict[str, dict[str, list[Any]]], ...] = field(default=(), repr=False)
     friction_dissipation_n_per_mm: np.ndarray | None = field(default=None, repr=False)
-    ends: str = "plane-strain"
     axial_stretch: np.ndarray | None = None
+
+    # -- what was solved: the setup's fields, as before the setup existed ---------------------
+
+    @property
+    def structure(self) -> Structure:
+        """Hole, tube and wire (mm)."""
+        return self.setup.structure
+
+    @property
+    def material(self) -> MooneyRivlin | HyperelasticModel:
+        """Tube material."""
+        return self.setup.material
+
+    @property
+    def penalty(self) -> float:
+        """Contact penalty used (N/mm^3)."""
+        return float(self.setup.penalty)
+
+    @property
+    def density(self) -> float:
+        """Tube density used for the self-weight (t/mm^3)."""
+        return float(self.setup.density)
+
+    @property
+    def gravity(self) -> str:
+        """Orientation of gravity (unitless): ``'none'``, ``'toward-wall'`` or ``'toward-wire'``."""
+        return self.setup.gravity
+
+    @property
+    def wire_angle_deg(self) -> float:
+        """Angle of the wire centre from the top of the hole (deg; 0: the half model)."""
+        return self.setup.angle_deg
+
+    @property
+    def mu_wall(self) -> float:
+        """Coulomb coefficient of the tube on the hole wall (unitless)."""
+        return self.setup.mu[0]
+
+    @property
+    def mu_wire(self) -> float:
+        """Coulomb coefficient of the tube on the wire (unitless)."""
+        return self.setup.mu[1]
+
+    @property
+    def ends(self) -> str:
+        """The tube's axial condition: ``'plane-strain'``, ``'closed'`` or ``'open'``."""
+        return self.setup.ends
 
     def contact_point_data(self, index: int = -1) -> dict[str, np.ndarray]:
         """Per-node contact fields of one pressure, for VTU point data (0 off the arcs).
@@ -568,13 +587,8 @@ def _release(prob: SqueezeProblem, u: np.ndarray, p: float, s: NewtonSettings,
         prob.spring_k = k
 
 
-def _solve_mesh(structure: Structure, material: FEMaterial, p: np.ndarray, spec: MeshSpec,
-                penalty: float, density: float, gravity: str, settings: NewtonSettings,
-                spring_rel: float, release: bool = True, wire_angle_deg: float = 0.0,
-                rotation_rel: float = defaults.ROTATION_SPRING_REL,
-                full: bool | None = None, mu: tuple[float, float] = (0.0, 0.0),
-                friction_penalty: float | None = None, ends: str = "plane-strain"
-                ) -> _MeshSolution:
+def _solve_mesh(setup: SqueezeSetup, p: np.ndarray, spec: MeshSpec, settings: NewtonSettings,
+                release: bool = True) -> _MeshSolution:
     """Follow the load path on one mesh; release the regulariser at each output (gravity none).
 
     With ``release``, the floating-mode spring is also taken out of the path itself at the
@@ -583,10 +597,11 @@ def _solve_mesh(structure: Structure, material: FEMaterial, p: np.ndarray, spec:
     release solve (one Newton attempt each; they were ~15% of a default squeeze's attempts).
     """
     # SqueezeProblem reads only shear_modulus (and its body the kernel): either type serves
-    prob = SqueezeProblem(structure, cast(MooneyRivlin, material), spec, penalty, density,
-                          gravity, spring_rel, wire_angle_deg, rotation_rel, full,
-                          mu_wall=mu[0], mu_wire=mu[1], friction_penalty=friction_penalty,
-                          ends=ends)
+    prob = SqueezeProblem(setup.structure, cast(MooneyRivlin, setup.fe_material), spec,
+                          setup.penalty, setup.density, setup.gravity, setup.regulariser,
+                          setup.angle_deg, setup.rotation_regulariser, setup.full,
+                          mu_wall=setup.mu[0], mu_wire=setup.mu[1],
+                          friction_penalty=setup.friction_penalty, ends=setup.ends)
     path: list[tuple[float, np.ndarray]] = []
     spring = prob.spring_k
     freed_at = np.inf  # the load (MPa) of the sub-step after which the spring is out
@@ -611,7 +626,7 @@ def _solve_mesh(structure: Structure, material: FEMaterial, p: np.ndarray, spec:
         path.insert(0, (0.0, pts[0].u.copy()))
     states = [pt.u for pt in pts]
     fstates = [_nearest(path_fstates, float(pt.load)) for pt in pts] if fric else None
-    if gravity == "none" and release:
+    if setup.gravity == "none" and release:
         out = []
         for k, pt in enumerate(pts):
             if pt.load <= freed_at + 1e-12:
@@ -693,23 +708,17 @@ def _relative_pct(fine: np.ndarray, coarse: np.ndarray) -> np.ndarray:
 
 
 def _solve_levels(
-    structure: Structure, material: FEMaterial, p: np.ndarray, spec: MeshSpec,
-    coarse_spec: MeshSpec | None, penalty: float, density: float, gravity: str,
-    s: NewtonSettings, regulariser: float, onset_tol_mpa: float, wire_angle_deg: float = 0.0,
-    rotation_rel: float = defaults.ROTATION_SPRING_REL, full: bool | None = None,
-    mu: tuple[float, float] = (0.0, 0.0), friction_penalty: float | None = None,
-    ends: str = "plane-strain",
+    setup: SqueezeSetup, p: np.ndarray, spec: MeshSpec, coarse_spec: MeshSpec | None,
+    s: NewtonSettings,
 ) -> tuple[_MeshSolution, float | None, np.ndarray | None, np.ndarray | None,
            np.ndarray | None]:
     """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm) of :func:`squeeze`."""
-    sol = _solve_mesh(structure, material, p, spec, penalty, density, gravity, s, regulariser,
-                      wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full,
-                      mu=mu, friction_penalty=friction_penalty, ends=ends)
+    sol = _solve_mesh(setup, p, spec, s)
     est_pct: np.ndarray | None = None
     est_abs: np.ndarray | None = None
     coarse_n: np.ndarray | None = None
     if coarse_spec is None:
-        onset = _bracket_onset(sol, s, onset_tol_mpa)
+        onset = _bracket_onset(sol, s, setup.onset_tol_mpa)
     else:
         # The coarse mesh only serves the estimate: its states keep the floating-mode spring
         # (a share ~ spring / contact stiffness ~ 1e-4 of N, far below the estimate's size),
@@ -717,11 +726,8 @@ def _solve_levels(
         # the two meshes' onsets agree to ~1e-5 MPa, bracketed to onset_tol_mpa on the cheaper.
         # its N enters only the estimate (% level): Newton to 1e-7 instead of 1e-9 suffices
         loose = replace(s, tol_r=max(s.tol_r, 1e-7), tol_u=max(s.tol_u, 1e-8))
-        coarse = _solve_mesh(structure, material, p, coarse_spec, penalty, density, gravity,
-                             loose, regulariser, release=False,
-                             wire_angle_deg=wire_angle_deg, rotation_rel=rotation_rel, full=full,
-                             mu=mu, friction_penalty=friction_penalty, ends=ends)
-        onset = _bracket_onset(coarse, s, onset_tol_mpa)
+        coarse = _solve_mesh(setup, p, coarse_spec, loose, release=False)
+        onset = _bracket_onset(coarse, s, setup.onset_tol_mpa)
         coarse_n = coarse.n.copy()
         fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
         est_abs = np.maximum(fs * np.abs(sol.n - coarse.n), 0.01 * floor * sol.n)
@@ -848,42 +854,24 @@ def squeeze(
     ('standard', 32, True)
     """
 
-    fe_material = fe_material_of(material)
+    return SqueezeSetup(
+        structure, material, ends=ends, mu_wall=mu_wall, mu_wire=mu_wire,
+        friction_penalty=friction_penalty, accuracy=accuracy, mesh=mesh, gravity=gravity,
+        wire_angle_deg=wire_angle_deg, full_model=full_model, penalty=penalty, density=density,
+        settings=settings, onset_tol_mpa=onset_tol_mpa, regulariser=regulariser,
+        rotation_regulariser=rotation_regulariser, keep_fields=keep_fields,
+    ).solve(pressures_mpa)
+
+
+def solve_setup(setup: SqueezeSetup, pressures_mpa: Any) -> SqueezeResult:
+    """:meth:`SqueezeSetup.solve`: the squeeze of a validated setup at pressures (MPa)."""
     p = check_pressures("pressures_mpa", pressures_mpa, max_mpa=2.0)
-    check_positive("penalty", penalty, "N/mm^3")
-    check_positive("density", density, "t/mm^3")
-    check_positive("onset_tol_mpa", onset_tol_mpa, "MPa")
-    check_positive("regulariser", regulariser)
-    check_positive("rotation_regulariser", rotation_regulariser)
-    mu = (check_friction("mu_wall", mu_wall), check_friction("mu_wire", mu_wire))
-    ends = check_ends(ends)
-    if friction_penalty is not None:
-        check_positive("friction_penalty", friction_penalty, "N/mm^3")
-    try:
-        angle = float(wire_angle_deg)
-    except (TypeError, ValueError):
-        raise InputError(f"wire_angle_deg must be a number in (-90, 90) deg, got "
-                         f"{wire_angle_deg!r}", param="wire_angle_deg") from None
-    if not (np.isfinite(angle) and abs(angle) < 90.0):
-        raise InputError(f"wire_angle_deg must be a number in (-90, 90) deg, got {angle:g}",
-                         param="wire_angle_deg")
-    if (angle != 0.0 or full_model) and gravity != "none":
-        # toward the wall the weight holds the tube at the bottom until the wire pushes it
-        # along the wall; that slide, resisted only by the weight (~1e-4 N/mm per mm against
-        # the contact's 1e5), defeats load control on coarse meshes (fe/_squeeze.py).
-        raise InputError(f"an off-centre wire (wire_angle_deg = {angle:g}) needs gravity "
-                         f"'none', got {gravity!r}", param="wire_angle_deg")
-    if gravity not in GRAVITY_OPTIONS:
-        raise InputError(f"gravity must be one of {', '.join(GRAVITY_OPTIONS)}, got {gravity!r}",
-                         param="gravity")
-    level, spec, coarse_spec = resolve_accuracy(accuracy, mesh, defaults.SQUEEZE_ACCURACY)
-    s = settings or NewtonSettings(**defaults.SQUEEZE_NEWTON)
+    structure, angle = setup.structure, setup.angle_deg
+    level, spec, coarse_spec = setup.levels()
     t0 = time.perf_counter()
     with collect_stats() as counted:
-        sol, onset, coarse_n, est_pct, est_abs = _solve_levels(
-            structure, fe_material, p, spec, coarse_spec, penalty, density, gravity, s,
-            regulariser, onset_tol_mpa, angle, rotation_regulariser,
-            True if full_model else None, mu, friction_penalty, ends)
+        sol, onset, coarse_n, est_pct, est_abs = _solve_levels(setup, p, spec, coarse_spec,
+                                                               setup.newton)
     dt = time.perf_counter() - t0
     prob = sol.prob
     L = structure.length_mm
@@ -891,12 +879,12 @@ def squeeze(
     check_stretch(sol.stretch, p, f"squeeze of {structure.name or 'the structure'}")
     disp: tuple[np.ndarray, ...] = ()
     vm: tuple[np.ndarray, ...] = ()
-    if keep_fields:
+    if setup.keep_fields:
         n2 = prob.n_nodal
         disp = tuple(u[:n2].reshape(-1, 2).copy() for u in sol.states)
         vm = tuple(von_mises(prob.body.cauchy_stress(u[:n2], prob.axial_stretch(u))).mean(axis=1)
                    for u in sol.states)
-    weight = prob.weight_per_mm() if gravity != "none" else 0.0
+    weight = prob.weight_per_mm() if setup.gravity != "none" else 0.0
     return SqueezeResult(
         pressure_mpa=p,
         squeeze_force_n_per_mm=arr[:, 0],
@@ -912,11 +900,8 @@ def squeeze(
         weight_n_per_mm=weight,
         dofs=prob.n_dofs,
         solve_time_s=dt,
-        structure=structure,
-        material=material,
+        setup=setup,
         mesh=spec,
-        penalty=float(penalty),
-        density=float(density),
         symmetry=("half model: u_x = 0 on the plane x = 0 through the hole, tube and wire centres"
                   if not prob.full else f"full model (no symmetry): wire at {angle:g} deg from "
                   "the top; translations held by the contacts, rotation by a spring"),
@@ -925,17 +910,13 @@ def squeeze(
         displacements=disp,
         von_mises_mpa=vm,
         accuracy=level,
-        gravity=gravity,
         estimate_mesh=coarse_spec,
         n_error_estimate_pct=est_pct,
         n_error_estimate_n_per_mm=est_abs,
         coarse_squeeze_force_n_per_mm=coarse_n,
         solver_stats=counted.stats,
-        wire_angle_deg=angle,
         squeeze_force_direction_deg=sol.n_dir,
         wall_force_direction_deg=sol.wall_dir,
-        mu_wall=mu[0],
-        mu_wire=mu[1],
         friction_penalty=prob.penalty_t,
         wire_pressure_integral_n_per_mm=sol.interfaces[:, 0],
         wall_pressure_integral_n_per_mm=sol.interfaces[:, 1],
@@ -946,6 +927,5 @@ def squeeze(
         contact=tuple(sol.profiles),
         friction_dissipation_n_per_mm=(np.asarray(prob.dissipation, float)
                                        if prob.frictional else None),
-        ends=ends,
         axial_stretch=sol.axial_stretch,
     )
