@@ -3,7 +3,7 @@
 The two real-time runs (Modbus TCP server and pty serial device, 100 Hz for 10 s, PI + 2-DOF
 model feedforward tuned by the Fig 12 rule on the default plant) take 10 s each in real time.
 Acceptance: the friction settles within 2 % of 54.4 N; the log reads back through
-read_raw_log and identify_step; jitter p50/p99 are reported (printed), with only a generous
+read_raw_log and identify_step; jitter p50/p99 are reported (printed), with no
 sanity bound.
 """
 
@@ -50,7 +50,9 @@ def _check_run(res, log: Path) -> None:
     f = res.samples["force_n"]
     assert np.all(np.abs(f[res.samples["time_s"] > m.settling_time_s] - TARGET_N)
                   < 0.02 * TARGET_N)
-    assert res.jitter_p99_ms < 50.0          # sanity only: the machine is shared
+    # jitter is a figure of the machine, reported here and by benchmarks/bench_control.py, not
+    # a pass/fail test: only that it is measured consistently
+    assert 0.0 <= res.jitter_p50_ms <= res.jitter_p99_ms <= res.jitter_max_ms
     df = read_raw_log(log)
     assert len(df) == res.n_samples
     assert {"setpoint_n", "command_mpa", "i_term_mpa"} <= set(df.attrs["ignored_columns"])
