@@ -369,18 +369,47 @@ def run_loop(
     dt = 1.0 / float(rate_hz)
     check_range("watchdog_s", watchdog_s, dt, 1e4, unit="s")
     base = check_range("baseline_s", baseline_s, 0.0, 1e4, unit="s")
-    n_last = int(round((float(duration_s) + base) * rate_hz))
+    sp = _setpoint_function(setpoint)
+    _check_targets(sp, setpoint, controller, lim, duration_s, rate_hz)
+    log = Path(log_path) if log_path is not None else None
+    if log is not None and log.suffix.lower() not in (".csv", ".txt"):
+        raise InputError(f"log_path must end in .csv or .txt, got {log.name!r}")
+    clk = clock if clock is not None else getattr(device, "clock", None) or RealClock()
+    plant = _plant_of(device)
+    head = ["exofric control run (rig log)",
+            f"started: {_dt.datetime.now(_dt.UTC).isoformat(timespec='seconds')}",
+            f"device: {getattr(device, 'url', type(device).__name__)}", f"plant: {plant}",
+            *_describe(controller),
+            f"rate_hz: {rate_hz:g}", f"duration_s: {duration_s:g}",
+            f"limits: max_pressure_mpa={lim.max_pressure_mpa:g}, trip_pressure_mpa="
+            f"{lim.trip_mpa:g}, max_force_n={lim.max_force_n:g}", f"watchdog_s: {watchdog_s:g}",
+            f"dry_run: {str(bool(dry_run)).lower()}", *[str(m) for m in metadata]]
+    run = _LoopRun(device, controller, sp, lim, dt, base, watchdog_s, dry_run, clk, plant,
+                   log, head)
+    run.execute(int(round((float(duration_s) + base) * rate_hz)))
+    return run.finish(rate_hz, vent_at_end)
+
+
+def _setpoint_function(setpoint: float | Callable[[float], float]) -> Callable[[float], float]:
+    """The set-point as a function of the time since the step (s) -> N."""
     if callable(setpoint):
-        sp: Callable[[float], float] = setpoint
-    else:
-        value = float(setpoint)
+        return setpoint
+    value = float(setpoint)
 
-        def sp(_t: float) -> float:
-            return value
+    def sp(_t: float) -> float:
+        return value
 
+    return sp
+
+
+def _check_targets(sp: Callable[[float], float], setpoint: Any, controller: Any,
+                   lim: SafetyLimits, duration_s: float, rate_hz: float) -> None:
+    """Refuse before the start a set-point that is not finite, negative, above the force limit
+    or (by the controller's model) above the pressure limit."""
+    dt = 1.0 / float(rate_hz)
     # a constant set-point is checked once (not once per sample of a long run)
     targets = (np.array([float(sp(k * dt)) for k in range(int(round(duration_s * rate_hz)) + 1)])
-               if callable(setpoint) else np.array([value]))
+               if callable(setpoint) else np.array([float(setpoint)]))
     if not np.all(np.isfinite(targets)) or targets.min() < 0.0:
         raise InputError("setpoint_n must be finite and >= 0 N")
     if targets.max() > lim.max_force_n:
@@ -393,150 +422,215 @@ def run_loop(
             raise InputError(f"setpoint_n {targets.max():g} N needs {p_ff:.4g} MPa by the model, "
                              f"above the pressure limit max_pressure_mpa "
                              f"{lim.max_pressure_mpa:g} MPa: refused before start")
-    log = Path(log_path) if log_path is not None else None
-    if log is not None and log.suffix.lower() not in (".csv", ".txt"):
-        raise InputError(f"log_path must end in .csv or .txt, got {log.name!r}")
-    clk = clock if clock is not None else getattr(device, "clock", None) or RealClock()
 
-    started = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
-    plant = _plant_of(device)
-    head = ["exofric control run (rig log)", f"started: {started}",
-            f"device: {getattr(device, 'url', type(device).__name__)}", f"plant: {plant}",
-            *_describe(controller),
-            f"rate_hz: {rate_hz:g}", f"duration_s: {duration_s:g}",
-            f"limits: max_pressure_mpa={lim.max_pressure_mpa:g}, trip_pressure_mpa="
-            f"{lim.trip_mpa:g}, max_force_n={lim.max_force_n:g}", f"watchdog_s: {watchdog_s:g}",
-            f"dry_run: {str(bool(dry_run)).lower()}", *[str(m) for m in metadata]]
-    partial = None
-    fh = None
-    if log is not None:
-        log.parent.mkdir(parents=True, exist_ok=True)
-        partial = _partial_path(log)
-        fh = partial.open("w", encoding="utf-8")
-        fh.write("".join(f"# {h}\n" for h in head) + ",".join(LOG_COLUMNS) + "\n")
-        fh.flush()
 
-    rows: list[tuple[float, ...]] = []
-    state: dict[str, Any] = {"reason": "completed", "t_stop": 0.0, "overruns": 0, "skipped": 0,
-                             "cycles": 0, "t_first": math.nan, "t_last": math.nan,
-                             "plant": plant}
-    fault: tuple[str, float, str] | None = None
-    failure: BaseException | None = None
-    start = 0.0
-    try:
-        device.vent()
-        if hasattr(controller, "reset"):
-            controller.reset()
-        start = clk.now()
-        last_fresh = start
-        last_sig: Any = None
-        last_err = ""
-        t_prev: float | None = None
-        in_base = base > 0.0
-        k = 0
-        while k <= n_last:
-            t_sched = start + k * dt
-            clk.sleep_until(t_sched)
-            t_now = clk.now()
-            t_rel = t_now - start
-            state["t_stop"] = t_rel
-            state["cycles"] += 1
-            if state["cycles"] == 1:
-                state["t_first"] = t_now
-            state["t_last"] = t_now
-            try:
-                r = device.read()
-            except SensorStale as exc:
-                r, last_err = None, str(exc)
-            except DeviceError as exc:      # connection lost, junk, out of range: stop now
-                fault = ("device fault", clk.now() - start, " ".join(str(exc).split()))
-                break
-            if r is not None and not (math.isfinite(r.pressure_mpa)
-                                      and math.isfinite(r.force_n)):
-                # NaN compares False with every limit: it must not pass as a reading
-                last_err = (f"non-finite reading: pressure {r.pressure_mpa} MPa, force "
-                            f"{r.force_n} N")
-                r = None
-            t_read = clk.now()      # after the read: a read that timed out took its time
-            if r is not None:
-                sig = r.sample_id if r.sample_id is not None else (r.pressure_mpa, r.force_n)
-                if sig != last_sig:
-                    last_fresh, last_sig = t_now, sig
-            if t_read - last_fresh >= watchdog_s:
-                quiet = t_read - last_fresh
-                why = (f"no valid reading for {quiet:.3g} s ({last_err})"
-                       if r is None else f"sensor unchanged for {quiet:.3g} s")
-                fault = ("watchdog", t_read - start, why)
-                break
-            if r is not None:
-                if r.pressure_mpa > lim.trip_mpa:
-                    fault = ("pressure limit", t_rel, f"pressure {r.pressure_mpa:.4g} MPa above "
-                             f"the trip pressure {lim.trip_mpa:g} MPa")
-                    break
-                if r.force_n > lim.max_force_n:
-                    fault = ("force limit", t_rel, f"force {r.force_n:.4g} N above the force "
-                             f"limit {lim.max_force_n:g} N")
-                    break
-                if t_rel < base:
-                    # baseline: vented, controller idle; the log's rest window (tare)
-                    target, u, cmd = 0.0, 0.0, 0.0
-                    terms: tuple[float, ...] = (0.0, 0.0, 0.0, 0.0)
-                else:
-                    if in_base:
-                        in_base = False
-                        if hasattr(controller, "reset"):
-                            controller.reset()
-                    target = float(sp(t_rel - base))
-                    u = float(controller.step(target, r.force_n, dt if t_prev is None
-                                              else max(t_now - t_prev, 1e-9)))
-                    t_prev = t_now
-                    if not math.isfinite(u):
-                        raise InputError(f"the controller returned a non-finite command {u} "
-                                         f"MPa at {t_rel:.3f} s (set-point {target:g} N, "
-                                         f"force {r.force_n:g} N): stopped and vented")
-                    cmd = min(max(u, 0.0), lim.max_pressure_mpa)
-                    if not dry_run:
-                        try:
-                            device.write_setpoint_mpa(cmd)
-                        except DeviceError as exc:      # not confirmed: stop now
-                            fault = ("device fault", clk.now() - start,
-                                     " ".join(str(exc).split()))
-                            break
-                    terms = tuple(_terms(controller, u))
-                row = (t_rel, r.pressure_mpa, r.force_n, target, cmd, *terms,
-                       1000.0 * (t_now - t_sched))
-                rows.append(row)
-                if fh is not None:
-                    fh.write(",".join(_fmt(v) for v in row) + "\n")
-                    if len(rows) % _FLUSH_EVERY == 0:
-                        fh.flush()
-            k += 1
-            t_end = clk.now()
-            if t_end > start + k * dt:
-                state["overruns"] += 1
-                k_next = int(math.floor((t_end - start) / dt)) + 1
-                state["skipped"] += k_next - k
-                k = k_next
-    except BaseException as exc:  # noqa: BLE001 - vent first, re-raised below
-        failure = exc
-        state["reason"] = "interrupted" if isinstance(exc, KeyboardInterrupt) else "error"
-        state["t_stop"] = clk.now() - start
-    if fault is not None:
-        state["reason"], state["t_stop"] = fault[0], fault[1]
-    vented = False
-    if failure is not None or fault is not None or vent_at_end or dry_run:
-        vented, interrupt = _safe_vent(device)
-        if interrupt is not None and failure is None:
-            failure = interrupt
-            state["reason"] = "interrupted"
-    if fh is not None:
+_Fault = tuple[str, float, str]
+
+
+class _LoopRun:
+    """One run of :func:`run_loop`: its state, one method per part of a cycle, the finish."""
+
+    def __init__(self, device: Any, controller: Any, sp: Callable[[float], float],
+                 lim: SafetyLimits, dt: float, base: float, watchdog_s: float, dry_run: bool,
+                 clk: Any, plant: str, log: Path | None, head: list[str]) -> None:
+        self.device, self.controller, self.sp, self.lim = device, controller, sp, lim
+        self.dt, self.base, self.watchdog_s, self.dry_run = dt, base, watchdog_s, dry_run
+        self.clk, self.log, self.head = clk, log, head
+        self.rows: list[tuple[float, ...]] = []
+        self.state: dict[str, Any] = {"reason": "completed", "t_stop": 0.0, "overruns": 0,
+                                      "skipped": 0, "cycles": 0, "t_first": math.nan,
+                                      "t_last": math.nan, "plant": plant}
+        self.fault: _Fault | None = None
+        self.failure: BaseException | None = None
+        self.start = 0.0
+        self.last_fresh = 0.0
+        self.last_sig: Any = None
+        self.last_err = ""
+        self.t_prev: float | None = None
+        self.in_base = base > 0.0
+        self.partial: Path | None = None
+        self.fh: Any = None
+        if log is not None:
+            log.parent.mkdir(parents=True, exist_ok=True)
+            self.partial = _partial_path(log)
+            self.fh = self.partial.open("w", encoding="utf-8")
+            self.fh.write("".join(f"# {h}\n" for h in head) + ",".join(LOG_COLUMNS) + "\n")
+            self.fh.flush()
+
+    # -- the loop --------------------------------------------------------------------------
+
+    def execute(self, n_last: int) -> None:
+        """Vent, reset, then run cycles 0..n_last on the deadline grid until a fault."""
+        clk = self.clk
         try:
-            fh.close()
-        except OSError:     # e.g. a full disk: the final write below reports it
-            pass
-    result = _result(device, rows, rate_hz, state, vented, dry_run, log, base)
-    if log is not None and partial is not None:
-        tail = [f"stopped: {state['reason']} at {state['t_stop']:.3f} s"
+            self.device.vent()
+            if hasattr(self.controller, "reset"):
+                self.controller.reset()
+            self.start = self.last_fresh = clk.now()
+            k = 0
+            while k <= n_last:
+                self.fault = self._cycle(k)
+                if self.fault is not None:
+                    break
+                k = self._next_cycle(k + 1)
+        except BaseException as exc:  # noqa: BLE001 - vent first, re-raised by finish()
+            self.failure = exc
+            self.state["reason"] = ("interrupted" if isinstance(exc, KeyboardInterrupt)
+                                    else "error")
+            self.state["t_stop"] = clk.now() - self.start
+        if self.fault is not None:
+            self.state["reason"], self.state["t_stop"] = self.fault[0], self.fault[1]
+
+    def _next_cycle(self, k: int) -> int:
+        """The next grid point after cycle k - 1 ended: k, or a later one after an overrun."""
+        t_end = self.clk.now()
+        if t_end > self.start + k * self.dt:
+            self.state["overruns"] += 1
+            k_next = int(math.floor((t_end - self.start) / self.dt)) + 1
+            self.state["skipped"] += k_next - k
+            return k_next
+        return k
+
+    def _cycle(self, k: int) -> _Fault | None:
+        """Cycle k: wait for its deadline, read, check, control, log; a fault or None."""
+        st, clk = self.state, self.clk
+        t_sched = self.start + k * self.dt
+        clk.sleep_until(t_sched)
+        t_now = clk.now()
+        t_rel = t_now - self.start
+        st["t_stop"] = t_rel
+        st["cycles"] += 1
+        if st["cycles"] == 1:
+            st["t_first"] = t_now
+        st["t_last"] = t_now
+        r, fault = self._read()
+        if fault is not None:
+            return fault
+        fault = self._watchdog(r, t_now)
+        if fault is None and r is not None:
+            fault = self._limits(r, t_rel)
+        if fault is not None or r is None:
+            return fault
+        out = self._control(r, t_rel, t_now)
+        if isinstance(out[0], str):                      # a device fault on the write
+            return out
+        target, cmd, terms = out
+        row = (t_rel, r.pressure_mpa, r.force_n, target, cmd, *terms,
+               1000.0 * (t_now - t_sched))
+        self.rows.append(row)
+        if self.fh is not None:
+            self.fh.write(",".join(_fmt(v) for v in row) + "\n")
+            if len(self.rows) % _FLUSH_EVERY == 0:
+                self.fh.flush()
+        return None
+
+    def _read(self) -> tuple[Any, _Fault | None]:
+        """(reading or None when stale/non-finite, device fault or None)."""
+        try:
+            r = self.device.read()
+        except SensorStale as exc:
+            r, self.last_err = None, str(exc)
+        except DeviceError as exc:      # connection lost, junk, out of range: stop now
+            return None, ("device fault", self.clk.now() - self.start,
+                          " ".join(str(exc).split()))
+        if r is not None and not (math.isfinite(r.pressure_mpa) and math.isfinite(r.force_n)):
+            # NaN compares False with every limit: it must not pass as a reading
+            self.last_err = (f"non-finite reading: pressure {r.pressure_mpa} MPa, force "
+                             f"{r.force_n} N")
+            r = None
+        return r, None
+
+    def _watchdog(self, r: Any, t_now: float) -> _Fault | None:
+        """The watchdog: no fresh valid reading for ``watchdog_s``."""
+        t_read = self.clk.now()      # after the read: a read that timed out took its time
+        if r is not None:
+            sig = r.sample_id if r.sample_id is not None else (r.pressure_mpa, r.force_n)
+            if sig != self.last_sig:
+                self.last_fresh, self.last_sig = t_now, sig
+        quiet = t_read - self.last_fresh
+        if quiet < self.watchdog_s:
+            return None
+        why = (f"no valid reading for {quiet:.3g} s ({self.last_err})"
+               if r is None else f"sensor unchanged for {quiet:.3g} s")
+        return "watchdog", t_read - self.start, why
+
+    def _limits(self, r: Any, t_rel: float) -> _Fault | None:
+        """The pressure trip and the force limit."""
+        lim = self.lim
+        if r.pressure_mpa > lim.trip_mpa:
+            return "pressure limit", t_rel, (f"pressure {r.pressure_mpa:.4g} MPa above the trip "
+                                             f"pressure {lim.trip_mpa:g} MPa")
+        if r.force_n > lim.max_force_n:
+            return "force limit", t_rel, (f"force {r.force_n:.4g} N above the force limit "
+                                          f"{lim.max_force_n:g} N")
+        return None
+
+    def _control(self, r: Any, t_rel: float, t_now: float) -> tuple[Any, ...]:
+        """(target N, command MPa, logged terms) of this cycle, or a device fault."""
+        if t_rel < self.base:
+            # baseline: vented, controller idle; the log's rest window (tare)
+            return 0.0, 0.0, (0.0, 0.0, 0.0, 0.0)
+        ctrl = self.controller
+        if self.in_base:
+            self.in_base = False
+            if hasattr(ctrl, "reset"):
+                ctrl.reset()
+        target = float(self.sp(t_rel - self.base))
+        u = float(ctrl.step(target, r.force_n, self.dt if self.t_prev is None
+                            else max(t_now - self.t_prev, 1e-9)))
+        self.t_prev = t_now
+        if not math.isfinite(u):
+            raise InputError(f"the controller returned a non-finite command {u} MPa at "
+                             f"{t_rel:.3f} s (set-point {target:g} N, force {r.force_n:g} N): "
+                             "stopped and vented")
+        cmd = min(max(u, 0.0), self.lim.max_pressure_mpa)
+        if not self.dry_run:
+            try:
+                self.device.write_setpoint_mpa(cmd)
+            except DeviceError as exc:      # not confirmed: stop now
+                return ("device fault", self.clk.now() - self.start,
+                        " ".join(str(exc).split()))
+        return target, cmd, tuple(_terms(ctrl, u))
+
+    # -- the end ---------------------------------------------------------------------------
+
+    def finish(self, rate_hz: float, vent_at_end: bool) -> LoopResult:
+        """Vent (every stop but a completed run with ``vent_at_end=False``), write the log,
+        return the result or raise the failure / :class:`LoopFault`."""
+        st, fault, failure = self.state, self.fault, self.failure
+        vented = False
+        if failure is not None or fault is not None or vent_at_end or self.dry_run:
+            vented, interrupt = _safe_vent(self.device)
+            if interrupt is not None and failure is None:
+                failure = interrupt
+                st["reason"] = "interrupted"
+        if self.fh is not None:
+            try:
+                self.fh.close()
+            except OSError:     # e.g. a full disk: the final write below reports it
+                pass
+        result = _result(self.device, self.rows, rate_hz, st, vented, self.dry_run, self.log,
+                         self.base)
+        if self.log is not None and self.partial is not None:
+            self._write_log(result, vented, failure)
+        if failure is not None:
+            try:
+                failure.result = result      # type: ignore[attr-defined]  # the run so far
+            except AttributeError:           # pragma: no cover - an exception with __slots__
+                pass
+            raise failure
+        if fault is not None:
+            raise LoopFault(fault[0], fault[1], fault[2], result)
+        for w in result.warnings:            # a completed run: say it on stderr too
+            _warnings.warn(w, PlausibilityWarning, stacklevel=3)
+        return result
+
+    def _write_log(self, result: LoopResult, vented: bool,
+                   failure: BaseException | None) -> None:
+        """The final log (atomic), its footer, and the partial file removed."""
+        st, fault = self.state, self.fault
+        assert self.log is not None and self.partial is not None
+        tail = [f"stopped: {st['reason']} at {st['t_stop']:.3f} s"
                 + (f" ({fault[2]})" if fault else ""),
                 f"vented: {str(vented).lower()}", f"samples: {result.n_samples}",
                 f"jitter_ms: p50={result.jitter_p50_ms:.3f}, p99={result.jitter_p99_ms:.3f}, "
@@ -547,22 +641,11 @@ def run_loop(
         try:
             from exofric.io import write_raw_log
 
-            write_raw_log(log, result.to_frame(), [*head, *tail])
-            partial.unlink(missing_ok=True)
+            write_raw_log(self.log, result.to_frame(), [*self.head, *tail])
+            self.partial.unlink(missing_ok=True)
         except Exception:
             if failure is None:
                 raise
-    if failure is not None:
-        try:
-            failure.result = result      # type: ignore[attr-defined]  # the run so far
-        except AttributeError:           # pragma: no cover - an exception with __slots__
-            pass
-        raise failure
-    if fault is not None:
-        raise LoopFault(fault[0], fault[1], fault[2], result)
-    for w in result.warnings:            # a completed run: say it on stderr too
-        _warnings.warn(w, PlausibilityWarning, stacklevel=2)
-    return result
 
 
 def _result(device: Any, rows: list[tuple[float, ...]], rate_hz: float, state: dict[str, Any],
