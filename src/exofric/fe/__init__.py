@@ -23,6 +23,7 @@ Examples
 24
 """
 
+from exofric.fe._assembly import Assembler
 from exofric.fe._contact import (
     ContactState,
     FrictionState,
@@ -60,16 +61,7 @@ from exofric.fe._ring import (
     PlaneStressBody,
     RingProblem,
 )
-from exofric.fe._solver import (
-    Assembler,
-    NewtonSettings,
-    PathPoint,
-    Problem,
-    SolverStats,
-    StatsCollector,
-    collect_stats,
-    solve_path,
-)
+from exofric.fe._solver import NewtonSettings, PathPoint, Problem, solve_path
 from exofric.fe._squeeze import (
     GRAVITY_MM_S2,
     GRAVITY_OPTIONS,
@@ -79,6 +71,7 @@ from exofric.fe._squeeze import (
     wall_arc,
     wire_halfwidth,
 )
+from exofric.fe._stats import SolverStats, StatsCollector, collect_stats
 
 __all__ = [
     "ENDS",

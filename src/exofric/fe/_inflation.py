@@ -9,10 +9,10 @@ import scipy.sparse as sp
 
 from exofric import defaults
 from exofric.errors import InputError, check_range
+from exofric.fe._assembly import Assembler
 from exofric.fe._hyperelastic import ElementState, HyperelasticBody
 from exofric.fe._loads import area_hessian
 from exofric.fe._mesh import TubeMesh, polar_mesh
-from exofric.fe._solver import Assembler
 from exofric.material import MooneyRivlin
 
 __all__ = ["ENDS", "MeshSpec", "InflationProblem", "PressurizedTube", "check_ends"]

@@ -40,6 +40,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from exofric.errors import InputError, check_positive
+from exofric.fe._assembly import Assembler
 from exofric.fe._contact import (
     ContactState,
     RigidCircle,
@@ -56,7 +57,6 @@ from exofric.fe._hyperelastic import (
 )
 from exofric.fe._inflation import MeshSpec, _line_order, scatter
 from exofric.fe._mesh import TubeMesh, polar_mesh
-from exofric.fe._solver import Assembler
 from exofric.material import HyperelasticModel, MooneyRivlin
 
 __all__ = ["PlaneStressBody", "RingProblem", "RING_SECTIONS", "RING_MESH", "RING_PENALTY"]

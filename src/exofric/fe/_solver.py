@@ -1,4 +1,6 @@
-"""Sparse assembly, Newton with line search, and load stepping with cutback.
+"""Newton with line search, and load stepping with cutback.
+
+(The sparse assembly and banded solve are in ``_assembly``, the work statistics in ``_stats``.)
 
 Convergence (stated tolerances): a load step is converged when the infinity norm
 of the free residual is below ``tol_r * force_scale`` (default 1e-9 relative,
@@ -14,273 +16,22 @@ from __future__ import annotations
 import contextlib
 import time
 import warnings
-from collections.abc import Callable, Iterator, Sequence
-from contextvars import ContextVar
-from dataclasses import asdict, dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
 import scipy.sparse as sp
 from scipy.linalg import LinAlgError
-from scipy.linalg.lapack import dgbsv, dpbsv
-from scipy.sparse.csgraph import reverse_cuthill_mckee
 from scipy.sparse.linalg import MatrixRankWarning, spsolve
 from threadpoolctl import ThreadpoolController
 
 from exofric import defaults
 from exofric.errors import ConvergenceError
+from exofric.fe._assembly import Assembler
+from exofric.fe._stats import collecting, record_attempt
 
-__all__ = ["Assembler", "Problem", "NewtonSettings", "solve_path", "PathPoint", "SolverStats",
-           "StatsCollector", "collect_stats"]
-
-
-class Assembler:
-    """Assembles element blocks into a reduced (free-dof) sparse matrix.
-
-    The sparsity pattern, the map of every block entry to its slot in the CSC
-    data array, and the reduction to free dofs are computed once; each
-    assembly is then one ``np.bincount``.
-
-    Parameters
-    ----------
-    n_dofs : int
-        Number of dofs of the full system.
-    free : ndarray of bool (n_dofs,)
-        True for unknown dofs.
-    patterns : sequence of (rows, cols)
-        Index arrays of the blocks that will be assembled, in call order.
-    orders : sequence of ndarray of int, optional
-        Candidate orderings of the dofs (each a permutation of ``range(n_dofs)``, e.g. a
-        structured mesh's line-by-line order) tried besides reverse Cuthill-McKee; the one
-        with the narrowest band is used. Candidates that are not permutations are ignored.
-    border : sequence of int, optional
-        Free dofs coupled to many others (e.g. a tube's axial stretch): kept out of the band
-        and eliminated by their Schur complement in :meth:`solve`.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> a = Assembler(2, np.array([True, True]), [(np.array([0, 1]), np.array([0, 1]))])
-    >>> K = a.matrix([np.array([4.0, 16.0])])  # diag(4, 16)
-    >>> a.solve(K, np.array([4.0, 8.0])).tolist()
-    [1.0, 0.5]
-    """
-
-    def __init__(
-        self, n_dofs: int, free: np.ndarray, patterns: Sequence[tuple[np.ndarray, np.ndarray]],
-        orders: Sequence[np.ndarray] = (), border: Sequence[int] = (),
-    ) -> None:
-        self.n_dofs = n_dofs
-        self.free = np.asarray(free, dtype=bool)
-        self.red = np.full(n_dofs, -1)
-        self.red[self.free] = np.arange(int(self.free.sum()))
-        self.nf = int(self.free.sum())
-        rr = np.concatenate([self.red[np.asarray(r).ravel()] for r, _ in patterns])
-        cc = np.concatenate([self.red[np.asarray(c).ravel()] for _, c in patterns])
-        self.sizes = [np.asarray(r).size for r, _ in patterns]
-        self.keep = (rr >= 0) & (cc >= 0)
-        self._slots: list[np.ndarray] | None = None  # per pattern: CSC slot of each entry
-        lin = cc[self.keep].astype(np.int64) * self.nf + rr[self.keep]
-        uniq, self.inv = np.unique(lin, return_inverse=True)
-        self.nnz = uniq.size
-        self.indices = (uniq % self.nf).astype(np.int32)
-        cols = uniq // self.nf
-        self.indptr = np.searchsorted(cols, np.arange(self.nf + 1)).astype(np.int32)
-
-        # Border dofs (e.g. a tube's axial stretch, coupled to every node) would make the band
-        # as wide as the system: they are kept out of it and eliminated by a Schur complement
-        # in :meth:`solve` (``ints``: the reduced ids of the other, interior, dofs).
-        bred = self.red[np.asarray(border, dtype=np.int64)]
-        if np.any(bred < 0):
-            raise ValueError("border dofs must be free")
-        isb = np.zeros(self.nf, dtype=bool)
-        isb[bred] = True
-        self.border = bred
-        self.ints = np.flatnonzero(~isb)
-        ni = self.ints.size
-        ii = np.full(self.nf, -1)
-        ii[self.ints] = np.arange(ni)
-        col_of = np.repeat(np.arange(self.nf), np.diff(self.indptr))
-        row_i, col_i = ii[self.indices], ii[col_of]
-        self.e_ii = (row_i >= 0) & (col_i >= 0)
-        if bred.size:
-            bpos = np.full(self.nf, -1)
-            bpos[bred] = np.arange(bred.size)
-            e_ib = (row_i >= 0) & (col_i < 0)
-            e_bi = (row_i < 0) & (col_i >= 0)
-            e_bb = (row_i < 0) & (col_i < 0)
-            self._ib = (e_ib, row_i[e_ib], bpos[col_of[e_ib]])
-            self._bi = (e_bi, bpos[self.indices[e_bi]], col_i[e_bi])
-            self._bb = (e_bb, bpos[self.indices[e_bb]], bpos[col_of[e_bb]])
-
-        # Banded storage after a bandwidth-reducing ordering: the thin structured meshes of
-        # the tube then have a narrow band, and LAPACK's banded solvers beat SuperLU's general
-        # sparse LU (by ~2x for the banded LU) at these sizes (a few hundred to ~20000 dofs).
-        # The candidates are reverse Cuthill-McKee of the pattern and the problem's own
-        # ``orders`` (for the tube: angle-major, one radial line after the other; an element
-        # spans three lines of 2 n_radial + 1 nodes, so the band is 4 (2 n_radial + 1) + 5
-        # dofs for quad9, against RCM's diagonal fronts 73 vs 127 at 8 x 128: a third of the
-        # Cholesky work, which grows as n band^2). The narrowest band
-        # wins. This is the whole symbolic analysis: the ordering and each CSC slot's place in
-        # the band are computed once here and reused by every factorisation.
-        ri, ci = row_i[self.e_ii], col_i[self.e_ii]
-        pattern = sp.csc_matrix((np.ones(ri.size), (ri, ci)), shape=(ni, ni))
-        candidates = [np.asarray(reverse_cuthill_mckee(pattern.tocsr(), symmetric_mode=True))]
-        for order in orders:
-            r = self.red[np.asarray(order, dtype=np.int64)]
-            r = ii[r[r >= 0]]
-            r = r[r >= 0]
-            if r.size == ni and np.array_equal(np.sort(r), np.arange(ni)):
-                candidates.append(r)
-        best = None
-        for perm in candidates:
-            iperm = np.empty_like(perm)
-            iperm[perm] = np.arange(ni)
-            rows, colsp = iperm[ri], iperm[ci]
-            band = int(np.max(np.abs(rows - colsp))) if ri.size else 0
-            if best is None or band < best[0]:
-                best = (band, perm, rows, colsp)
-        assert best is not None
-        self.band, self.perm, rows, colsp = best
-        # LAPACK's band storage, column-major (Fortran order, so that LAPACK works in place):
-        # entry (i, j) of the permuted matrix sits at flat index j * ldab + (row in the band).
-        # gbsv (LU, partial pivoting) takes ldab = 3 band + 1 (band extra rows on top for the
-        # pivoting's fill-in), entry (i, j) on row 2 band + i - j. Tangents of energy-based
-        # problems are symmetric and, near a stable equilibrium, positive definite: pbsv
-        # (Cholesky) on the upper band, ldab = band + 1, entry (i <= j) on row band + i - j,
-        # then does a quarter of the LU's work on a third of its storage. ``transpose_slot``
-        # is the CSC slot of each entry's transpose (None for a non-symmetric pattern).
-        b = self.band
-        self.lu_slot = colsp.astype(np.int64) * (3 * b + 1) + (2 * b + rows - colsp)
-        self.upper = rows <= colsp
-        self.chol_slot = (colsp.astype(np.int64) * (b + 1) + (b + rows - colsp))[self.upper]
-        tkey = self.indices.astype(np.int64) * self.nf + cols
-        tpos = np.minimum(np.searchsorted(uniq, tkey), max(self.nnz - 1, 0))
-        self.transpose_slot = tpos if self.nnz and np.array_equal(uniq[tpos], tkey) else None
-
-    def solve(self, K: sp.csc_matrix, rhs: np.ndarray) -> np.ndarray:
-        """Solve ``K x = rhs`` for a matrix from :meth:`matrix` (banded solver after RCM).
-
-        A matrix that is symmetric to round-off (1e-12 of its largest entry) is first given
-        to LAPACK's banded Cholesky (pbsv); if it is not positive definite (or not
-        symmetric), the banded LU with partial pivoting (gbsv) solves it. Falls back to
-        SuperLU when the band is wider than 1/4 of the system. Border dofs (``border``) are
-        eliminated by their Schur complement: the banded factorisation solves for the
-        right-hand side and the border columns at once. Raises ``LinAlgError`` for a
-        singular matrix.
-
-        Parameters
-        ----------
-        K : scipy.sparse.csc_matrix (nf, nf)
-            Matrix of the free dofs, as returned by :meth:`matrix` (same pattern).
-        rhs : ndarray (nf,)
-            Right-hand side over the free dofs.
-
-        Returns
-        -------
-        ndarray (nf,)
-        """
-        ni = self.ints.size
-        if 4 * self.band > ni:
-            return np.asarray(spsolve(K, rhs))
-        data = K.data
-        nb = self.border.size
-        b_rhs = rhs[self.ints][:, None]
-        if nb:
-            kib = np.zeros((ni, nb))
-            e, r, c = self._ib
-            kib[r, c] = data[e]
-            b_rhs = np.hstack([b_rhs, kib])
-        sym = self.transpose_slot is not None and np.max(
-            np.abs(data - data[self.transpose_slot])) <= 1e-12 * np.max(np.abs(data))
-        y = self._banded(data[self.e_ii], b_rhs, sym)
-        x = np.empty(self.nf)
-        if not nb:
-            x[self.ints] = y[:, 0]
-            return x
-        kbi, kbb = np.zeros((nb, ni)), np.zeros((nb, nb))
-        e, r, c = self._bi
-        kbi[r, c] = data[e]
-        e, r, c = self._bb
-        kbb[r, c] = data[e]
-        schur = kbb - kbi @ y[:, 1:]
-        xb = np.linalg.solve(schur, rhs[self.border] - kbi @ y[:, 0])
-        x[self.ints] = y[:, 0] - y[:, 1:] @ xb
-        x[self.border] = xb
-        return x
-
-    def _banded(self, data: np.ndarray, rhs: np.ndarray, sym: bool) -> np.ndarray:
-        """Solve the interior block (entries ``data``) for the columns of ``rhs`` (ni, k)."""
-        ni, b = self.ints.size, self.band
-        rp = np.ascontiguousarray(rhs[self.perm], dtype=float)
-        x = np.empty_like(rp)
-        if sym:
-            ab = np.zeros((ni, b + 1))  # the transpose of the Fortran-ordered band
-            ab.ravel()[self.chol_slot] = data[self.upper]
-            _, xp, info = dpbsv(ab.T, rp, lower=0, overwrite_ab=1, overwrite_b=0)
-            if info == 0:
-                x[self.perm] = xp
-                return x
-        ab = np.zeros((ni, 3 * b + 1))
-        ab.ravel()[self.lu_slot] = data
-        _, _, xp, info = dgbsv(b, b, ab.T, rp, overwrite_ab=1, overwrite_b=0)
-        if info > 0:
-            raise LinAlgError("singular matrix")
-        if info < 0:
-            raise ValueError(f"illegal value in argument {-info} of gbsv")
-        x[self.perm] = xp
-        return x
-
-    def add(self, K: sp.csc_matrix, pattern: int, values: np.ndarray) -> sp.csc_matrix:
-        """``K`` plus values on the entries of one pattern (a new matrix; ``K`` is kept).
-
-        Parameters
-        ----------
-        K : scipy.sparse.csc_matrix (nf, nf)
-            A matrix from :meth:`matrix`.
-        pattern : int
-            Index of the pattern (in the ``patterns`` given to the constructor).
-        values : ndarray
-            Values in that pattern's order and shape; entries on fixed dofs are dropped.
-
-        Returns
-        -------
-        scipy.sparse.csc_matrix (nf, nf)
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> a = Assembler(2, np.array([True, True]), [(np.array([0, 1]), np.array([0, 1]))])
-        >>> a.add(a.matrix([np.array([4.0, 16.0])]), 0, np.array([1.0, 0.0])).toarray().tolist()
-        [[5.0, 0.0], [0.0, 16.0]]
-        """
-        if self._slots is None:
-            full = np.full(self.keep.size, -1, dtype=np.int64)
-            full[self.keep] = self.inv
-            ends = np.cumsum([0, *self.sizes])
-            self._slots = [full[a:b] for a, b in zip(ends[:-1], ends[1:], strict=True)]
-        slots = self._slots[pattern]
-        ok = slots >= 0
-        data = K.data + np.bincount(slots[ok], weights=np.asarray(values, dtype=float).ravel()[ok],
-                                    minlength=self.nnz)
-        return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.nf, self.nf))
-
-    def matrix(self, blocks: Sequence[np.ndarray]) -> sp.csc_matrix:
-        """CSC matrix of the free dofs from block values given in pattern order.
-
-        Parameters
-        ----------
-        blocks : sequence of ndarray
-            Values of each pattern's entries, in the order and shapes of ``patterns``;
-            entries on fixed dofs are dropped, repeated entries summed.
-
-        Returns
-        -------
-        scipy.sparse.csc_matrix (nf, nf)
-        """
-        vals = np.concatenate([np.asarray(b).ravel() for b in blocks])[self.keep]
-        data = np.bincount(self.inv, weights=vals, minlength=self.nnz)
-        return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.nf, self.nf))
+__all__ = ["Problem", "NewtonSettings", "solve_path", "PathPoint"]
 
 
 class Problem(Protocol):
@@ -420,141 +171,6 @@ class PathPoint:
     iterations: int
     steps: int
     info: dict[str, float] = field(default_factory=dict)
-
-
-@dataclass(frozen=True)
-class SolverStats:
-    """Where a solve's Newton work went (accumulated by :func:`collect_stats`).
-
-    An *attempt* is one Newton iteration sequence at one load (a sub-step, a probe of the
-    contact onset, a release of the regulariser); a failed attempt ends in a cut-back or a
-    retry from the last converged state, so its time is wasted.
-
-    Parameters
-    ----------
-    attempts : int
-        Newton attempts.
-    failed_attempts : int
-        Attempts that did not converge.
-    iterations : int
-        Newton iterations (tangent evaluations), failed attempts included.
-    linear_solves : int
-        Linear solves (factorisations), the active-set re-solves included.
-    time_s : float
-        Wall time in Newton attempts (s).
-    failed_time_s : float
-        Wall time in failed attempts (s).
-
-    Examples
-    --------
-    >>> SolverStats(attempts=4, failed_attempts=1, time_s=2.0, failed_time_s=0.5).failed_time_pct
-    25.0
-    """
-
-    attempts: int = 0
-    failed_attempts: int = 0
-    iterations: int = 0
-    linear_solves: int = 0
-    time_s: float = 0.0
-    failed_time_s: float = 0.0
-
-    @property
-    def failed_time_pct(self) -> float:
-        """Share of the Newton time spent in failed attempts (%)."""
-        return 100.0 * self.failed_time_s / self.time_s if self.time_s > 0.0 else 0.0
-
-    def to_dict(self) -> dict[str, float]:
-        """The counts and times, plus ``failed_time_pct`` (%).
-
-        Examples
-        --------
-        >>> SolverStats(attempts=2).to_dict()["attempts"]
-        2
-        """
-        return {**asdict(self), "failed_time_pct": self.failed_time_pct}
-
-
-class _Tally:
-    """Mutable counters behind :func:`collect_stats`."""
-
-    def __init__(self) -> None:
-        self.counts = dict.fromkeys(("attempts", "failed_attempts", "iterations",
-                                     "linear_solves"), 0)
-        self.times = {"time_s": 0.0, "failed_time_s": 0.0}
-
-    def stats(self) -> SolverStats:
-        c, t = self.counts, self.times
-        return SolverStats(c["attempts"], c["failed_attempts"], c["iterations"],
-                           c["linear_solves"], t["time_s"], t["failed_time_s"])
-
-
-_TALLIES: ContextVar[tuple[_Tally, ...]] = ContextVar("exofric_solver_tallies", default=())
-
-
-class StatsCollector:
-    """Handle of :func:`collect_stats`; :attr:`stats` reads the counts so far.
-
-    Parameters
-    ----------
-    tally : _Tally
-        The counters that :func:`solve_path` adds to while the ``with`` block runs.
-
-    Examples
-    --------
-    >>> with collect_stats() as c:
-    ...     pass
-    >>> c.stats.attempts
-    0
-    """
-
-    def __init__(self, tally: _Tally) -> None:
-        self._tally = tally
-
-    @property
-    def stats(self) -> SolverStats:
-        """The statistics accumulated so far."""
-        return self._tally.stats()
-
-
-@contextlib.contextmanager
-def collect_stats() -> Iterator[StatsCollector]:
-    """Count the Newton work of every :func:`solve_path` call inside the ``with`` block.
-
-    Collectors nest (each counts everything inside it) and are per context (thread or task).
-
-    Yields
-    ------
-    StatsCollector
-        Its ``stats`` (:class:`SolverStats`) hold the counts and times so far.
-
-    Examples
-    --------
-    >>> from exofric.fe import InflationProblem, MeshSpec
-    >>> from exofric.material import MooneyRivlin
-    >>> p = InflationProblem(8.3, 4.97, MooneyRivlin.from_shore(62.5), MeshSpec())
-    >>> with collect_stats() as c:
-    ...     _ = solve_path(p, [0.2])
-    >>> c.stats.attempts >= 1, c.stats.failed_attempts
-    (True, 0)
-    """
-    tally = _Tally()
-    token = _TALLIES.set((*_TALLIES.get(), tally))
-    try:
-        yield StatsCollector(tally)
-    finally:
-        _TALLIES.reset(token)
-
-
-def _record(ok: bool, iterations: int, solves: int, dt: float) -> None:
-    """Add one Newton attempt to every active collector."""
-    for t in _TALLIES.get():
-        t.counts["attempts"] += 1
-        t.counts["failed_attempts"] += not ok
-        t.counts["iterations"] += iterations
-        t.counts["linear_solves"] += solves
-        t.times["time_s"] += dt
-        if not ok:
-            t.times["failed_time_s"] += dt
 
 
 def _accept(e_t: float, r_t: float, e0: float, r0: float, slope: float, r_tol: float) -> bool:
@@ -729,8 +345,8 @@ def _newton(
     t0 = time.perf_counter()
     counter = [0, 0]  # iterations, linear solves
     out = _newton_attempt(problem, u, load, s, counter)
-    if _TALLIES.get():
-        _record(out is not None, counter[0], counter[1], time.perf_counter() - t0)
+    if collecting():
+        record_attempt(out is not None, counter[0], counter[1], time.perf_counter() - t0)
     return out
 
 

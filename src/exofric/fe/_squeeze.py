@@ -56,6 +56,7 @@ import scipy.sparse as sp
 
 from exofric import defaults
 from exofric.errors import InputError, check_positive
+from exofric.fe._assembly import Assembler
 from exofric.fe._contact import (
     ContactState,
     FrictionState,
@@ -69,7 +70,6 @@ from exofric.fe._contact import (
 )
 from exofric.fe._inflation import MeshSpec, PressurizedTube
 from exofric.fe._mesh import polar_mesh
-from exofric.fe._solver import Assembler
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
 
