@@ -1,9 +1,11 @@
-"""gamma with replicate pulls: cluster-robust CIs (CR1, CR3), lack of fit, ODR, replicate files.
+"""gamma with replicate pulls: cluster-robust CIs (CR1, CR2, CR3), lack of fit, ODR, files.
 
 Every number is checked against an independent code path: statsmodels OLS with
-``cov_type="cluster"`` (CR1), an explicit leave-one-cluster-out refit loop with statsmodels
-(CR3), statsmodels ``anova_lm`` against a cluster-dummy model (lack of fit), SciPy's
-(deprecated) ``scipy.odr`` and the weighted least-squares closed form (ODR).
+``cov_type="cluster"`` (CR1), a dense textbook CR2 / Bell-McCaffrey written here with n x n
+matrices (SciPy's ``sqrtm`` for (I - H_gg)^(1/2), eigenvalues of G'WG for the dof) and the
+closed form for the mean of balanced clusters (CR2), an explicit leave-one-cluster-out refit
+loop with statsmodels (CR3), statsmodels ``anova_lm`` against a cluster-dummy model (lack of
+fit), SciPy's (deprecated) ``scipy.odr`` and the weighted least-squares closed form (ODR).
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+import scipy.linalg
 import statsmodels.api as sm
 import statsmodels.formula.api as smf
 from scipy import stats
@@ -302,3 +305,134 @@ def test_groups_any_hashable_labels() -> None:
     assert a.n_clusters == b.n_clusters == 9 and a.gamma_ci95 == pytest.approx(b.gamma_ci95,
                                                                                rel=1e-14)
     assert a.to_frame()["group"].iloc[0] == ("t1", 0)
+
+
+# ----------------------------------------------------------------- CR2 in linear memory (issue 31)
+
+
+def _dense_cr2_bm(x: np.ndarray, f: np.ndarray, codes: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Textbook CR2 and Bell-McCaffrey dof with n x n matrices (small n only): beta, cov, dof.
+
+    A_g = (I - H_gg)^(-1/2) by scipy.linalg.sqrtm and an inverse; the dof from the
+    eigenvalues of G'WG, G_g = (I - H)_(:,g) A_g X_g (X'X)^-1 l, W = diag(|X beta|).
+    """
+    m, k = x.shape
+    beta = np.linalg.lstsq(x, f, rcond=None)[0]
+    e = f - x @ beta
+    xtx_inv = np.linalg.inv(x.T @ x)
+    h = x @ xtx_inv @ x.T
+    w = np.abs(x @ beta)
+    blocks = []
+    meat = np.zeros((k, k))
+    for c in np.unique(codes):
+        idx = np.flatnonzero(codes == c)
+        a_g = np.linalg.inv(scipy.linalg.sqrtm(np.eye(idx.size) - h[np.ix_(idx, idx)]).real)
+        s = x[idx].T @ a_g @ e[idx]
+        meat += np.outer(s, s)
+        blocks.append((idx, a_g))
+    cov = xtx_inv @ meat @ xtx_inv
+    dof = []
+    for j in range(k):
+        gm = np.column_stack([(np.eye(m) - h)[:, idx] @ (a_g @ x[idx] @ xtx_inv[:, j])
+                              for idx, a_g in blocks])
+        lam = np.linalg.eigvalsh(gm.T @ (w[:, None] * gm))
+        dof.append(lam.sum() ** 2 / (lam @ lam))
+    return beta, cov, np.array(dof)
+
+
+def _random_design(rng: np.random.Generator, k: int) -> tuple[np.ndarray, np.ndarray,
+                                                             np.ndarray, int]:
+    """Squeeze-force-like design (N 5-300 N) with k columns, G clusters of 1-7 points."""
+    g = int(rng.integers(k + 2, 12))
+    codes = np.repeat(np.arange(g), rng.integers(1, 8, g))
+    rng.shuffle(codes)
+    m = codes.size
+    n = rng.uniform(5.0, 300.0, m)
+    cols = [n] + ([rng.uniform(0.0, 50.0, m)] if k == 3 else []) + ([np.ones(m)] if k >= 2
+                                                                      else [])
+    x = np.column_stack(cols)
+    f = x @ rng.uniform(0.2, 1.0, k) + rng.normal(0.0, 3.0, m)
+    return x, f, codes, g
+
+
+@pytest.mark.parametrize("k", [1, 2, 3], ids=["no intercept", "intercept", "interfaces+F0"])
+def test_cr2_bm_matches_dense_textbook(k: int) -> None:
+    # 40 random designs with unequal clusters (1-7 points, so some leverages near 1): the
+    # per-cluster k x k algebra agrees with the dense n x n textbook form to rounding. The
+    # tolerance 1e-10 is ~1e5 eps; measured <= 4e-14 (cov) and 4e-15 (dof) over 400 designs.
+    rng = np.random.default_rng(31 + k)
+    for _ in range(40):
+        x, f, codes, g = _random_design(rng, k)
+        beta, cov_ref, dof_ref = _dense_cr2_bm(x, f, codes)
+        cov, dof = fit_module._cr2_bm(x, f, beta, codes, g)
+        scale = np.sqrt(np.outer(np.diag(cov_ref), np.diag(cov_ref)))
+        np.testing.assert_array_less(np.abs(cov - cov_ref) / scale, 1e-10)
+        np.testing.assert_allclose(dof, dof_ref, rtol=1e-10)
+
+
+def test_cr2_bm_balanced_mean_closed_form() -> None:
+    # Intercept-only model with G balanced clusters of n_g points: H_gg = J / n has the single
+    # eigenvalue 1/G, so X_g'A_g e_g = s_g / sqrt(1 - 1/G) with s_g the cluster's residual sum:
+    # var = G / (G - 1) sum s_g^2 / n^2, and the Bell-McCaffrey dof are exactly G - 1.
+    rng = np.random.default_rng(5)
+    g, n_g = 7, 6
+    codes = np.repeat(np.arange(g), n_g)
+    f = 50.0 + rng.normal(0, 3, g)[codes] + rng.normal(0, 1, codes.size)
+    x = np.ones((codes.size, 1))
+    cov, dof = fit_module._cr2_bm(x, f, np.array([f.mean()]), codes, g)
+    s = np.bincount(codes, weights=f - f.mean())
+    assert cov[0, 0] == pytest.approx(g / (g - 1) * np.sum(s**2) / codes.size**2, rel=1e-12)
+    assert dof[0] == pytest.approx(g - 1, rel=1e-12)
+
+
+@pytest.mark.parametrize("model", ["proportional", "affine"])
+def test_cr2_interval_matches_dense_textbook(model: str) -> None:
+    # fit_gamma's default cluster interval (CR2 + Bell-McCaffrey) on unbalanced replicates:
+    # half-width = t(dof) x se with dof and se from the dense textbook form (rel 1e-10).
+    assert fit_module._CLUSTER_VARIANT == "cr2bm"
+    p, f, code = _replicates(21, pulls=4, drag_n=4.0 if model == "affine" else 0.0)
+    keep = np.ones(p.size, bool)
+    keep[[0, 1, 2, 9, 30]] = False                     # clusters of 1, 3 and 4 pulls
+    p, f, code = p[keep], f[keep], code[keep]
+    fit = fit_gamma(p, f, CURVE_P, CURVE_N, model=model, groups=code)
+    n = EQ8(p)
+    x = n[:, None] if model == "proportional" else np.column_stack([n, np.ones_like(n)])
+    _, cov, dof = _dense_cr2_bm(x, f, code)
+    assert fit.ci_method == "cluster" and "Bell-McCaffrey" in fit.ci_note
+    half = (fit.gamma_ci95[1] - fit.gamma_ci95[0]) / 2
+    assert half == pytest.approx(stats.t.ppf(0.975, dof[0]) * np.sqrt(cov[0, 0]), rel=1e-10)
+    if model == "affine":
+        assert fit.f0_ci95_n is not None
+        half0 = (fit.f0_ci95_n[1] - fit.f0_ci95_n[0]) / 2
+        assert half0 == pytest.approx(stats.t.ppf(0.975, dof[1]) * np.sqrt(cov[1, 1]),
+                                      rel=1e-10)
+
+
+@pytest.mark.parametrize("k", [1, 2], ids=["no intercept", "intercept"])
+def test_cr1_matches_statsmodels_unbalanced_random(k: int) -> None:
+    # statsmodels cov_type="cluster" (CR1) on 20 random designs with unequal clusters.
+    rng = np.random.default_rng(77 + k)
+    for _ in range(20):
+        x, f, codes, g = _random_design(rng, k)
+        ref = sm.OLS(f, x).fit(cov_type="cluster", cov_kwds={"groups": codes})
+        cov = fit_module._cluster_covariance(x, f, ref.params, codes, g, "cr1")
+        np.testing.assert_allclose(cov, ref.cov_params(), rtol=1e-10)
+
+
+@pytest.mark.parametrize("model", ["proportional", "affine"])
+def test_bootstrap_in_blocks_matches_one_draw(monkeypatch: pytest.MonkeyPatch,
+                                              model: str) -> None:
+    # The resamples are drawn in blocks of rows (bounded memory); the reference draws all
+    # n_boot x m indices at once, as before issue 31, and solves each resample by numpy's
+    # lstsq: the same seeded stream, so the same percentile interval (rel 1e-12).
+    monkeypatch.setattr(fit_module, "_BOOT_BLOCK", 100)       # blocks of 2 resamples
+    p, f, _ = _replicates(22, drag_n=4.0 if model == "affine" else 0.0)
+    fit = fit_gamma(p, f, CURVE_P, CURVE_N, model=model, ci="bootstrap", n_boot=301, seed=4)
+    n, fs = np.asarray(fit.squeeze_force_n), np.asarray(fit.friction_n)   # the points used
+    idx = np.random.default_rng(4).integers(0, p.size, size=(301, p.size))
+    cols = (lambda i: n[i][:, None]) if model == "proportional" else (
+        lambda i: np.column_stack([n[i], np.ones(i.size)]))
+    est = np.array([np.linalg.lstsq(cols(i), fs[i], rcond=None)[0][0] for i in idx])
+    lo, hi = np.percentile(est, [2.5, 97.5])
+    assert fit.gamma_ci95 == pytest.approx((lo, hi), rel=1e-12)

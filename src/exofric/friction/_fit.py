@@ -32,9 +32,11 @@ Replicates (several pulls at one pressure) are clusters: points with exactly the
 form one by default, or ``groups`` labels them (e.g. the pressure plateau a pull belongs to).
 Between-pull scatter is then usually the larger error, and the pulls of one plateau share it,
 so with replicates the default ``ci="auto"`` becomes ``"cluster"``: a cluster-robust
-covariance (CR3, the leave-one-cluster-out jackknife of MacKinnon, Nielsen & Webb 2023, or CR1,
-the Liang-Zeger sandwich with the small-sample factor of statsmodels' ``cov_type="cluster"``;
-:data:`_CLUSTER_VARIANT` selects) with a t quantile on G - 1 dof for G clusters. Without
+covariance (by default CR2 with a t quantile on the Bell-McCaffrey dof; or CR3, the
+leave-one-cluster-out jackknife of MacKinnon, Nielsen & Webb 2023, or CR1, the Liang-Zeger
+sandwich with the small-sample factor of statsmodels' ``cov_type="cluster"``, both with t on
+G - 1 dof for G clusters; :data:`_CLUSTER_VARIANT` selects). Every interval takes time and
+memory linear in the number of points (per-cluster sums; no n x n matrix). Without
 replicates ``"auto"`` is ``"analytic"``, so such fits are unchanged. ``ci="odr"`` fits
 errors-in-variables (orthogonal distance regression, :func:`odrpack.odr_fit`) for a noisy
 pressure reading, given the standard deviations of pressure and friction. With replicates
@@ -75,6 +77,8 @@ ClusterVariant = Literal["cr1", "cr3", "cr2bm"]
 #: coverage study in benchmarks/bench_rig_coverage.py), "cr3" (leave-one-cluster-out jackknife,
 #: t on G - 1 dof) or "cr1" (Liang-Zeger sandwich x G/(G-1) x (n-1)/(n-k), t on G - 1 dof).
 _CLUSTER_VARIANT: ClusterVariant = "cr2bm"
+#: Bootstrap indices drawn per block (n_boot x m in blocks of rows): bounds the memory.
+_BOOT_BLOCK = 1 << 21
 _VARIANT_TEXT = {"cr1": "CR1 sandwich", "cr3": "CR3 jackknife",
                  "cr2bm": "CR2 with Bell-McCaffrey dof"}
 
@@ -147,6 +151,16 @@ def relative_errors(predicted_n: ArrayLike, measured_n: ArrayLike) -> NDArray[np
     me = np.asarray(measured_n, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(me != 0.0, 100.0 * (pr - me) / me, np.nan)
+
+
+def _tuple(a: NDArray[Any]) -> tuple[Any, ...]:
+    """The elements of a 1-D array as a tuple of Python scalars.
+
+    A small function of its own: under ``tracemalloc`` each of the m allocations looks up the
+    line number of the allocating frame, which costs time in proportion to the size of that
+    frame's code (about 20x slower for 10^5 points inside :func:`fit_gamma`).
+    """
+    return tuple(a.tolist())
 
 
 def _signed_max(err_pct: NDArray[np.float64]) -> float:
@@ -477,11 +491,7 @@ def _cluster_covariance(
         a = np.linalg.inv(xtx)
         c = g / (g - 1.0) * (m - 1.0) / (m - k)
         return np.asarray(c * a @ (s.T @ s) @ a)
-    xtx_g = np.empty((g, k, k))
-    for i in range(k):
-        for j in range(i, k):
-            xtx_g[:, i, j] = xtx_g[:, j, i] = np.bincount(codes, weights=x[:, i] * x[:, j],
-                                                          minlength=g)
+    xtx_g = _cluster_gram(x, codes, g)
     xty_g = np.stack([np.bincount(codes, weights=x[:, j] * f, minlength=g) for j in range(k)],
                      axis=1)
     a_g = xtx[None] - xtx_g                                             # (G, k, k)
@@ -494,6 +504,30 @@ def _cluster_covariance(
     b_g = np.linalg.solve(a_g, ((x.T @ f)[None] - xty_g)[..., None])[..., 0]  # (G, k)
     d = b_g - beta[None]
     return np.asarray((g - 1.0) / g * (d.T @ d))
+
+
+def _cluster_gram(
+    x: NDArray[np.float64], codes: NDArray[np.intp], n_clusters: int,
+    weights: NDArray[np.float64] | None = None,
+) -> NDArray[np.float64]:
+    """Per-cluster Gram matrices X_g' diag(w_g) X_g, shape (G, k, k), by ``np.bincount``.
+
+    O(m k^2) time and O(G k^2) memory for m points of a k-column design (w = 1 without
+    ``weights``); no n_g x n_g matrix.
+
+    Examples
+    --------
+    >>> x = np.array([[1.0], [2.0], [3.0]])
+    >>> _cluster_gram(x, np.array([0, 0, 1]), 2)[:, 0, 0].tolist()
+    [5.0, 9.0]
+    """
+    k = x.shape[1]
+    out = np.empty((n_clusters, k, k))
+    for i in range(k):
+        for j in range(i, k):
+            prod = x[:, i] * x[:, j] if weights is None else weights * x[:, i] * x[:, j]
+            out[:, i, j] = out[:, j, i] = np.bincount(codes, weights=prod, minlength=n_clusters)
+    return out
 
 
 def _cr2_bm(
@@ -509,40 +543,81 @@ def _cr2_bm(
     Pustejovsky & Tipton 2018), with the working variance W proportional to the fitted force
     (scatter between constant and proportional to the force). With few clusters, or a few
     clusters of large force that dominate the fit, the dof fall well below G - 1 and the
-    interval widens: that is what keeps its coverage at 95 %. G x G and n_g x n_g matrices
-    only (no n x n matrix).
+    interval widens: that is what keeps its coverage at 95 %.
+
+    Time and memory are linear in the number of points m (issue 31): only k x k per-cluster
+    sums are formed, never an n_g x n_g or a G x G matrix. With the thin QR X = Q R (Q: m x k,
+    orthonormal columns), H = Q Q' and H_gg = Q_g Q_g' has rank <= k. Let
+    Q_g'Q_g = V diag(lambda) V' (k x k, 0 <= lambda <= 1). The thin SVD is
+    Q_g = U diag(lambda)^(1/2) V' with U = Q_g V diag(lambda)^(-1/2), so
+    I - H_gg = (I - UU') + U diag(1 - lambda) U' and
+
+        (I - H_gg)^(-1/2) = I + U diag((1 - lambda)^(-1/2) - 1) U' = I + Q_g B_g Q_g',
+        B_g = V diag(phi(lambda)) V',
+        phi(lambda) = ((1 - lambda)^(-1/2) - 1) / lambda = 1 / (s (1 + s)), s = sqrt(1 - lambda).
+
+    (This is the identity (I - X_g A X_g')^(-1/2) = I + X_g B X_g' with A = (X'X)^-1 written
+    in the orthonormal basis Q, where the eigenvalues lambda are the cluster's leverages
+    without the conditioning of X'X. phi(0) = 1/2 is finite and directions with lambda = 0
+    are annihilated by Q_g, so clusters with fewer than k points are covered; 1 - lambda is
+    clipped at 1e-12 as in the dense form.) With S_g = Q_g'Q_g, Q_g'A_g e_g =
+    Q_g'e_g + S_g B_g Q_g'e_g =: u_g and the covariance is R^-1 (sum_g u_g u_g') R^-T.
+
+    Degrees of freedom. For the coefficient picked by l, A_g X_g (X'X)^-1 l = Q_g c_g with
+    c_g = (I + B_g S_g) R^-T l (a k-vector per cluster), and with E_g the m x n_g selection of
+    cluster g's rows, G_g = E_g Q_g c_g - Q q_g, q_g = S_g c_g. With T_g = Q_g'W_g Q_g and
+    T = sum_g T_g, M = G'WG has the entries
+
+        M_gg = (c_g - q_g)' T_g (c_g - q_g) + q_g' (T - T_g) q_g   (two terms >= 0),
+        M_gh = u_g' C u_h (g != h),  u_g = [T_g c_g; q_g],  C = [[0, -I], [-I, T]],
+
+    i.e. a diagonal plus the rank <= 2k matrix U C U'. So tr M = sum_g M_gg and
+    ||M||_F^2 = sum_g M_gg^2 + 2 sum_g (C u_g)' (sum_(h<g) u_h u_h') (C u_g), the inner sums
+    running (exclusive cumulative) sums of the 2k x 2k outer products, O(G k^2) time. The
+    diagonal and off-diagonal parts are summed separately, so the large c_g of clusters with
+    leverage near 1 cancel only to first order, as in the dense n x n form.
     """
-    m, k = x.shape
+    k = x.shape[1]
     g = n_clusters
-    a = np.linalg.inv(x.T @ x)
+    qx, rx = np.linalg.qr(x)                                           # x = Q R, Q (m, k)
+    r_inv = np.linalg.inv(rx)
     e = f - x @ beta
     w = np.abs(x @ beta)
     w = np.where(w > 0, w, max(float(w.max()), 1.0) * 1e-6)
-    order = np.argsort(codes, kind="stable")
-    bounds = np.searchsorted(codes[order], np.arange(g + 1))
-    meat = np.zeros((k, k))
-    v_all = np.zeros((m, k))          # A_g X_g a_l for each coefficient l (columns)
-    for c in range(g):
-        idx = order[bounds[c]:bounds[c + 1]]
-        xg = x[idx]
-        lam, vec = np.linalg.eigh(np.eye(idx.size) - xg @ a @ xg.T)
-        ag = (vec / np.sqrt(np.clip(lam, 1e-12, None))) @ vec.T
-        u = xg.T @ (ag @ e[idx])
-        meat += np.outer(u, u)
-        v_all[idx] = ag @ (xg @ a)
-    cov = a @ meat @ a
+    s_g = _cluster_gram(qx, codes, g)                                  # (G, k, k) Q_g'Q_g
+    t_g = _cluster_gram(qx, codes, g, w)                               # (G, k, k) Q_g'W_g Q_g
+    qe_g = np.stack([np.bincount(codes, weights=qx[:, j] * e, minlength=g) for j in range(k)],
+                    axis=1)                                            # (G, k) Q_g'e_g
+    lam, vec = np.linalg.eigh(s_g)                                     # (G, k), (G, k, k)
+    s = np.sqrt(np.clip(1.0 - lam, 1e-12, None))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        phi = np.where(lam > 0.5, (1.0 / s - 1.0) / lam, 1.0 / (s * (1.0 + s)))
+    b_g = (vec * phi[:, None, :]) @ vec.transpose(0, 2, 1)             # (G, k, k)
+    u = qe_g + np.einsum("gij,gj->gi", s_g, np.einsum("gij,gj->gi", b_g, qe_g))
+    cov = r_inv @ (u.T @ u) @ r_inv.T
+    big_t = t_g.sum(axis=0)
+    cmat = np.zeros((2 * k, 2 * k))
+    cmat[:k, k:] = cmat[k:, :k] = -np.eye(k)
+    cmat[k:, k:] = big_t
     dof = np.empty(k)
     for j in range(k):
-        v = v_all[:, j]
-        xtv = np.stack([np.bincount(codes, weights=x[:, i] * v, minlength=g)
-                        for i in range(k)], axis=1)               # (G, k): X_g' v_g
-        cmat = a @ xtv.T                                          # (k, G)
-        sws = np.bincount(codes, weights=w * v * v, minlength=g)  # S' W S (diagonal)
-        swx = np.stack([np.bincount(codes, weights=w * v * x[:, i], minlength=g)
-                        for i in range(k)], axis=1)               # (G, k): S' W X
-        xwx = (x * w[:, None]).T @ x
-        gwg = np.diag(sws) - swx @ cmat - cmat.T @ swx.T + cmat.T @ xwx @ cmat
-        dof[j] = float(np.trace(gwg) ** 2 / np.sum(gwg * gwg))
+        ell = r_inv[j]                                                 # R^-T l
+        c = ell[None] + np.einsum("gij,gj->gi", b_g, s_g @ ell)        # (G, k) c_g
+        p_g = np.einsum("gij,gj->gi", t_g, c)                          # T_g c_g
+        q_g = np.einsum("gij,gj->gi", s_g, c)                          # S_g c_g
+        cq = c - q_g
+        mgg = (np.einsum("gi,gij,gj->g", cq, t_g, cq)                  # diag(M), two terms
+               + np.einsum("gi,gij,gj->g", q_g, big_t[None] - t_g, q_g))   # >= 0 each
+        uu = np.concatenate([p_g, q_g], axis=1)                        # (G, 2k)
+        yy = uu @ cmat                                                 # rows (C u_g)'
+        off = 0.0                                                      # sum_(h<g) (y_g'u_h)^2
+        for a_ in range(2 * k):
+            for b_ in range(a_, 2 * k):
+                prev = np.zeros(g)
+                np.cumsum((uu[:, a_] * uu[:, b_])[:-1], out=prev[1:])
+                off += (1.0 if a_ == b_ else 2.0) * float(yy[:, a_] * yy[:, b_] @ prev)
+        frob2 = float(mgg @ mgg) + 2.0 * off
+        dof[j] = float(mgg.sum()) ** 2 / frob2
     return np.asarray(cov), dof
 
 
@@ -659,10 +734,10 @@ def fit_gamma(
           are enough clusters, see below), else ``"analytic"``;
         * ``"analytic"``: t (n - k dof) x HC3-robust standard error; ``"ols"``: classical;
         * ``"bootstrap"``: pairs bootstrap over points, percentile interval;
-        * ``"cluster"``: t (G - 1 dof) x cluster-robust standard error (CR3 jackknife by
-          default, see the module docstring); needs G >= 2 clusters (proportional) or 3
-          (affine). ``"auto"`` falls back to ``"analytic"`` below that and says so in
-          ``ci_note``;
+        * ``"cluster"``: t x cluster-robust standard error (CR2 on the Bell-McCaffrey dof
+          by default, CR3 or CR1 on G - 1 dof, see the module docstring); needs G >= 2
+          clusters (proportional) or 3 (affine). ``"auto"`` falls back to ``"analytic"``
+          below that and says so in ``ci_note``;
         * ``"odr"``: errors-in-variables. The pressure is read with error: ODR (odrpack)
           minimises sum (dP_i / sd_P,i)^2 + (F_i - gamma N(P_i + dP_i) - F0)^2 / sd_F,i^2
           with N the PCHIP squeeze curve and dN/dP its slope in the Jacobian. Its estimate
@@ -799,10 +874,16 @@ def fit_gamma(
             f0_ci = (f0 - tq[1] * float(se[1]), f0 + tq[1] * float(se[1]))
     else:
         rng = np.random.default_rng(seed)
-        idx = rng.integers(0, m, size=(int(n_boot), m))
-        nb, fb = n[idx], f[idx]
-        ok = (np.ptp(nb, axis=1) > 0) if affine else np.any(nb != 0, axis=1)
-        est = _solve(nb[ok], fb[ok], affine)
+        # resamples in blocks of rows (about 2^21 indices each): memory linear in m, and the
+        # same index stream, so the same interval, as drawing all n_boot x m at once
+        block = max(1, _BOOT_BLOCK // m)
+        parts = []
+        for start in range(0, int(n_boot), block):
+            idx = rng.integers(0, m, size=(min(block, int(n_boot) - start), m))
+            nb, fb = n[idx], f[idx]
+            ok = (np.ptp(nb, axis=1) > 0) if affine else np.any(nb != 0, axis=1)
+            parts.append(_solve(nb[ok], fb[ok], affine))
+        est = np.concatenate(parts)
         lo, hi = np.percentile(est, [2.5, 97.5], axis=0)
         g_ci = (float(lo[0]), float(hi[0]))
         f0_ci = (float(lo[1]), float(hi[1])) if affine else None
@@ -814,16 +895,17 @@ def fit_gamma(
     ok = np.isfinite(rel)
     mean_rel = float(np.mean(np.abs(rel[ok]))) if np.any(ok) else float("nan")
     rms_rel = float(100.0 * np.sqrt(float(res @ res) / float(f @ f))) if np.any(f) else float("nan")
+    p_tuple = _tuple(p)                 # shared by pressure_mpa and group (same values)
     return GammaFit(
         model=FrictionModel(gamma, f0),
         kind=model,
         gamma_ci95=g_ci,
         f0_ci95_n=f0_ci,
         ci_method=method,
-        pressure_mpa=tuple(p.tolist()),
-        squeeze_force_n=tuple(n.tolist()),
-        friction_n=tuple(f.tolist()),
-        predicted_friction_n=tuple(pred.tolist()),
+        pressure_mpa=p_tuple,
+        squeeze_force_n=_tuple(n),
+        friction_n=_tuple(f),
+        predicted_friction_n=_tuple(pred),
         relative_error_pct=mean_rel,
         max_relative_error_pct=_signed_max(rel),
         relative_rms_residual_pct=rms_rel,
@@ -831,5 +913,5 @@ def fit_gamma(
         n_clusters=g,
         lack_of_fit=lof,
         ci_note=note,
-        group=tuple(np.asarray(lab).tolist()) if labels is None else tuple(lab.tolist()),
+        group=p_tuple if labels is None else _tuple(np.asarray(lab)),
     )
