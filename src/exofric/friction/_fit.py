@@ -53,6 +53,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._lsq import hc3_covariance, lsq_covariance, residual_variance
 from exofric.errors import (
     ConvergenceError,
     InputError,
@@ -424,15 +425,9 @@ def _covariance(
 ) -> NDArray[np.float64]:
     """Covariance of (gamma[, F0]): HC3 sandwich if ``robust`` else classical OLS."""
     x = np.column_stack([n, np.ones_like(n)]) if affine else n[:, None]
-    m, k = x.shape
-    xtx_inv = np.linalg.inv(x.T @ x)
-    if not robust:
-        s2 = float(res @ res) / (m - k) if m > k else float("nan")
-        return np.asarray(s2 * xtx_inv)
-    h = np.einsum("ij,jk,ik->i", x, xtx_inv, x)          # leverages
-    with np.errstate(divide="ignore", invalid="ignore"):
-        w = np.where(h < 1.0, res**2 / (1.0 - h) ** 2, np.nan)
-    return np.asarray(xtx_inv @ (x.T * w) @ x @ xtx_inv)
+    if robust:
+        return hc3_covariance(x, res)
+    return lsq_covariance(x, residual_variance(res, x.shape[1]))
 
 
 def _factorize(labels: Any) -> tuple[NDArray[np.intp], int]:

@@ -74,6 +74,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._lsq import hc3_covariance, lsq_covariance, residual_variance, standard_errors
 from exofric.errors import (
     InputError,
     check_finite,
@@ -779,15 +780,6 @@ def _scaled_condition(x: NDArray[np.float64]) -> float:
     return float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
 
 
-def _hc3(x: NDArray[np.float64], e: NDArray[np.float64]) -> NDArray[np.float64]:
-    """HC3 sandwich covariance of the OLS coefficients of x (MacKinnon & White 1985)."""
-    a = np.linalg.inv(x.T @ x)
-    h = np.einsum("ij,jk,ik->i", x, a, x)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        w = np.where(h < 1.0, e**2 / (1.0 - h) ** 2, np.nan)
-    return np.asarray(a @ (x.T * w) @ x @ a)
-
-
 def fit_interfaces(
     tests: Sequence[InterfaceTest],
     *,
@@ -931,14 +923,13 @@ def fit_interfaces(
         note = (f"cluster-robust ({fitmod._VARIANT_TEXT[variant]}) over {g} (structure, "
                 f"pressure) clusters of {m} points; t with {dof_text} dof")
     elif method == "ols":
-        s2 = float(e @ e) / (m - k)
-        cov = s2 * np.linalg.inv(x.T @ x)
+        cov = lsq_covariance(x, residual_variance(e, k))
         note = f"classical OLS (equal variances); t with {m - k} dof; points independent"
     else:
-        cov = _hc3(x, e)
+        cov = hc3_covariance(x, e)
         note = (f"HC3 heteroscedasticity-robust; t with {m - k} dof; {m} points treated as "
                 "independent" + fallback)
-    se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    se = standard_errors(cov)
     tq = np.array([float(stats.t.ppf(0.975, d)) if d > 0 else float("nan") for d in dofs])
     lo, hi = beta - tq * se, beta + tq * se
     with np.errstate(divide="ignore", invalid="ignore"):
