@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 from exofric.cli._common import JSON_OPTION, console, emit, narrow_table, plot_path, save_figure
-from exofric.cli.inflate import MODEL_HELP, PARAMS_HELP, material_from_options
+from exofric.cli._options import MODEL_HELP, PARAMS_HELP, material_from_options
 
 #: Most load steps the CLI accepts (each a converged output point).
 MAX_STEPS = 200

@@ -19,7 +19,7 @@ from exofric.cli._common import (
     save_figure,
     write_outputs,
 )
-from exofric.cli.inflate import MODEL_HELP, PARAMS_HELP, material_from_options
+from exofric.cli._options import MODEL_HELP, PARAMS_HELP, material_from_options
 
 DEFAULT_P = ",".join(f"{0.05 * i:.2f}" for i in range(1, 13))
 

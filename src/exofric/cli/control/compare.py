@@ -1,0 +1,91 @@
+"""``exofric control compare``: the six cases of Fig 12 beside the paper's settling times."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import typer
+
+from exofric.cli._common import (
+    JSON_OPTION,
+    console,
+    emit,
+    narrow_table,
+    plot_path,
+)
+
+if TYPE_CHECKING:
+    from exofric.reproduction import CompareResult
+from exofric.cli.control._shared import (
+    ANTIWINDUP,
+    BAND,
+    DT,
+    DURATION,
+    FF_MODE,
+    GAMMA,
+    MISMATCH,
+    PLANT,
+    PLOT,
+    STEP_CSV,
+    STRUCTURE,
+    TARGET,
+    TAU_C,
+    _fmt,
+    _plot_cases,
+    _setup,
+    _stuck_note,
+)
+
+
+def register(ctl: typer.Typer) -> None:
+    """Add ``compare`` to ``ctl``."""
+    @ctl.command("compare")
+    def compare_cmd(
+        target_friction: float = TARGET, structure: str = STRUCTURE,
+        gamma: float | None = GAMMA, plant: str | None = PLANT, step_csv: str | None = STEP_CSV,
+        mismatch: float | None = MISMATCH, tau_c: float | None = TAU_C, ff_mode: str = FF_MODE,
+        antiwindup: str = ANTIWINDUP, dt: float | None = DT, duration: float = DURATION,
+        band: float = BAND, plot: str | None = PLOT, as_json: bool = JSON_OPTION,
+    ) -> None:
+        """The six cases of Fig 12 (PD, PI, PID; without/with the model) beside the paper."""
+        from exofric.reproduction import compare
+
+        if plot:
+            plot_path(plot)
+        setup = _setup(target_friction, structure, gamma, plant, step_csv, mismatch, tau_c,
+                       ff_mode, antiwindup, dt, duration, band)
+        res: CompareResult = compare(setup)
+        written = (_plot_cases(list(res.cases), plot, f"target {setup.target_n:g} N")
+                   if plot else None)
+        d = res.to_dict()
+        d["plant"] = setup.plant_description()
+        if written:
+            d["plot"] = written
+
+        notes = [n for c in d["cases"] if (n := _stuck_note(c, setup.target_n))]
+        if notes:
+            d["notes"] = notes
+
+        def render() -> None:
+            t = narrow_table(f"Fig 12: target {setup.target_n:g} N, mismatch "
+                             f"{setup.plant.mismatch:g}, feedforward {setup.ff_mode}",
+                             ["case", "settle s", "paper s", "OS %", "ss err N", "F N",
+                              "P MPa"])
+            for c in d["cases"]:
+                t.add_row(f"{c['controller'].upper()} {'+ model' if c['feedforward'] else ''}",
+                          _fmt(c["settling_time_s"], ".2f"),
+                          _fmt(c["paper_settling_time_s"], ".2f"),
+                          f"{c['overshoot_pct']:.1f}", f"{c['steady_state_error_n']:.3f}",
+                          f"{c['final_friction_n']:.2f}", f"{c['final_pressure_mpa']:.4f}")
+            console.print(t)
+            red, pred = d["settling_reduction_pct"], d["paper_settling_reduction_pct"]
+            for k in ("pi", "pid"):
+                console.print(f"{k.upper()}: settling reduced by {_fmt(red[k], '.1f')} % with "
+                              f"the model (paper: {pred[k]:g} %)")
+            console.print("settle: 2 % settling time; paper: Fig 12 as printed; OS: overshoot; "
+                          "ss err: steady-state error; F, P: final friction and pressure.")
+            console.print(f"plant: {d['plant']}")
+            for n in notes:
+                console.print(n)
+
+        emit(d, as_json, render)
