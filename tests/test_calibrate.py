@@ -204,7 +204,7 @@ BAD_CSVS = {
     "one-point": ("pressure_mpa,outer_diameter_mm\n0.1,8.5\n", "at least 2 data rows"),
     "one-point-shore": ("pressure_mpa,outer_diameter_mm,shore\n0.1,8.5,60\n0.2,8.7,60\n"
                         "0.1,8.4,65\n", "at least 2 data rows in shore 65"),
-    "wrong-unit": ("pressure_kpa,outer_diameter_mm\n100,8.5\n200,8.7\n", "wrong unit"),
+    "wrong-unit": ("pressure_mm,outer_diameter_mm\n100,8.5\n200,8.7\n", "not convertible to MPa"),
     "zero-diameter": ("pressure_mpa,outer_diameter_mm\n0.1,0\n0.2,8.7\n", "must be > 0 mm"),
 }
 

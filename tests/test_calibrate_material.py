@@ -353,3 +353,34 @@ def test_shore_calibration_passes_ends_to_fe_only() -> None:
         calibrate(InflationData.paper_test(), OD, tube_id_mm=ID_TRUE, model="1d", ends="closed")
     with pytest.raises(InputError, match="ends must be one of"):
         make_model("fe", OD, ends="capped")
+
+
+def test_tensile_only_yeoh_is_not_refused_for_modes_never_measured():
+    """Issue 31: Yeoh on a uniaxial Dragon Skin 20 curve (to stretch 10.2) was refused as
+    unstable in equibiaxial stretch, a mode never measured. Now the measured mode is checked
+    over its data (stable) and the others are a note. Reference: Yeoh's equibiaxial
+    engineering stress P = 2 (l - l^-5) (C10 + 2 C20 (I1 - 3) + 3 C30 (I1 - 3)^2),
+    I1 = 2 l^2 + l^-4, written here; its slope turns negative inside the uniaxial data's
+    range, which is what the old rule refused (grid of 1e-3 in stretch; 1 % tolerance on
+    where)."""
+    import warnings
+
+    from exofric.material import silicone_uniaxial
+
+    lam, p = silicone_uniaxial("dragon-skin-20")[:2]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = calibrate_material("yeoh", tensile=(lam, p))
+    c10, c20, c30 = r.model.params
+    lb = np.arange(1.0, float(lam.max()), 1e-3)
+    i1 = 2 * lb**2 + lb**-4
+    pb = 2 * (lb - lb**-5) * (c10 + 2 * c20 * (i1 - 3) + 3 * c30 * (i1 - 3) ** 2)
+    falls = lb[1:][np.diff(pb) <= 0.0]
+    assert falls.size, "the closed form should be unstable in equibiaxial within the data range"
+    note = next(n for n in r.notes if n.startswith("biaxial (not measured)"))
+    reported = float(note.split("from stretch ")[1].split(";")[0])
+    assert reported == pytest.approx(float(falls[0]), rel=0.01)
+    # the measured (uniaxial) mode is stable over the data: P_u = 2 (l - l^-2) dW/dI1
+    i1u = lam**2 + 2 / lam
+    pu = 2 * (lam - lam**-2) * (c10 + 2 * c20 * (i1u - 3) + 3 * c30 * (i1u - 3) ** 2)
+    assert np.all(np.diff(pu) > 0)

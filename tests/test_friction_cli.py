@@ -140,7 +140,7 @@ def test_fit_friction_affine_and_tests_column(capsys: pytest.CaptureFixture[str]
         ("pressure_mpa,force_n\n0.2,1\n0.3,2\n", "missing column 'friction_n'"),
         ("pressure_mpa,friction_n\n0.2,1\n0.3,abc\n", "data row 2, column 'friction_n'"),
         ("pressure_mpa,friction_n\n0.2,1\n0.3,-2\n", "must be >= 0"),
-        ("pressure_kpa,friction_n\n200,1\n300,2\n", "wrong unit"),
+        ("pressure_mm,friction_n\n0.2,1\n0.3,2\n", "not convertible to MPa"),
         ("pressure_mpa,friction_n\n0.2,1\n", "at least 2 data rows"),
         ("", "no header row"),
     ],
@@ -153,6 +153,22 @@ def test_bad_friction_csv(capsys: pytest.CaptureFixture[str], tmp_path: Path,
                           str(bad), "--json")
     _one_line_error(code, err, needle)
     assert out == ""
+
+
+def test_kpa_friction_table_is_converted(capsys: pytest.CaptureFixture[str], tmp_path: Path,
+                                         squeeze_csv: Path) -> None:
+    """A pressure column in kPa is read as such (issue 31): the same gamma as the MPa table
+    (1 kPa = 1e-3 MPa, the SI definition), to round-off."""
+    kpa, mpa = tmp_path / "kpa.csv", tmp_path / "mpa.csv"
+    kpa.write_text("pressure_kpa,friction_n\n300,40\n400,80\n500,130\n")
+    mpa.write_text("pressure_mpa,friction_n\n0.3,40\n0.4,80\n0.5,130\n")
+    got = []
+    for f in (kpa, mpa):
+        code, out, _ = _run(capsys, "fit-friction", "--squeeze", str(squeeze_csv), "--friction",
+                            str(f), "--json")
+        assert code == 0
+        got.append(json.loads(out)["gamma"])
+    assert got[0] == pytest.approx(got[1], rel=1e-12)
 
 
 def test_replicate_csv_fits_with_its_replicates(capsys: pytest.CaptureFixture[str],

@@ -38,7 +38,8 @@ def test_good_file_any_order_extra_columns_comments(tmp_path):
         ("pressure_mpa,outer_diameter_mm\n0.1,\n0.2,8.7\n", "data row 1.*empty"),
         ("pressure_mpa,outer_diameter_mm\n0.1,8.5\n0.1,8.7\n", "duplicate pressure_mpa 0.1"),
         ("pressure_mpa,outer_diameter_mm\n0.1,8.5\n", "at least 2 data rows"),
-        ("pressure_kpa,outer_diameter_mm\n100,8.5\n200,8.7\n", "wrong unit.*pressure_mpa"),
+        ("pressure_mpa (kPa),outer_diameter_mm\n100,8.5\n200,8.7\n", "no unit|missing"),
+        ("pressure_s,outer_diameter_mm\n100,8.5\n200,8.7\n", "not convertible to MPa"),
         ("", "no header"),
         ('pressure_mpa,outer_diameter_mm\n0.1,8.5,3,4\n0.2,"8.7\n', "malformed CSV"),
     ],
@@ -48,6 +49,17 @@ def test_bad_files(tmp_path, text, match):
     with pytest.raises(InputError, match=match) as exc:
         read_table(p, REQ, unique_within=("pressure_mpa", None))
     assert "\n" not in str(exc.value)
+
+
+def test_other_units_are_converted_not_refused(tmp_path):
+    # issue 31: a column in another unit is converted (pint), never refused or misread.
+    # Reference: SI definitions, 1 kPa = 1e-3 MPa and 1 cm = 10 mm (exact; tolerance 1e-12
+    # relative for float round-off).
+    p = _write(tmp_path, "pressure_kpa,Outer diameter (cm)\n100,0.85\n200,0.87\n")
+    df = read_table(p, REQ, unique_within=("pressure_mpa", None))
+    assert df["pressure_mpa"].tolist() == pytest.approx([0.1, 0.2], rel=1e-12)
+    assert df["outer_diameter_mm"].tolist() == pytest.approx([8.5, 8.7], rel=1e-12)
+    assert df.attrs["units"] == {"pressure_mpa": "kpa", "outer_diameter_mm": "cm"}
 
 
 def test_missing_file(tmp_path):

@@ -52,8 +52,8 @@ def test_treloar_data_units_against_felupe_kgf_table():
 
 @pytest.mark.parametrize("name,params", [
     ("yeoh", [0.19, -0.0019, 4.1e-5]),
-    ("ogden2", [0.45, 1.6, 0.004, 5.0]),
-    ("ogden3", [0.40, 1.3, 0.003, 5.0, 0.0098, -2.0]),
+    ("ogden2", [0.004, 5.0, 0.45, 1.6]),           # terms come back exponent-descending
+    ("ogden3", [0.003, 5.0, 0.40, 1.3, 0.0098, -2.0]),
 ])
 def test_planted_parameters_are_recovered(name, params):
     """Noise-free data of a known model, three modes: the fit returns it (1e-5 relative)."""
@@ -109,8 +109,8 @@ def test_ogden3_near_ogden_1972():
         fit = fit_material("ogden3", **T, residuals="relative")
     mu = sum(m * a / 2 for m, a in ((6.3, 1.3), (0.012, 5.0), (-0.1, -2.0))) * 0.0980665
     assert fit.model.shear_modulus_mpa == pytest.approx(mu, rel=0.02)
-    p = fit.model.params
-    assert p[1] == pytest.approx(1.3, rel=0.1) and p[3] == pytest.approx(5.0, rel=0.1)
+    p = fit.model.params  # terms exponent-descending: (mu, 5.0), (mu, 1.3), (mu, -2.0)
+    assert p[3] == pytest.approx(1.3, rel=0.1) and p[1] == pytest.approx(5.0, rel=0.1)
     assert fit.stability.stable
 
 
@@ -140,7 +140,9 @@ def test_felupe_fits_the_same_minimum():
                 ours = fit_material(name, uniaxial=ux, biaxial=bx,
                                     residuals="relative" if rel else "absolute")
             theirs = np.asarray(to_ours(res.x))
-            if name == "ogden3":
+            if name == "ogden3":  # the terms in one order (exponent descending; ours is)
+                order = np.argsort(-theirs[1::2])
+                theirs = np.concatenate([theirs[2 * i:2 * i + 2] for i in order])
                 assert ours.cost == pytest.approx(res.cost, rel=1e-3)
                 np.testing.assert_allclose(ours.model.params, theirs, rtol=2e-3, atol=1e-5)
                 other = material_model("ogden3", theirs)
@@ -151,17 +153,48 @@ def test_felupe_fits_the_same_minimum():
                 np.testing.assert_allclose(ours.model.params, theirs, rtol=1e-6)
 
 
+def unstable_biaxial():
+    """Equibiaxial data of Mooney-Rivlin C10 = 0.2, C01 = -0.01 MPa to stretch 4.5: by the hand
+    form P = 2 (l - l^-5)(C10 + C01 l^2), dP/dl = 2 (1 + 5 l^-6)(C10 + C01 l^2)
+    + 4 C01 l (l - l^-5), which turns negative near 2.6, inside the data."""
+    lam = np.linspace(1.05, 4.5, 20)
+    c10, c01 = 0.2, -0.01
+    p = 2 * (lam - lam**-5) * (c10 + c01 * lam**2)
+    dp = 2 * (1 + 5 * lam**-6) * (c10 + c01 * lam**2) + 4 * c01 * lam * (lam - lam**-5)
+    assert dp[0] > 0 and dp[-1] < 0
+    return lam, p, float(lam[np.argmax(dp <= 0)])
+
+
 def test_unstable_fit_is_refused_unless_allowed():
-    """Mooney-Rivlin on all of Treloar: C01 < 0, and by the hand form the equibiaxial stress
-    2(l - l^-5)(C10 + C01 l^2) peaks inside 4.45 -> refused; allowed, it warns."""
+    """Unconstrained, the planted unstable model is recovered and refused (instability inside
+    the measured range); allowed, it warns; by default the fit is constrained to a stable one."""
+    lam, p, first = unstable_biaxial()
     with pytest.raises(InputError, match="Drucker-unstable") as e:
-        fit_material("mooney-rivlin", **T)
+        fit_material("mooney-rivlin", biaxial=(lam, p), constrain=False)
     assert "\n" not in str(e.value)
     with pytest.warns(PlausibilityWarning, match="Drucker"):
-        fit = fit_material("mooney-rivlin", **T, allow_unstable=True)
-    c10, c01 = fit.model.params
-    assert c01 < 0 and not fit.stability.stable
+        fit = fit_material("mooney-rivlin", biaxial=(lam, p), allow_unstable=True)
+    np.testing.assert_allclose(fit.model.params, [0.2, -0.01], rtol=1e-8)
+    assert not fit.stability.stable and not fit.admissible
+    assert fit.stability.unstable_from["biaxial"] <= first
     assert any("Drucker" in w for w in fit.warnings)
+    with pytest.warns(PlausibilityWarning, match="constrained"):
+        fit = fit_material("mooney-rivlin", biaxial=(lam, p))
+    c10, c01 = fit.model.params
+    grid = np.linspace(1.0, 4.5 * 1.1, 401)  # the data's range + 10 %, by the hand form
+    dp = 2 * (1 + 5 * grid**-6) * (c10 + c01 * grid**2) + 4 * c01 * grid * (grid - grid**-5)
+    assert fit.constrained and fit.admissible and np.all(dp > 0)
+
+
+def test_treloar_mooney_rivlin_is_stable_on_each_modes_range():
+    """Mooney-Rivlin on all of Treloar has C01 < 0; its equibiaxial dP/dl turns negative only
+    near stretch 7 (hand form above), beyond the equibiaxial data (4.45) + 10 %: admissible
+    without a constraint (before issue 31 the uniaxial range was applied to every mode)."""
+    fit = fit_material("mooney-rivlin", **T)
+    c10, c01 = fit.model.params
+    grid = np.linspace(1.0, 4.45 * 1.1, 401)
+    dp = 2 * (1 + 5 * grid**-6) * (c10 + c01 * grid**2) + 4 * c01 * grid * (grid - grid**-5)
+    assert c01 < 0 and np.all(dp > 0) and not fit.constrained and fit.stability.stable
 
 
 def test_true_stress_data_and_extrapolation_warning():
@@ -222,7 +255,7 @@ def test_reader_strain_header_kind_and_option_wins(tmp_path):
 @pytest.mark.parametrize("text,needle", [
     ("stretch,stress_mpa\n1.0,0\n-0.5,0.1\n", "'stretch' must be > 0"),
     ("strain,stress_mpa\n0.0,0\n0.2,0.1\n0.1,0.2\n", "not monotonic"),
-    ("stretch,stress_kpa\n1.0,0\n1.5,100\n", "wrong unit"),
+    ("stretch,Stress (kg)\n1.0,0\n1.5,100\n", "cannot be converted"),
     ("stress_mpa\n0\n0.1\n", "'stretch' or 'strain'"),
     ("# stress_kind: cauchy\nstretch,stress_mpa\n1.0,0\n1.5,0.1\n", "stress_kind"),
 ])
@@ -271,7 +304,8 @@ def test_cli_fit_files_and_header_kind(capsys, tmp_path):
     (["--model", "yeoh", "--fit", "{nonmono}"], "not monotonic"),
     (["--model", "gent", "--treloar"], "--model"),
     (["--treloar"], "--model"),
-    (["--model", "mooney-rivlin", "--treloar"], "Drucker-unstable"),
+    (["--model", "mooney-rivlin", "--fit-biaxial", "{unstable}", "--unconstrained"],
+     "Drucker-unstable"),
     (["--model", "yeoh", "--treloar", "--stress-kind", "cauchy"], "--stress-kind"),
     (["--model", "yeoh", "--treloar", "--shore", "60"], "--shore"),
     (["--shore", "60", "--model", "yeoh"], "--model"),
@@ -280,16 +314,27 @@ def test_cli_fit_files_and_header_kind(capsys, tmp_path):
 def test_cli_bad_input_one_line_exit_2(args, needle, capsys, tmp_path):
     (tmp_path / "neg.csv").write_text("stretch,stress_mpa\n1.0,0\n0.0,0.1\n")
     (tmp_path / "nonmono.csv").write_text("stretch,stress_mpa\n1.0,0\n1.5,0.1\n1.2,0.2\n")
-    args = [a.format(neg=tmp_path / "neg.csv", nonmono=tmp_path / "nonmono.csv") for a in args]
+    lam, p, _ = unstable_biaxial()
+    (tmp_path / "unstable.csv").write_text("stretch,stress_mpa\n" + "".join(
+        f"{a!r},{b!r}\n" for a, b in zip(lam.tolist(), p.tolist(), strict=True)))
+    args = [a.format(neg=tmp_path / "neg.csv", nonmono=tmp_path / "nonmono.csv",
+                     unstable=tmp_path / "unstable.csv") for a in args]
     code = run(["material", *args])
     out, err = capsys.readouterr()
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert code == 2 and out == "" and len(lines) == 1 and needle in lines[0], err
 
 
-def test_cli_allow_unstable_warns(capsys):
-    assert run(["material", "--model", "mooney-rivlin", "--treloar", "--allow-unstable",
-                "--json"]) == 0
+def test_cli_allow_unstable_warns(capsys, tmp_path):
+    lam, p, _ = unstable_biaxial()
+    f = tmp_path / "unstable.csv"
+    f.write_text("stretch,stress_mpa\n" + "".join(
+        f"{a!r},{b!r}\n" for a, b in zip(lam.tolist(), p.tolist(), strict=True)))
+    assert run(["material", "--model", "mooney-rivlin", "--fit-biaxial", str(f),
+                "--allow-unstable", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    assert d["stability"]["stable"] is False
+    assert d["stability"]["stable"] is False and d["admissible"] is False
     assert any("Drucker" in w for w in d["warnings"])
+    assert run(["material", "--model", "mooney-rivlin", "--fit-biaxial", str(f), "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["stability"]["stable"] is True and d["constrained"] is True

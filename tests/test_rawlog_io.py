@@ -457,13 +457,14 @@ def test_short_row_is_reported_as_nan_not_dropped(tmp_path):
 
 
 def test_files_and_suffixes(tmp_path):
-    _one_line_error(tmp_path / "log.xlsx", r"unsupported raw log type '.xlsx' \(supported: "
-                                           r".csv, .txt, .parquet, .pq, .tdms\)")
+    _one_line_error(tmp_path / "log.xls", r"unsupported raw log type '.xls' \(supported: "
+                                          r".csv, .tsv, .txt, .dat, .lvm, .tdms, .parquet, .pq, "
+                                          r".xlsx, .xlsm\)")
     with pytest.raises(InputError, match="file not found"):
         read_raw_log(tmp_path / "none.csv")
-    p = tmp_path / "latin.csv"
-    p.write_bytes(b"time_s,pressure_mpa,force_n\n\xe9\n")
-    _one_line_error(p, "cannot read as UTF-8")
+    p = tmp_path / "latin.csv"  # not UTF-8: read as Latin-1 (issue 31), so the cell is named
+    p.write_bytes(b"time_s,pressure_mpa,force_n\n1,2,\xe9\n")
+    _one_line_error(p, "data row 1 \\(line 2\\), column 'force_n' is not a number: '\u00e9'")
     q = tmp_path / "broken.parquet"
     q.write_bytes(b"PAR1 not really")
     _one_line_error(q, "not a readable Parquet file")

@@ -262,6 +262,28 @@ RAWLOG_MIN_SAMPLES: Final = 20
 
 __all__ += ["RAWLOG_MAX_GAP_FACTOR", "RAWLOG_MIN_SAMPLES"]
 
+# --- Plausibility of what a rig log says (exofric.io.read_raw_log; issue 31) ---------------------
+
+#: A tube pressure above this (MPa) in a rig log is an error naming the probable unit: the
+#: paper's tubes run at 0.2-0.6 MPa and burst well below 10 MPa, so 300-600 "MPa" are kPa.
+RAWLOG_MAX_PRESSURE_MPA: Final = 10.0
+#: A friction force above this (N) in a rig log is an error naming the probable unit (the
+#: paper's forces are 10-300 N; 10 kN would tear the wire).
+RAWLOG_MAX_FORCE_N: Final = 1.0e4
+#: Typical levels (MPa, N) used to name the probable unit of an implausible column: the unit
+#: whose reading lands closest (in log scale) to these.
+RAWLOG_TYPICAL_PRESSURE_MPA: Final = 0.4
+RAWLOG_TYPICAL_FORCE_N: Final = 100.0
+#: Factors between units of one quantity (MPa/kPa, bar/kPa, psi/kPa, lbf/N, kgf/N, ...): a jump of
+#: the level by one of them within one sample is a unit change inside the log (an error).
+RAWLOG_UNIT_JUMP_FACTORS: Final = (1.0e3, 1.0e6, 1.0e2, 6.894757, 68.94757, 145.0377, 14.50377,
+                                   4.448222, 9.80665, 2.204623)
+#: Relative tolerance (unitless) of a level ratio matching one of those factors.
+RAWLOG_UNIT_JUMP_RTOL: Final = 0.02
+
+__all__ += ["RAWLOG_MAX_FORCE_N", "RAWLOG_MAX_PRESSURE_MPA", "RAWLOG_TYPICAL_FORCE_N",
+            "RAWLOG_TYPICAL_PRESSURE_MPA", "RAWLOG_UNIT_JUMP_FACTORS", "RAWLOG_UNIT_JUMP_RTOL"]
+
 # --- Reducing raw rig logs (exofric.friction.reduce_log, `exofric reduce`; issue 14) ----------
 
 #: A pressure plateau: the smoothed pressure moves less than max(abs, rel x level) over
@@ -373,3 +395,60 @@ __all__ += ["DEVICE_BAUD", "DEVICE_CONNECT_TIMEOUT_S", "DEVICE_IO_TIMEOUT_S",
 ROTATION_SPRING_REL: Final = 1.0
 
 __all__ += ["ROTATION_SPRING_REL"]
+
+# --- Hyperelastic fits (exofric.material.fit_material; issue 31) -----------------------------
+
+#: Stability margin of a fit (relative, in stretch): a fit is kept Drucker-stable (dP/dl > 0)
+#: along every measured mode over that mode's data range widened by this fraction: the top
+#: stretch x (1 + margin) and, with compression data, the bottom / (1 + margin). 10 % lets a
+#: model be used a little past the largest measured stretch.
+FIT_STABILITY_MARGIN_REL: Final = 0.10
+#: Floor of the tangent dP/dl in the stability constraints, relative to the data's secant
+#: modulus max|P| / max|l - 1| (unitless; 1e-3): "stable" means clearly rising, not flat.
+FIT_TANGENT_FLOOR_REL: Final = 1e-3
+#: Stretches per measured mode at which the stability constraints are first imposed (evenly
+#: spaced over the widened range); stretches of a 401-point check that still fall below the floor
+#: are added and the fit is repeated (up to 4 times).
+FIT_CONSTRAINT_POINTS: Final = 41
+#: Ogden fits: local fits started for 1, 2 and 3 terms, from the discrete local minima (then the
+#: best points) of the variable-projection cost over a grid of exponent combinations, besides
+#: the published Treloar-type starts (16 for three terms: Ogden-3 on 1,000 points in < 2 s,
+#: benchmarks/bench_material_fit.py).
+FIT_OGDEN_STARTS: Final[MappingProxyType[int, int]] = MappingProxyType({1: 6, 2: 10, 3: 16})
+#: Ogden fits: bound on each |mu_i|, relative to the data's secant modulus max|P| / max|l - 1|
+#: (unitless; 100). Larger mu_i come in cancelling pairs of nearly equal exponents: a flat,
+#: ill-conditioned direction of the least squares, not a material property; a fit reaching the
+#: bound is reported as constrained.
+FIT_OGDEN_MU_MAX_REL: Final = 100.0
+
+__all__ += ["FIT_CONSTRAINT_POINTS", "FIT_OGDEN_MU_MAX_REL", "FIT_OGDEN_STARTS",
+            "FIT_STABILITY_MARGIN_REL", "FIT_TANGENT_FLOOR_REL"]
+
+# --- Pull-out of the wire through the inflated tube, joint stiffness (issue 39) --------------
+
+#: Axial stiffness EA (N) of the 1.6 mm 7x7 steel cable: an effective modulus of ~110 GPa
+#: (stranded rope, below the wire's 200 GPa: the strands' helix) on its metallic area of
+#: ~1.2 mm^2 (fill factor ~0.6 of the 2.0 mm^2 circle) gives ~1.3e5 N. An assumption to be
+#: replaced by a measured EA of the cable used.
+CABLE_EA_N: Final = 1.3e5
+#: Stick penalty of the axial friction on the tube-wire and tube-wall arcs (N/mm^3: N per mm of
+#: tube per mm of slip per mm of arc), augmented by a Lagrange multiplier (Uzawa) until the
+#: sticking nodes' elastic slip is below PULLOUT_CREEP_TOL_MM: the answer does not depend on it.
+PULLOUT_STICK_PENALTY_N_PER_MM3: Final = 1e3
+#: Largest elastic slip (mm) of a sticking node accepted by the augmented Lagrangian.
+PULLOUT_CREEP_TOL_MM: Final = 1e-9
+#: Load steps of the per-unit-length pull (to 3x the estimated slip displacement; extended
+#: until the wire slides on its whole arc).
+PULLOUT_SECTION_STEPS: Final = 40
+#: Linear elements of the cable along the tube in the shear lag (count; 0.5 mm over 116 mm).
+PULLOUT_Z_ELEMENTS: Final = 232
+#: Load steps per displacement amplitude D of the pulled end's path (count).
+PULLOUT_PATH_STEPS: Final = 60
+#: The wire-wall line contact (rigid steel on rigid aluminium) sticks rigidly; the along-length
+#: model regularises it by a stick spring this many times the tube's initial section stiffness
+#: (unitless). The reported secant stiffness converges as it grows (tests/test_pullout.py).
+PULLOUT_LINE_STICK_REL: Final = 1e3
+
+__all__ += ["CABLE_EA_N", "PULLOUT_CREEP_TOL_MM", "PULLOUT_LINE_STICK_REL",
+            "PULLOUT_PATH_STEPS", "PULLOUT_SECTION_STEPS", "PULLOUT_STICK_PENALTY_N_PER_MM3",
+            "PULLOUT_Z_ELEMENTS"]

@@ -1069,6 +1069,67 @@ def _floors(name: str, mu0: float) -> np.ndarray:
 # The entry point
 
 
+def _stability(fitted: HyperelasticModel, fe_max_stretch: float,
+               tens: Mapping[str, tuple[np.ndarray, np.ndarray]], *, fe_data: bool
+               ) -> tuple[StabilityCheck, list[str]]:
+    """Drucker stability where the data reach it (refused when unstable), and notes for the
+    margin beyond the data and for the tensile modes never measured (issue 31: a uniaxial
+    range used to be applied to biaxial, which was refused without biaxial data).
+
+    Each measured tensile mode is checked over its own stretches; with inflation or ring data,
+    every mode also over the FE's stretches (the tube's wall reaches general states). An
+    instability within ``defaults.FIT_STABILITY_MARGIN_REL`` beyond the data, or anywhere in
+    the whole range for a mode never measured, is a note (a warning), not a refusal.
+    """
+    from exofric import defaults
+    from exofric.material import MODES
+
+    margin = float(defaults.FIT_STABILITY_MARGIN_REL)
+
+    def widen(lo: float, hi: float) -> tuple[float, float]:
+        return (lo / (1.0 + margin) if lo < 1.0 else lo,
+                hi * (1.0 + margin) if hi > 1.0 else hi * (1.0 + 1e-3))
+
+    def first_unstable(m: str, ranges: list[tuple[float, float]]) -> float | None:
+        found: float | None = None
+        for lo, hi in ranges:
+            u = fitted.stability(lo, max(hi, lo * (1.0 + 1e-3)), modes=(m,)).unstable_from[m]
+            if u is not None and (found is None or abs(math.log(u)) < abs(math.log(found))):
+                found = u
+        return found
+
+    fe_hi = max(1.0, fe_max_stretch)
+    data_ranges: dict[str, list[tuple[float, float]]] = {}
+    for m in MODES:
+        ranges = [(1.0 / fe_hi, fe_hi)] if fe_data else []
+        if m in tens:
+            lam = tens[m][0]
+            ranges.append((min(float(lam.min()), 1.0), max(float(lam.max()), 1.0)))
+        if ranges:
+            data_ranges[m] = ranges
+    lo_all = min((r[0] for rs in data_ranges.values() for r in rs), default=1.0)
+    hi_all = max((r[1] for rs in data_ranges.values() for r in rs), default=1.0)
+    first = {m: (first_unstable(m, data_ranges[m]) if m in data_ranges else None)
+             for m in MODES}
+    stab = StabilityCheck(all(v is None for v in first.values()), lo_all,
+                          max(hi_all, lo_all * (1.0 + 1e-3)), first, 401, tuple(data_ranges))
+    notes = []
+    w_lo, w_hi = widen(lo_all, hi_all)
+    for m in MODES:
+        if m in data_ranges:
+            if first[m] is None:
+                u = first_unstable(m, [widen(*r) for r in data_ranges[m]])
+                if u is not None:
+                    notes.append(f"{m}: Drucker-unstable from stretch {u:.3g}, within "
+                                 f"{100 * margin:g} % beyond the data: do not extrapolate")
+            continue
+        u = first_unstable(m, [(w_lo, w_hi)])
+        if u is not None:
+            notes.append(f"{m} (not measured): Drucker-unstable from stretch {u:.3g}; the fit "
+                         f"predicts {m} deformation only where it is stable: test that mode")
+    return stab, notes
+
+
 def calibrate_material(
     model: str,
     *,
@@ -1401,20 +1462,18 @@ def calibrate_material(
     except InputError as exc:
         raise InputError(f"the {name} fit gives an invalid material ({exc}); try another "
                          "model", param="model") from None
-    s_lo, s_hi = 1.0, max(1.0, prob.max_stretch)
-    s_lo = min(s_lo, 1.0 / s_hi)
-    for lam_t, _ in tens.values():
-        s_lo, s_hi = min(s_lo, float(lam_t.min())), max(s_hi, float(lam_t.max()))
-    stab = fitted.stability(s_lo, s_hi)
+    stab, unmeasured = _stability(fitted, prob.max_stretch, tens,
+                                  fe_data=data is not None or ring is not None)
     if not stab.stable:
         where = ", ".join(f"{k} from stretch {v_:.3g}" for k, v_ in stab.unstable_from.items()
                           if v_ is not None)
         msg = (f"the {name} fit is Drucker-unstable (dP/dl <= 0) within the stretches the data "
-               f"reach, {s_lo:.3g}-{s_hi:.3g}: {where}")
+               f"reach, {stab.stretch_min:.3g}-{stab.stretch_max:.3g}: {where}")
         if not allow_unstable:
             raise InputError(f"model: {msg}; use another model or allow_unstable",
                              param="model")
         notes.append(msg)
+    notes += unmeasured
     pred = prob.predict(x)
     assert pred is not None
     meas = prob.measured()

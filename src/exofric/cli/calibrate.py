@@ -77,6 +77,18 @@ def register(app: typer.Typer) -> None:
             None, "--stress-kind", help="engineering or true stress in the tensile CSVs; wins "
             "over a file's '# stress_kind:' line (default engineering).",
         ),
+        strain_kind: str | None = typer.Option(
+            None, "--strain-kind", help="engineering or true strain in the tensile CSVs "
+            "(as exofric material --fit reads them)."),
+        gauge_length_mm: float | None = typer.Option(
+            None, "--gauge-length", help="Tensile specimen gauge length (mm), for an "
+            "extension column."),
+        area_mm2: float | None = typer.Option(
+            None, "--area", help="Tensile specimen cross-section (mm^2), for a load column."),
+        width_mm: float | None = typer.Option(
+            None, "--width", help="Tensile specimen width (mm; area = width x thickness)."),
+        thickness_mm: float | None = typer.Option(
+            None, "--thickness", help="Tensile specimen thickness (mm)."),
         ring: Path | None = typer.Option(
             None, "--ring", help="Ring test CSV: displacement_mm,force_n (mm, N), a ring cut "
             "from the tube pulled over two pins (sizes from --ring-width and --pin, or from "
@@ -140,6 +152,8 @@ def register(app: typer.Typer) -> None:
             plot = plot_path(plot)
         joint_opts = {"tensile": tensile, "tensile_biaxial": tensile_biaxial,
                       "tensile_planar": tensile_planar, "stress_kind": stress_kind,
+                      "strain_kind": strain_kind, "gauge_length_mm": gauge_length_mm,
+                      "area_mm2": area_mm2, "width_mm": width_mm, "thickness_mm": thickness_mm,
                       "ring": ring, "ring_width": ring_width, "pin": pin,
                       "ring_section": ring_section, "shore_prior": shore_prior,
                       "shore_sd": shore_sd, "inflation_noise_rel": inflation_noise_rel,
@@ -292,7 +306,8 @@ def _joint(model: str, data: Path | None, tube_od: float | None, tube_id: float 
             continue
         if not str(path).strip():
             raise InputError(f"{key} must name a CSV file, got ''", param=key)
-        df = read_stress_stretch(path, sk)
+        df = read_stress_stretch(path, sk, **{k: opts[k] for k in (
+            "strain_kind", "gauge_length_mm", "area_mm2", "width_mm", "thickness_mm")})
         tens[mode] = (df["stretch"].to_numpy(), df["stress_mpa"].to_numpy())
         kinds[mode] = df.attrs["stress_kind"]
         sources[mode] = str(path)

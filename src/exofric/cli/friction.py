@@ -48,20 +48,24 @@ def _friction_data(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray
             df["test"].to_numpy(str), bool(df.attrs["synthetic"]))
 
 
+#: Columns a friction table may map with --columns (the rest are raw-log quantities).
+_FRICTION_COLUMNS = ("pressure_mpa", "friction_n", "kinetic_n", "test", "branch", "plateau")
+
+
 def _fit_inputs(path: str, columns: str | None) -> dict[str, Any]:
     """Friction points for fit-friction from a raw log (reduced here), a pull table or a
     pressure_mpa,friction_n[,test] table: pressures (MPa), friction (N), cluster labels, and
     per-point standard deviations for errors-in-variables when the data give them."""
     import numpy as np
 
-    from exofric.cli.reduce import is_raw_log, reduce_files
+    from exofric.cli._rawlogs import reduce_files
     from exofric.errors import InputError
     from exofric.friction import ReduceSettings, friction_curve
-    from exofric.io import read_friction_table
+    from exofric.io import is_raw_log, parse_column_map, read_friction_table
 
     if not Path(path).is_file():
         raise InputError(f"{path}: file not found", param="friction")
-    if is_raw_log(path) or columns:
+    if is_raw_log(path, columns):
         reds, pulls, meta = reduce_files([path], columns, ReduceSettings())
         curve, _ = friction_curve(pulls)
         sd_at = {(b, sp): sd for b, sp, sd in zip(curve["branch"], curve["setpoint"],
@@ -76,7 +80,8 @@ def _fit_inputs(path: str, columns: str | None) -> dict[str, Any]:
                 "friction_sd": fsd, "reduction": {"n_pulls": len(pulls),
                                                   "n_skipped": len(reds[0].skipped),
                                                   "curve": curve}}
-    df = read_friction_table(path)
+    mapping = parse_column_map(columns, _FRICTION_COLUMNS) if columns else None
+    df = read_friction_table(path, mapping)
     return {"kind": str(df.attrs.get("kind", "points")),
             "pressure": df["pressure_mpa"].to_numpy(float),
             "friction": df["friction_n"].to_numpy(float), "groups": df["group"].to_numpy(str),
@@ -229,8 +234,9 @@ def _register_fit(app: typer.Typer) -> None:
         friction_sd: float | None = typer.Option(None, "--friction-sd", help="Friction error sd "
                                                  "in N for --ci odr (raw logs: the between-pull "
                                                  "sd at the pull's set point)."),
-        columns: str | None = typer.Option(None, "--columns", help="Header map for a raw log "
-                                           "(see `exofric reduce --help`)."),
+        columns: str | None = typer.Option(None, "--columns", help="Header map: for a raw log "
+                                           "see `exofric reduce --help`; for a friction table "
+                                           "pressure_<unit>=H,friction_<unit>=H[,test=H]."),
         seed: int = typer.Option(0, help="Bootstrap RNG seed."),
         plot: str | None = typer.Option(None, help="Write a PNG of the fit and residuals."),
         as_json: bool = JSON_OPTION,

@@ -5,8 +5,10 @@ wire displacement (mm): the tube is inflated to a set point, then the wire is pu
 speed, several times, maybe in both directions. :func:`reduce_log` finds, without being told:
 
 * **pressure plateaus**: stretches of at least ``min_plateau_s`` where the smoothed pressure
-  moves less than max(``plateau_tol_mpa``, ``plateau_tol_rel`` x level) over that time. Plateaus
-  at one level are one *set point*; a plateau reached from above is on the *down* branch.
+  moves less than max(``plateau_tol_mpa``, ``plateau_tol_rel`` x level) over that time and
+  whose linear drift over the whole stretch stays within twice that band (a slow steady ramp is
+  no plateau: a log that only ramps is an error). Plateaus at one level are one *set point*; a
+  plateau reached from above is on the *down* branch.
 * **pulls**: from the displacement speed when there is a displacement column (faster than
   ``speed_fraction`` of the log's typical speed; the sign gives the direction), otherwise from
   the force (leaving its rest level by more than ``force_sigmas`` rest-noise standard
@@ -388,8 +390,18 @@ def _plateaus(t: NDArray[np.float64], p_s: NDArray[np.float64], fs: float, s: Re
     steady = change < _tol(p_s, s)
     runs = [r for r in _runs(steady) if t[r[1] - 1] - t[r[0]] >= 0.5 * s.min_plateau_s]
     out: list[dict[str, Any]] = []
+    ramps: list[tuple[int, int, float]] = []
     for a, b in runs:
         level = float(np.median(p_s[a:b]))
+        # A slow steady ramp changes by less than the band over min_plateau_s everywhere, so
+        # the local test calls all of it steady: a plateau must also hold its level over its
+        # whole length (a linear drift over the run of more than the band's full width is a
+        # ramp, not a set point; issue 31: a ramping log gave one plateau holding every pull).
+        tc = t[a:b] - t[a:b].mean()
+        slope = float(tc @ (p_s[a:b] - p_s[a:b].mean()) / (tc @ tc)) if b - a > 2 else 0.0
+        if abs(slope) * (t[b - 1] - t[a]) > 2.0 * float(_tol(level, s)):
+            ramps.append((int(a), int(b), slope))
+            continue
         band = np.abs(p_s - level) > _tol(level, s)
         before = np.flatnonzero(band[:a])
         after = np.flatnonzero(band[b:])
@@ -402,6 +414,13 @@ def _plateaus(t: NDArray[np.float64], p_s: NDArray[np.float64], fs: float, s: Re
             a2 = out[-1]["b"]
         if t[b2 - 1] - t[a2] >= s.min_plateau_s:
             out.append({"a": a2, "b": b2, "level": level})
+    if not out and ramps:
+        a, b, slope = max(ramps, key=lambda r: r[1] - r[0])
+        raise InputError(
+            f"{source}pressure ramps steadily ({slope:+.3g} MPa/s, {p_s[a]:.4g} to "
+            f"{p_s[b - 1]:.4g} MPa in {t[a]:.2f}-{t[b - 1]:.2f} s) and is never held: no plateau "
+            f"of {s.min_plateau_s:g} s within +-max({s.plateau_tol_mpa:g} MPa, "
+            f"{100 * s.plateau_tol_rel:g} %); friction needs the pressure held at set points")
     if not out:
         raise InputError(
             f"{source}pressure never steady in {t[0]:.2f}-{t[-1]:.2f} s: no stretch of "
@@ -572,7 +591,7 @@ def reduce_log(
     InputError
         One line naming the time range: missing columns, non-increasing time, fewer than 4
         samples per ``tare_s`` (time in ms read as s?), a saturated force channel, pressure
-        never steady, no pull found, no usable pull.
+        never steady or only ramping (never held), no pull found, no usable pull.
 
     Warns
     -----
@@ -786,6 +805,16 @@ def reduce_log(
     )
 
 
+def _samples_hash(red: RigReduction) -> str:
+    """SHA-256 of a reduction's samples (time, pressure, force, displacement; float64 bytes)."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for arr in (red.time_s, red.pressure_mpa, red.force_n, red.displacement_mm):
+        h.update(b"|" if arr is None else np.ascontiguousarray(arr, dtype=np.float64).tobytes())
+    return h.hexdigest()
+
+
 def pool_pulls(reductions: Sequence[RigReduction]) -> pd.DataFrame:
     """The pulls of several reduced logs in one table, with plateaus and pulls numbered apart.
 
@@ -803,6 +832,12 @@ def pool_pulls(reductions: Sequence[RigReduction]) -> pd.DataFrame:
     pandas.DataFrame
         The columns of :meth:`RigReduction.to_frame` plus ``log``.
 
+    Raises
+    ------
+    InputError
+        No reduction, or two reductions of identical samples (one log given twice, perhaps
+        under two names or formats: its pulls would count twice as replicates).
+
     Examples
     --------
     >>> from exofric.friction import simulate_raw_log
@@ -816,6 +851,14 @@ def pool_pulls(reductions: Sequence[RigReduction]) -> pd.DataFrame:
 
     if not reductions:
         raise InputError("pool_pulls needs at least one reduction")
+    seen: dict[str, str] = {}
+    for red in reductions:  # one log given twice would count every pull twice as replicates
+        h = _samples_hash(red)
+        if h in seen:
+            raise InputError(f"{red.source or 'a log'} and {seen[h] or 'another log'} are the "
+                             f"same log (identical samples, sha256 {h[:12]}): each pull would "
+                             "count twice as a replicate; give each log once")
+        seen[h] = red.source
     frames = []
     n_plat = n_pull = 0
     for red in reductions:

@@ -4,8 +4,9 @@ Every reader here returns plain validated data or raises
 :class:`~exofric.errors.InputError` with one line naming the file, the row or
 column and what is allowed. Column names carry their unit (``pressure_mpa``,
 ``outer_diameter_mm``, ``friction_n``, ``time_s``); a column with the same
-quantity in another unit (``pressure_kpa``) is refused with a hint, never
-silently reinterpreted. A missing file is an :class:`OSError` for TOML and JSON
+quantity in another unit (``pressure_kpa``, ``Pressure (kPa)``) is converted with
+pint by :func:`read_table` (through :func:`exofric.io.read_measured_table`),
+never silently reinterpreted. A missing file is an :class:`OSError` for TOML and JSON
 (the CLI prints it as one line) and an :class:`InputError` for tables.
 
 Every writer is atomic: it writes a hidden temporary file in the target's
@@ -16,13 +17,12 @@ kill never leaves a partial file under the final name.
 from __future__ import annotations
 
 import contextlib
-import io as _io
 import json
 import math
 import os
 import tomllib
 import uuid
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -39,13 +39,6 @@ __all__ = [
 
 #: Unit suffixes exofric understands in column names, and their meaning.
 UNIT_SUFFIXES = {"mpa": "MPa", "mm": "mm", "n": "N", "s": "s", "nm": "Nm", "pct": "%"}
-_OTHER_UNITS = ("kpa", "pa", "bar", "psi", "cm", "m", "in", "kn", "lbf", "ms", "min")
-
-
-def _base(col: str) -> str:
-    return col.rsplit("_", 1)[0] if "_" in col else col
-
-
 def read_table(
     path: str | Path,
     required: Sequence[str],
@@ -55,16 +48,20 @@ def read_table(
     nonnegative: Sequence[str] | None = None,
     unique_within: tuple[str, str | None] | None = None,
     min_rows: int = 2,
+    columns: Mapping[str, str] | None = None,
 ) -> pd.DataFrame:
-    """Read a CSV rig file, check it, and return its numeric columns.
+    """Read a measured table (CSV and every format of :func:`read_measured_table`), check it.
 
     Parameters
     ----------
     path : str or Path
-        CSV file with a header row; ``#`` starts a comment; columns in any order;
-        unknown columns are ignored.
+        A table with a header row: CSV/TSV/``;`` (decimal comma, UTF-16 or Latin-1, a vendor
+        preamble and a units row are detected), LabVIEW ``.lvm``, NI ``.tdms``, Parquet or
+        ``.xlsx``; ``#`` starts a comment; columns in any order; unknown columns are ignored.
     required : sequence of str
-        Column names that must be present (with unit suffix, e.g. ``pressure_mpa``).
+        Column names that must be present, with exofric's unit suffix (e.g. ``pressure_mpa``);
+        a file column in another unit (``pressure_kpa``, ``Pressure (kPa)``, a units row) is
+        converted with pint.
     optional : sequence of str
         Numeric columns read when present.
     text_columns : sequence of str
@@ -76,11 +73,16 @@ def read_table(
         ``group`` is None), e.g. ``("pressure_mpa", "test")``.
     min_rows : int
         Fewest data rows accepted (per group when ``unique_within`` has a group).
+    columns : mapping of str to str, optional
+        ``{key: header}`` for columns with other names (``{"pressure_kpa": "P1"}``; see
+        :func:`exofric.io.parse_column_map`).
 
     Returns
     -------
     pandas.DataFrame
-        Only the required and present optional columns, numeric ones as float.
+        Only the required and present optional columns, numeric ones as float in the unit of
+        their name. ``attrs``: ``units`` and ``columns`` (canonical -> unit and header as
+        found), ``metadata`` (comment and preamble lines).
 
     Examples
     --------
@@ -89,67 +91,35 @@ def read_table(
     >>> df["outer_diameter_mm"].tolist()
     [8.53, 8.78, 9.14, 9.44]
     """
+    from exofric.io._table import locate_columns
+
+    grid, picks = locate_columns(path, list(required), list(optional), columns=columns,
+                                 text_columns=text_columns, text=True, comment=True)
+    name = grid.source
     import pandas as pd  # lazy: reading TOML/JSON or writing files must not load pandas
 
-    p = Path(path)
-    name = p.name
-    if not p.is_file():
-        raise InputError(f"{path}: file not found")
-    try:
-        text = p.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{name}: cannot read as UTF-8 text ({exc.__class__.__name__})") from None
-    try:
-        df = pd.read_csv(
-            _io.StringIO(text),
-            comment="#",
-            skipinitialspace=True,
-            dtype=str,
-            keep_default_na=False,
-        )
-    except pd.errors.EmptyDataError:
-        raise InputError(
-            f"{name}: no header row (expected columns {', '.join(required)})"
-        ) from None
-    except pd.errors.ParserError as exc:
-        msg = str(exc).strip().splitlines()[-1]
-        raise InputError(f"{name}: malformed CSV ({msg})") from None
-    df.columns = [str(c).strip().lower() for c in df.columns]
-    cols = list(df.columns)
-    for col in required:
-        if col in cols:
-            continue
-        alt = [c for c in cols if _base(c) == _base(col) and c.rsplit("_", 1)[-1] in _OTHER_UNITS]
-        if alt:
-            unit = UNIT_SUFFIXES.get(col.rsplit("_", 1)[-1], "?")
-            raise InputError(
-                f"{name}: column {alt[0]!r} is in the wrong unit; exofric expects {col!r} ({unit})"
-            )
-        raise InputError(
-            f"{name}: missing column {col!r} (required: {', '.join(required)}; found: "
-            f"{', '.join(cols) or 'none'})"
-        )
-    keep = [c for c in list(required) + list(optional) if c in cols]
-    df = df[keep].copy()
+    df = pd.DataFrame({c: pd.Series(grid.column(pk.index)).reset_index(drop=True)
+                       for c, pk in picks.items()})
+    keep = list(df.columns)
     numeric = [c for c in keep if c not in text_columns]
     checks = numeric if nonnegative is None else [c for c in nonnegative if c in numeric]
     for col in numeric:
         raw = df[col].astype(str).str.strip()
         vals = pd.to_numeric(raw, errors="coerce")
         for i, (r, v) in enumerate(zip(raw, vals, strict=True)):
-            row = i + 1
+            row = f"data row {i + 1}"
             if r == "" or r.lower() == "nan" or (isinstance(v, float) and math.isnan(v)):
                 what = (
                     "empty"
                     if r == ""
                     else ("NaN" if r.lower() == "nan" else f"not a number: {r!r}")
                 )
-                raise InputError(f"{name}: data row {row}, column {col!r} is {what}")
+                raise InputError(f"{name}: {row}, column {col!r} is {what}")
             if not math.isfinite(float(v)):
-                raise InputError(f"{name}: data row {row}, column {col!r} must be finite, got {r}")
+                raise InputError(f"{name}: {row}, column {col!r} must be finite, got {r}")
             if col in checks and v < 0:
-                raise InputError(f"{name}: data row {row}, column {col!r} must be >= 0, got {r}")
-        df[col] = vals.astype(float)
+                raise InputError(f"{name}: {row}, column {col!r} must be >= 0, got {r}")
+        df[col] = vals.astype(float) * picks[col].factor
     for col in text_columns:
         if col in df.columns:
             df[col] = df[col].astype(str).str.strip()
@@ -167,7 +137,11 @@ def read_table(
                 )
     elif len(df) < min_rows:
         raise InputError(f"{name}: needs at least {min_rows} data rows, got {len(df)}")
-    return df.reset_index(drop=True)
+    df = df.reset_index(drop=True)
+    df.attrs.update({"units": {c: pk.unit for c, pk in picks.items() if pk.unit is not None},
+                     "columns": {c: pk.header for c, pk in picks.items()},
+                     "metadata": list(grid.metadata), "format": grid.fmt})
+    return df
 
 
 @contextlib.contextmanager

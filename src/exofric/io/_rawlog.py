@@ -1,40 +1,53 @@
-"""Raw rig logs: time series of pressure, force and displacement from CSV, Parquet or NI TDMS.
+"""Raw rig logs: time series of pressure, force and displacement, in any format a logger writes.
 
-A raw log is what the rig's logger wrote: one row per sample, a ``time_<unit>`` column, a
-``pressure_<unit>`` and a ``force_<unit>`` column and optionally ``displacement_<unit>``, with
-the unit in the header suffix (case-insensitive): pressure in MPa, kPa, Pa, bar, mbar or psi;
-force in N, kN, kgf or lbf; displacement in mm, m, um or in; time in s, ms or min. Other columns
-(setpoints, command terms) are ignored but listed. A ``--columns`` mapping
-(:func:`parse_column_map`) names the columns of a log whose headers say something else.
+A raw log is what the rig's logger wrote: one row per sample, a time column, a pressure and a
+force column and optionally a displacement column, each with its unit in the header in any
+common spelling (``pressure_kpa``, ``Pressure (kPa)``, ``Pressure [kPa]``, a units row, a TDMS
+``unit_string``, an LVM ``Y_Unit_Label``; case-insensitive): pressure in MPa, kPa, Pa, bar, mbar
+or psi; force in N, kN, kgf or lbf; displacement in mm, m, um or in; time in s, ms or min.
+Other columns (setpoints, command terms) are ignored but listed. A ``--columns`` mapping
+(:func:`parse_column_map`) names the columns of a log whose headers say something else. The
+file is read by :mod:`exofric.io._table` (one reader for every measured table: CSV/TSV/``;``
+with decimal commas, UTF-16/Latin-1, vendor preambles, LabVIEW LVM, NI TDMS, Parquet, xlsx).
 
 :func:`read_raw_log` converts every channel to exofric's units (s, MPa, N, mm) with :mod:`pint`
 (no hand-written factors) and refuses a bad log with one line that starts with the file name and
 names the column and the time range: an unknown unit, a missing or doubled quantity, a
-non-numeric cell, NaN/empty/infinite samples, time that does not increase, a gap in time. Nothing
-is silently dropped or repaired. Lines starting with ``#`` (CSV), the key/value metadata
-(Parquet) or the properties (TDMS) are kept as provenance in ``attrs["metadata"]``.
+``--columns`` unit that contradicts the file's, a non-numeric cell, NaN/empty/infinite samples,
+time that does not increase, a gap in time, a pressure or force too large for its unit (naming
+the probable unit), a unit change inside the log. Nothing is silently dropped or repaired.
+Comment and preamble lines, the key/value metadata (Parquet) or the properties (TDMS, LVM) are
+kept as provenance in ``attrs["metadata"]``.
 
 :func:`write_raw_log` writes a log (CSV or Parquet) that reads back bit for bit.
 """
 
 from __future__ import annotations
 
-import csv
 import functools
 import io as _io
 import json
 import math
-import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from exofric import defaults as D
 from exofric.defaults import RAWLOG_MAX_GAP_FACTOR, RAWLOG_MIN_SAMPLES
 from exofric.errors import InputError
 from exofric.io._files import atomic_path
+from exofric.io._table import (
+    TABLE_SUFFIXES,
+    Grid,
+    file_sha256,
+    numeric_column,
+    read_grids,
+    split_key,
+    unit_token,
+)
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -68,15 +81,10 @@ _UNITS: dict[str, dict[str, tuple[str, str]]] = {
 _CANONICAL = {"time": "time_s", "pressure": "pressure_mpa", "force": "force_n",
               "displacement": "displacement_mm"}
 _REQUIRED = ("time", "pressure", "force")
-_READ_SUFFIXES = (".csv", ".txt", ".parquet", ".pq", ".tdms")
+_READ_SUFFIXES = TABLE_SUFFIXES
 _WRITE_SUFFIXES = (".csv", ".txt", ".parquet", ".pq")
 #: Parquet schema-metadata key holding the metadata lines (a JSON list of strings).
 _META_KEY = b"exofric.metadata"
-#: Cells read as NaN (lower case; pandas' defaults): reported as NaN samples, not as text.
-_NA_TOKENS = frozenset({
-    "", "nan", "-nan", "+nan", "na", "n/a", "#n/a", "#n/a n/a", "#na", "-1.#ind", "-1.#qnan",
-    "1.#ind", "1.#qnan", "<na>", "null", "none",
-})
 _EXAMPLE = "--columns time=t,pressure_kpa=P1,force_n=Fx"
 
 
@@ -140,7 +148,25 @@ def _key(key: str, item: str, where: str) -> tuple[str, str]:
     return q, u
 
 
-def parse_column_map(text: str) -> dict[str, str]:
+def _table_key(key: str, item: str, columns: Sequence[str]) -> tuple[str, str]:
+    """A mapping key for a table with canonical ``columns`` -> (name, unit token or "")."""
+    k = key.strip().lower()
+    bases = {split_key(c)[0]: split_key(c)[1] for c in columns}
+    base, unit = split_key(k)
+    if base not in bases:
+        base, unit = k, None
+    if base not in bases:
+        keys = ", ".join(b if u is None else f"{b}_<unit>" for b, u in bases.items())
+        raise InputError(f"--columns: unknown column in {item!r} (keys: {keys})")
+    if bases[base] is not None and unit is None:
+        raise InputError(f"--columns: {item!r} needs a unit: {base}_<unit>, e.g. "
+                         f"{base}_{bases[base]}")
+    if bases[base] is None and unit is not None:
+        raise InputError(f"--columns: {item!r}: {base} has no unit")
+    return base, unit or ""
+
+
+def parse_column_map(text: str, columns: Sequence[str] | None = None) -> dict[str, str]:
     """Parse a ``--columns`` mapping: which header of a raw log holds which quantity, in which unit.
 
     Parameters
@@ -151,6 +177,10 @@ def parse_column_map(text: str) -> dict[str, str]:
         ``displacement_<unit>`` (case-insensitive; units as in :func:`read_raw_log`). A header
         is written as in the file (spaces allowed, stripped around it; no ``,`` or ``=``). An
         empty text is an empty mapping.
+    columns : sequence of str, optional
+        For a table other than a raw log: its canonical columns (e.g. ``["pressure_mpa",
+        "friction_n", "test"]``); a key is then one of their names with any unit (``friction_kn``,
+        ``pressure_psi``; no unit for a unitless column such as ``test``).
 
     Returns
     -------
@@ -168,6 +198,8 @@ def parse_column_map(text: str) -> dict[str, str]:
     --------
     >>> parse_column_map("time=t, pressure_kPa = P 1 ,force_n=Fx")
     {'time_s': 't', 'pressure_kpa': 'P 1', 'force_n': 'Fx'}
+    >>> parse_column_map("Friction_kN=F, pressure_bar=P", ["pressure_mpa", "friction_n"])
+    {'friction_kn': 'F', 'pressure_bar': 'P'}
     >>> parse_column_map("pressure=P1")
     Traceback (most recent call last):
     ...
@@ -185,8 +217,12 @@ one of mpa, kpa, pa, bar, mbar, psi
         if not eq or not key.strip() or not value.strip():
             raise InputError(f"--columns: malformed item {item!r} (expected KEY=HEADER, e.g. "
                              "pressure_kpa=P1)")
-        q, u = _key(key, item, "--columns")
-        canon = f"{q}_{u}"
+        if columns is not None:
+            q, u = _table_key(key, item, columns)
+            canon = f"{q}_{u}" if u else q
+        else:
+            q, u = _key(key, item, "--columns")
+            canon = f"{q}_{u}"
         header = value.strip()
         if canon in out:
             raise InputError(f"--columns: key {canon!r} is given twice ({item!r})")
@@ -222,10 +258,14 @@ def _checked_mapping(columns: Mapping[str, str] | None, name: str) -> dict[str, 
 
 
 def _resolve(headers: Sequence[str], mapping: dict[str, tuple[str, str]], name: str,
-             need: Sequence[str] = _REQUIRED, what: str = "column"
+             need: Sequence[str] = _REQUIRED, what: str = "column",
+             keys: Sequence[str] | None = None, units: Sequence[str | None] | None = None
              ) -> tuple[dict[str, _Channel], list[str]]:
-    """Find each quantity's column: mapped ones by header, the others by their unit suffix."""
+    """Find each quantity's column: mapped ones by header, the others by their unit (``keys``:
+    ``name_unit`` per column from :func:`exofric.io._table.header_key`; ``units``: the unit the
+    file states for each column, which a mapping must not contradict)."""
     found = [h.strip() for h in headers]
+    keys = list(keys) if keys is not None else [h.lower() for h in found]
     channels: dict[str, _Channel] = {}
     for q, (u, header) in mapping.items():
         idx = [i for i, h in enumerate(found) if h == header]
@@ -235,6 +275,13 @@ def _resolve(headers: Sequence[str], mapping: dict[str, tuple[str, str]], name: 
             how = "is not in the file" if not idx else "is in the file more than once"
             raise _MissingColumn(f"{name}: {what} {header!r} (named by --columns {q}_{u}="
                                  f"{header}) {how} ({what}s found: {_headers_text(found)})")
+        own = units[idx[0]] if units is not None else None
+        if own is not None and unit_token(own) != u:
+            src = "unit_string" if what == "channel" else "unit"
+            raise InputError(f"{name}: --columns {q}_{u}={header} says {_UNITS[q][u][0]} but "
+                             f"the file's {src} of {what} {found[idx[0]]!r} is {own!r}: "
+                             f"which is it? (with {own!r} right, drop the mapping or write "
+                             f"{q}_{unit_token(own)}={header})")
         channels[q] = _Channel(q, u, found[idx[0]], idx[0])
     used = {c.index for c in channels.values()}
     for q in _UNITS:
@@ -242,8 +289,8 @@ def _resolve(headers: Sequence[str], mapping: dict[str, tuple[str, str]], name: 
             continue
         good: list[tuple[int, str]] = []
         bad: list[tuple[int, str]] = []
-        for i, h in enumerate(found):
-            parts = _split(h)
+        for i, key in enumerate(keys):
+            parts = _split(key)
             if i in used or parts is None or parts[0] != q or parts[1] is None:
                 continue
             (good if parts[1] in _UNITS[q] else bad).append((i, parts[1]))
@@ -305,25 +352,6 @@ def _to_canonical(quantity: str, unit: str, values: np.ndarray) -> np.ndarray:
 
 # ---------------------------------------------------------------------------------------------
 # Cell values.
-
-
-def _numeric(series: pd.Series, header: str, name: str, row: Callable[[int], str]
-             ) -> np.ndarray:
-    """A column as float64 (NaN for empty/NaN cells); a text cell -> InputError naming it."""
-    import pandas as pd
-
-    kind = series.dtype.kind
-    if kind in "fiu":
-        return series.to_numpy(dtype=np.float64, na_value=np.nan)
-    text = series.astype("string").str.strip()
-    num = pd.to_numeric(text, errors="coerce")
-    bad = (num.isna() & text.notna() & ~text.str.lower().isin(_NA_TOKENS)).to_numpy(
-        dtype=bool, na_value=False)
-    if kind == "b" or bad.any():
-        i = int(np.flatnonzero(bad)[0]) if bad.any() else 0
-        raise InputError(f"{name}: {row(i)}, column {header!r} is not a number: "
-                         f"{str(series.iloc[i])!r}")
-    return num.to_numpy(dtype=np.float64, na_value=np.nan)
 
 
 def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -395,205 +423,186 @@ def _check(raw: _Raw, name: str, max_gap_factor: float) -> dict[str, np.ndarray]
         raise InputError(f"{name}: gap in time_s from {t[i]:.{dec}f} s to {t[i + 1]:.{dec}f} s "
                          f"({dt[i]:.4g} s; median step {med:.4g} s; a step over max_gap_factor "
                          f"{max_gap_factor:g} x the median is a gap{more})")
+    for q in ("pressure", "force"):
+        _unit_change(raw, q, out, name, label(q), dec)
+    for q, top, typical in (("pressure", D.RAWLOG_MAX_PRESSURE_MPA,
+                             D.RAWLOG_TYPICAL_PRESSURE_MPA),
+                            ("force", D.RAWLOG_MAX_FORCE_N, D.RAWLOG_TYPICAL_FORCE_N)):
+        _too_large(raw, q, out[_CANONICAL[q]], top, typical, name, label(q))
     return out
 
 
-# ---------------------------------------------------------------------------------------------
-# Formats.
+def _show_unit(q: str, unit: str) -> str:
+    return _UNITS[q][unit][0]
 
 
-def _meta_line(line: bytes) -> str:
-    """A ``#`` comment line without the ``#`` and one following space."""
-    body = line.strip()[1:]
-    return (body[1:] if body.startswith(b" ") else body).rstrip().decode("utf-8")
-
-
-#: A line of spaces/tabs after a newline (pandas skips empty lines itself but reads some of
-#: these as NaN rows). The literal "\n" prefix makes the search fast: 0.05 s for 76 MB, where a
-#: ``^`` pattern in MULTILINE mode takes 0.3 s.
-_WS_LINE = re.compile(rb"\n[ \t]+(?=\n|$)")
-_LEADING_WS_LINE = re.compile(rb"[ \t]+(?:\n|$)")
-_HEADER_LINE = re.compile(rb"^[ \t]*[^#\s][^\n]*", re.MULTILINE)
-
-
-def _drop_comments(text: bytes) -> tuple[bytes, list[str]]:
-    """``text`` without its ``#`` lines, and those lines (:func:`_meta_line`), in order.
-
-    Looks only at the ``#`` characters (bytes.find, no per-line loop): a log of a million rows
-    and no comments costs one scan.
-    """
-    pieces: list[bytes] = []
-    meta: list[str] = []
-    start = 0
-    pos = text.find(b"#")
-    while pos != -1:
-        ls = text.rfind(b"\n", 0, pos) + 1
-        le = text.find(b"\n", pos)
-        le = len(text) if le == -1 else le
-        if not text[ls:pos].strip(b" \t"):
-            meta.append(_meta_line(text[ls:le]))
-            pieces.append(text[start:ls])
-            start = le + 1
-        pos = text.find(b"#", le)
-    pieces.append(text[start:])
-    return b"".join(pieces), meta
-
-
-def _read_csv(p: Path, name: str, mapping: dict[str, tuple[str, str]]) -> _Raw:
-    # Bytes, not str: pandas parses a BytesIO about twice as fast as a StringIO (no re-encoding)
-    import pandas as pd
-
-    try:
-        text = p.read_bytes().removeprefix(b"\xef\xbb\xbf")
-    except OSError as exc:
-        raise InputError(f"{name}: cannot read ({exc.strerror or exc.__class__.__name__})"
-                         ) from None
-    if b"\r" in text:  # Windows (or old Mac) line ends
-        text = text.replace(b"\r\n", b"\n").replace(b"\r", b"\n")
-    m = _HEADER_LINE.search(text)  # the first line that is neither blank nor a comment
-    if m is None:
-        raise InputError(f"{name}: no header row (expected time_s, pressure_<unit>, "
-                         "force_<unit>)")
-    head_line = text.count(b"\n", 0, m.start()) + 1
-    body = text[m.end() + 1:]
-    try:
-        header = m.group(0).decode("utf-8")
-        metadata = _drop_comments(text[:m.start()])[1]
-        data, more = _drop_comments(body)
-    except UnicodeDecodeError as exc:
-        raise InputError(f"{name}: cannot read as UTF-8 text ({exc.reason})") from None
-    metadata += more
-    while (lead := _LEADING_WS_LINE.match(data)) is not None and lead.end() > 0:
-        data = data[lead.end():]
-    if _WS_LINE.search(data):
-        data = _WS_LINE.sub(b"", data)
-    sep = next((s for s in (",", "\t", ";") if s in header), None)
-    headers = next(csv.reader([header], delimiter=sep)) if sep else header.split()
-    channels, ignored = _resolve(headers, mapping, name)
-
-    @functools.cache
-    def lines() -> list[int]:  # file line of each data row, computed only for a message
-        return [head_line + 1 + k for k, line in enumerate(body.split(b"\n"))
-                if line.strip(b" \t") and not line.lstrip(b" \t").startswith(b"#")]
-
-    def row(i: int) -> str:
-        return f"data row {i + 1} (line {lines()[i]})"
-
-    try:
-        df = pd.read_csv(_io.BytesIO(data), sep=sep or r"\s+", header=None,
-                         names=list(range(len(headers))), skipinitialspace=True,
-                         encoding="utf-8")
-    except pd.errors.EmptyDataError:
-        df = pd.DataFrame({i: pd.Series([], dtype=float) for i in range(len(headers))})
-    except UnicodeDecodeError as exc:
-        raise InputError(f"{name}: cannot read as UTF-8 text ({exc.reason})") from None
-    except pd.errors.ParserError as exc:
-        msg = str(exc).strip().splitlines()[-1]
-        found = re.search(r"line (\d+), saw (\d+)", msg)
-        if found and int(found.group(1)) <= len(lines()):
-            raise InputError(f"{name}: {row(int(found.group(1)) - 1)} has {found.group(2)} "
-                             f"fields, the header has {len(headers)}") from None
-        raise InputError(f"{name}: malformed CSV ({msg})") from None
-    values = {q: _numeric(df[c.index], c.header, name, row) for q, c in channels.items()}
-    return _Raw(channels, values, ignored, metadata, row)
-
-
-def _read_parquet(p: Path, name: str, mapping: dict[str, tuple[str, str]]) -> _Raw:
-    try:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
-    except ImportError:
-        raise InputError(f"{name}: reading Parquet needs pyarrow: pip install pyarrow") from None
-    try:
-        schema = pq.read_schema(p)
-        headers = [str(c) for c in schema.names]
-        channels, ignored = _resolve(headers, mapping, name)
-        table = pq.read_table(p, columns=[schema.names[c.index] for c in channels.values()])
-    except (pa.ArrowException, OSError) as exc:
-        msg = (str(exc).strip().splitlines() or [exc.__class__.__name__])[0]
-        raise InputError(f"{name}: not a readable Parquet file ({msg})") from None
-    metadata: list[str] = []
-    for key, value in (schema.metadata or {}).items():
-        if key == _META_KEY:
-            metadata.extend(str(s) for s in json.loads(value.decode("utf-8")))
-        elif key not in (b"pandas", b"ARROW:schema"):
-            metadata.append(f"{key.decode('utf-8', 'replace')}: "
-                            f"{value.decode('utf-8', 'replace')}")
-    values = {q: _numeric(table.column(schema.names[c.index]).to_pandas(), c.header, name,
-                          lambda i: f"row {i + 1}") for q, c in channels.items()}
-    return _Raw(channels, values, ignored, metadata)
-
-
-def _one_line(value: Any) -> str:
-    return " ".join(str(value).split("\n"))
-
-
-def _read_tdms(p: Path, name: str, mapping: dict[str, tuple[str, str]]) -> _Raw:
-    try:
-        import nptdms
-    except ImportError:
-        raise InputError(f"{name}: reading TDMS needs npTDMS: pip install 'exofric[tdms]'"
-                         ) from None
-    try:
-        tdms = nptdms.TdmsFile.read(p)
-    except Exception as exc:  # npTDMS raises ValueError, KeyError, struct.error... on bad files
-        raise InputError(f"{name}: not a readable TDMS file ({exc.__class__.__name__}: "
-                         f"{_one_line(exc)})") from None
-    groups = tdms.groups()
-    missing: list[_MissingColumn] = []
-    for group in groups:
-        chans = group.channels()
-        try:
-            channels, ignored = _resolve([c.name for c in chans], mapping, name,
-                                         need=("pressure", "force"), what="channel")
-        except _MissingColumn as exc:
-            missing.append(exc)
+def _too_large(raw: _Raw, q: str, vals: np.ndarray, top: float, typical: float, name: str,
+               label: str) -> None:
+    """A pressure above RAWLOG_MAX_PRESSURE_MPA or a force above RAWLOG_MAX_FORCE_N is an error
+    naming the unit the numbers probably are in (the one that puts them nearest the typical
+    level)."""
+    peak = float(np.max(np.abs(vals)))
+    if peak <= top:
+        return
+    unit = raw.channels[q].unit
+    file_vals = np.abs(raw.values[q])
+    lo, hi = float(np.percentile(file_vals, 5)), float(np.max(file_vals))
+    best, dist = None, math.inf
+    for cand in _UNITS[q]:
+        conv = hi * _factor(q, cand)
+        if cand == unit or not 0.0 < conv <= top:
             continue
-        break
+        d = abs(math.log10(conv / typical))
+        if d < dist:
+            best, dist = cand, d
+    canon = _CANONICAL[q]
+    shown = _show_unit(q, unit)
+    what = "tube pressure" if q == "pressure" else "friction force"
+    hint = (f"; they look like {_show_unit(q, best)}: name the column {q}_{best} or map it "
+            f"with --columns {q}_{best}={raw.channels[q].header}") if best else ""
+    raise InputError(f"{name}: values {lo:.4g}-{hi:.4g} under {raw.channels[q].header} "
+                     f"({shown}) reach {peak:.4g} {RAW_QUANTITIES[canon]} in {label}, not a "
+                     f"plausible {what} (limit {top:g} {RAW_QUANTITIES[canon]}){hint}")
+
+
+def _unit_change(raw: _Raw, q: str, out: dict[str, np.ndarray], name: str, label: str,
+                 dec: int) -> None:
+    """A level that jumps within one sample by a factor between units (1000, 6.895, 4.448...)
+    and stays steady on both sides is a unit change inside the log: an error with its time
+    range (from the jump to the jump back, or to the end of the log)."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    v = out[_CANONICAL[q]]
+    t = out["time_s"]
+    n = v.size
+    w = max(3, min(25, n // 40))
+    if n < 2 * w + 2:
+        return
+    # candidates: one-sample steps by a factor >= 2 between samples of one sign (cheap, O(n))
+    x0, x1 = np.abs(v[w - 1:n - w]), np.abs(v[w:n - w + 1])
+    same = np.sign(v[w - 1:n - w]) == np.sign(v[w:n - w + 1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        step = np.maximum(x0, x1) / np.minimum(x0, x1)
+    i = w - 1 + np.flatnonzero(same & (step >= 2.0) & np.isfinite(step))
+    if not i.size:
+        return
+    win = sliding_window_view(v, w)  # a view: only the candidates' windows are reduced
+    before, after = win[i - w + 1], win[i + 1]  # the w samples up to i and the w after it
+    ma, mb = before.mean(axis=1), after.mean(axis=1)
+    ok = (ma * mb > 0) & (np.ptp(before, axis=1) <= 0.1 * np.abs(ma)) \
+        & (np.ptp(after, axis=1) <= 0.1 * np.abs(mb))
+    ok &= np.abs(v[i + 1] - v[i]) >= 0.5 * np.abs(mb - ma)  # the step is one sample
+    factors = np.asarray(D.RAWLOG_UNIT_JUMP_FACTORS, dtype=float)
+    k = np.flatnonzero(ok)
+    am, bm = np.abs(ma[k]), np.abs(mb[k])
+    r = np.maximum(am, bm) / np.minimum(am, bm)
+    hit = np.any(np.abs(r[:, None] / factors[None, :] - 1.0) <= D.RAWLOG_UNIT_JUMP_RTOL, axis=1)
+    jumps = [(int(i[j]), float(ma[j]), float(mb[j])) for j in k[hit]]
+    if not jumps:
+        return
+    j0, x0, y0 = jumps[0]
+    back = next((j for j, x, y in jumps[1:]
+                 if math.isclose(y / x, x0 / y0, rel_tol=2 * D.RAWLOG_UNIT_JUMP_RTOL)), None)
+    end = f"{t[back]:.{dec}f} s" if back is not None else f"the end ({t[-1]:.{dec}f} s)"
+    unit = RAW_QUANTITIES[_CANONICAL[q]]
+    raise InputError(f"{name}: {label} jumps from {x0:.4g} to {y0:.4g} {unit} (x{y0 / x0:.4g}, "
+                     f"a factor between units) between {t[j0]:.{dec}f} s and "
+                     f"{t[j0 + 1]:.{dec}f} s and stays there: the unit changed inside the log, "
+                     f"from {t[j0 + 1]:.{dec}f} s to {end}; split the log or fix the unit")
+
+
+# ---------------------------------------------------------------------------------------------
+# Formats: every file goes through exofric.io._table's grid (one reader for every measured
+# table); here the grid's columns become quantities.
+
+
+def _from_grid(grid: Grid, mapping: dict[str, tuple[str, str]], need: Sequence[str] = _REQUIRED,
+               what: str = "column") -> tuple[dict[str, _Channel], list[str]]:
+    return _resolve(grid.headers, mapping, grid.source, need=need, what=what, keys=grid.keys,
+                    units=grid.units)
+
+
+def _waveform_time(grid: Grid, channels: dict[str, _Channel], values: dict[str, np.ndarray],
+                   name: str) -> None:
+    """Add a time channel from the waveform timing (TDMS ``wf_*`` properties, LVM Delta_X)."""
+    if grid.fmt == "lvm":
+        wf = grid.waveform
+        if not wf:
+            raise InputError(f"{name}: no time column (X_Columns No and no Delta_X); name one "
+                             "with --columns time=NAME")
+        n = len(values["pressure"])
+        channels["time"] = _Channel("time", "s", wf["label"], -1)
+        values["time"] = float(wf["start_offset"]) + float(wf["increment"]) * np.arange(
+            n, dtype=np.float64)
+        return
+    chans = grid.waveform["channels"]
+    pressure = chans[channels["pressure"].index]
+    props = pressure.properties
+    group = grid.group
+    if "wf_increment" not in props:
+        raise InputError(
+            f"{name}: group {group!r} has no time channel (time_<unit>, unit one of "
+            f"{_known('time')}) and pressure channel {pressure.name!r} has no waveform "
+            "timing (wf_increment); add a time channel or name one with --columns time=NAME")
+    for q in ("force", "displacement"):
+        if q not in channels:
+            continue
+        other = chans[channels[q].index].properties
+        for key in ("wf_increment", "wf_start_time", "wf_start_offset"):
+            if key in other and key in props and other[key] != props[key]:
+                raise InputError(f"{name}: {q} channel {chans[channels[q].index].name!r} has "
+                                 f"{key} {other[key]} but pressure channel {pressure.name!r} "
+                                 f"has {props[key]}: the channels are not sampled together; "
+                                 "add a time channel")
+    if "wf_start_offset" in props:
+        t = np.asarray(pressure.time_track(), dtype=np.float64)
     else:
-        if len(missing) == 1:
-            raise missing[0]
-        listing = "; ".join(f"{g.name!r}: {_headers_text([c.name for c in g.channels()], 8)}"
-                            for g in groups)
-        raise InputError(f"{name}: no TDMS group has pressure and force channels (groups: "
-                         f"{listing or 'none'}); name the channels with --columns, e.g. "
-                         f"{_EXAMPLE}")
+        t = float(props["wf_increment"]) * np.arange(len(pressure), dtype=np.float64)
+    xunit = unit_token(str(props.get("wf_xunit_string", "s")) or "s") or "s"
+    if xunit not in _UNITS["time"]:
+        raise InputError(f"{name}: channel {pressure.name!r} has an unknown time unit "
+                         f"{xunit!r} in wf_xunit_string (known: {_known('time')})")
+    channels["time"] = _Channel("time", xunit, f"{pressure.name} waveform time", -1)
+    values["time"] = t
+
+
+def _read(p: Path, name: str, mapping: dict[str, tuple[str, str]]) -> tuple[_Raw, Grid]:
+    grids = read_grids(p)
+    if grids and grids[0].fmt == "tdms":
+        missing: list[InputError] = []
+        for grid in grids:
+            try:
+                channels, ignored = _from_grid(grid, mapping, need=("pressure", "force"),
+                                               what="channel")
+            except _MissingColumn as exc:
+                missing.append(exc)
+                continue
+            break
+        else:
+            if len(missing) == 1:
+                raise missing[0]
+            listing = "; ".join(f"{g.group!r}: {_headers_text(g.headers, 8)}" for g in grids)
+            raise InputError(f"{name}: no TDMS group has pressure and force channels (groups: "
+                             f"{listing or 'none'}); name the channels with --columns, e.g. "
+                             f"{_EXAMPLE}")
+    else:
+        grid = grids[0]
+        need = _REQUIRED if not (grid.fmt == "lvm" and grid.waveform) else ("pressure", "force")
+        channels, ignored = _from_grid(grid, mapping, need=need)
     values: dict[str, np.ndarray] = {}
     for q, c in channels.items():
-        data = np.asarray(chans[c.index][:])
-        if data.dtype.kind not in "fiu":
-            raise InputError(f"{name}: channel {c.header!r} is not numeric ({data.dtype})")
-        values[q] = data
-    pressure = chans[channels["pressure"].index]
+        col = grid.column(c.index)
+        if grid.fmt == "tdms" and np.asarray(col).dtype.kind not in "fiu":
+            raise InputError(f"{name}: channel {c.header!r} is not numeric "
+                             f"({np.asarray(col).dtype})")
+        values[q] = numeric_column(col, c.header, name, grid.row)
     if "time" not in channels:
-        props = pressure.properties
-        if "wf_increment" not in props:
-            raise InputError(
-                f"{name}: group {group.name!r} has no time channel (time_<unit>, unit one of "
-                f"{_known('time')}) and pressure channel {pressure.name!r} has no waveform "
-                "timing (wf_increment); add a time channel or name one with --columns time=NAME")
-        if "wf_start_offset" in props:
-            t = np.asarray(pressure.time_track(), dtype=np.float64)
-        else:
-            t = float(props["wf_increment"]) * np.arange(len(pressure), dtype=np.float64)
-        xunit = str(props.get("wf_xunit_string", "s")).strip().lower() or "s"
-        if xunit not in _UNITS["time"]:
-            raise InputError(f"{name}: channel {pressure.name!r} has an unknown time unit "
-                             f"{xunit!r} in wf_xunit_string (known: {_known('time')})")
-        channels["time"] = _Channel("time", xunit, f"{pressure.name} waveform time", -1)
-        values["time"] = t
+        _waveform_time(grid, channels, values, name)
     lengths = {channels[q].header: len(v) for q, v in values.items()}
     if len(set(lengths.values())) > 1:
         raise InputError(f"{name}: channels have different lengths: "
                          + ", ".join(f"{h} {n}" for h, n in lengths.items()))
-    metadata = [f"{k}: {_one_line(v)}" for k, v in tdms.properties.items()]
-    metadata += [f"{group.name}/{k}: {_one_line(v)}" for k, v in group.properties.items()]
-    for q in _UNITS:
-        if q in channels and channels[q].index >= 0:
-            ch = chans[channels[q].index]
-            metadata += [f"{group.name}/{ch.name}/{k}: {_one_line(v)}"
-                         for k, v in ch.properties.items()]
-    return _Raw(channels, values, ignored, metadata)
+    return _Raw(channels, values, ignored, list(grid.metadata), grid.row), grid
 
 
 def _check_gap_factor(max_gap_factor: float) -> float:
@@ -610,21 +619,26 @@ def _check_gap_factor(max_gap_factor: float) -> float:
 
 def read_raw_log(path: str | Path, columns: Mapping[str, str] | None = None, *,
                  max_gap_factor: float = RAWLOG_MAX_GAP_FACTOR) -> pd.DataFrame:
-    """Read a raw rig log (CSV, Parquet or NI TDMS), check it and convert it to s, MPa, N, mm.
+    """Read a raw rig log (text, LVM, TDMS, Parquet, xlsx), check it, convert to s, MPa, N, mm.
 
-    Columns are recognised by their header (stripped, case-insensitive) ``<quantity>_<unit>``:
-    ``time_`` s, ms, min; ``pressure_`` mpa, kpa, pa, bar, mbar, psi; ``force_`` n, kn, kgf,
-    lbf; optional ``displacement_`` mm, m, um, in. Units are converted with :mod:`pint`. Other
+    Columns are recognised by their header (stripped, case-insensitive) ``<quantity>_<unit>``
+    or ``Quantity (unit)``, ``Quantity [unit]``, ``Quantity / unit`` or a units row:
+    ``time`` s, ms, min; ``pressure`` mpa, kpa, pa, bar, mbar, psi; ``force`` n, kn, kgf,
+    lbf; optional ``displacement`` mm, m, um, in. Units are converted with :mod:`pint`. Other
     columns are ignored (listed in ``attrs["ignored_columns"]``), and so is a column with an
-    unknown unit when its quantity has another column with a known one. CSV (``.csv``,
-    ``.txt``; comma, tab, semicolon or whitespace separated): lines starting with ``#`` are
-    metadata. TDMS: the first group with pressure and force channels; without a time channel
-    the pressure channel's waveform timing (``wf_increment``, ``wf_start_offset``) is used.
+    unknown unit when its quantity has another column with a known one. Text (``.csv``,
+    ``.tsv``, ``.txt``, ``.dat``; comma, tab, semicolon or whitespace separated, decimal
+    commas, UTF-8/UTF-16/Latin-1): lines starting with ``#`` and lines before the table are
+    metadata. LabVIEW ``.lvm``: the channel names, ``Y_Unit_Label`` units and the X column (or
+    ``X0``/``Delta_X``). TDMS: the first group with pressure and force channels, units from
+    ``unit_string``; without a time channel the pressure channel's waveform timing
+    (``wf_increment``, ``wf_start_offset``; the force channel's must agree) is used.
 
     Parameters
     ----------
     path : str or Path
-        The log: ``.csv``, ``.txt``, ``.parquet``, ``.pq`` or ``.tdms``.
+        The log: ``.csv``, ``.tsv``, ``.txt``, ``.dat``, ``.lvm``, ``.tdms``, ``.parquet``,
+        ``.pq``, ``.xlsx`` or ``.xlsm``.
     columns : mapping of str to str, optional
         Canonical key -> header for logs whose headers say something else, as returned by
         :func:`parse_column_map` (e.g. ``{"time_s": "t", "pressure_kpa": "P1"}``); the key's
@@ -640,7 +654,9 @@ def read_raw_log(path: str | Path, columns: Mapping[str, str] | None = None, *,
         name), ``"metadata"`` (list of str: ``#`` lines without the ``#``, Parquet key/value
         metadata or TDMS properties as ``key: value``), ``"units"`` (canonical column -> unit
         as found, e.g. ``{"pressure_mpa": "kPa"}``), ``"columns"`` (canonical column -> header
-        as found) and ``"ignored_columns"`` (the other headers).
+        as found), ``"ignored_columns"`` (the other headers), ``"format"`` (``csv``, ``lvm``,
+        ``tdms``, ``parquet``, ``xlsx``), ``"encoding"`` (text files) and ``"sha256"`` (of the
+        file's bytes).
 
     Raises
     ------
@@ -649,7 +665,11 @@ def read_raw_log(path: str | Path, columns: Mapping[str, str] | None = None, *,
         missing or doubled quantity, a ``columns`` header not in the file, fewer than
         ``RAWLOG_MIN_SAMPLES`` rows, a non-numeric cell (row and column), NaN/empty/infinite
         samples (the bursts and their time range), time not increasing (the two times and the
-        row), a gap (its time range), TDMS without npTDMS installed; ``max_gap_factor <= 1``.
+        row), a gap (its time range), TDMS without npTDMS or xlsx without openpyxl installed;
+        ``max_gap_factor <= 1``; a ``columns`` unit contradicting the file's; a pressure above
+        ``RAWLOG_MAX_PRESSURE_MPA`` or a force above ``RAWLOG_MAX_FORCE_N`` (naming the
+        probable unit); a level jump by a factor between units (a unit change inside the log,
+        with its time range).
 
     Examples
     --------
@@ -681,9 +701,7 @@ def read_raw_log(path: str | Path, columns: Mapping[str, str] | None = None, *,
     if not p.is_file():
         raise InputError(f"{path}: file not found")
     mapping = _checked_mapping(columns, name)
-    reader = {".tdms": _read_tdms, ".parquet": _read_parquet, ".pq": _read_parquet}.get(
-        suffix, _read_csv)
-    raw = reader(p, name, mapping)
+    raw, grid = _read(p, name, mapping)
     out = _check(raw, name, gap)
     df = pd.DataFrame(out)
     df.attrs["source"] = name
@@ -693,6 +711,9 @@ def read_raw_log(path: str | Path, columns: Mapping[str, str] | None = None, *,
     df.attrs["columns"] = {_CANONICAL[q]: raw.channels[q].header
                            for q in _UNITS if q in raw.channels}
     df.attrs["ignored_columns"] = raw.ignored
+    df.attrs["format"] = grid.fmt
+    df.attrs["encoding"] = grid.encoding
+    df.attrs["sha256"] = grid.sha256 or file_sha256(p)
     return df
 
 

@@ -8,6 +8,7 @@ the frame (e.g. ``InflationData.from_frame``). Bad files raise
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -15,6 +16,7 @@ import numpy as np
 
 from exofric.errors import InputError
 from exofric.io._files import read_json, read_table
+from exofric.io._table import read_grids, split_key
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -32,17 +34,21 @@ def _named(df: pd.DataFrame, path: str | Path) -> pd.DataFrame:
     return df
 
 
-def read_inflation_table(path: str | Path) -> pd.DataFrame:
+def read_inflation_table(path: str | Path, columns: Mapping[str, str] | None = None
+                         ) -> pd.DataFrame:
     """Inflation test CSV: ``pressure_mpa``, ``outer_diameter_mm`` and an optional ``shore``.
 
     Columns in any order, extra columns ignored, ``#`` comments allowed. Pressures (MPa) and
     diameters (mm) must be numbers >= 0; pressures must not repeat (within a shore value),
-    and there must be at least two points (per shore value).
+    and there must be at least two points (per shore value). Any format and header spelling
+    of :func:`exofric.io.read_measured_table` (other units converted).
 
     Parameters
     ----------
     path : str or Path
-        The CSV file.
+        The table (CSV, TSV, LVM, TDMS, Parquet, xlsx).
+    columns : mapping of str to str, optional
+        ``{key: header}`` for columns with other names (``{"pressure_kpa": "P"}``).
 
     Returns
     -------
@@ -64,7 +70,7 @@ def read_inflation_table(path: str | Path) -> pd.DataFrame:
     ([8.53, 8.78, 9.14, 9.44], 'table1_test.csv')
     """
     df = read_table(path, ("pressure_mpa", "outer_diameter_mm"), ("shore",),
-                    unique_within=("pressure_mpa", "shore"), min_rows=2)
+                    unique_within=("pressure_mpa", "shore"), min_rows=2, columns=columns)
     return _named(df, path)
 
 
@@ -94,7 +100,8 @@ def _curve_from_json(p: Path) -> tuple[np.ndarray, np.ndarray]:
     return pr, n
 
 
-def read_squeeze_curve(path: str | Path) -> pd.DataFrame:
+def read_squeeze_curve(path: str | Path, columns: Mapping[str, str] | None = None
+                       ) -> pd.DataFrame:
     """Squeeze curve N(P): pressure (MPa) and total squeezing force (N), from JSON or CSV.
 
     JSON (suffix ``.json``): one object with lists ``pressure_mpa`` and ``squeeze_force_n``
@@ -104,7 +111,9 @@ def read_squeeze_curve(path: str | Path) -> pd.DataFrame:
     Parameters
     ----------
     path : str or Path
-        The JSON or CSV file.
+        The JSON file, or a table in any format of :func:`exofric.io.read_measured_table`.
+    columns : mapping of str to str, optional
+        ``{key: header}`` for table columns with other names.
 
     Returns
     -------
@@ -134,7 +143,7 @@ def read_squeeze_curve(path: str | Path) -> pd.DataFrame:
         pr, n = _curve_from_json(p)
     else:
         df = read_table(p, ["pressure_mpa", "squeeze_force_n"],
-                        unique_within=("pressure_mpa", None))
+                        unique_within=("pressure_mpa", None), columns=columns)
         pr = df["pressure_mpa"].to_numpy(float)
         n = df["squeeze_force_n"].to_numpy(float)
     o = np.argsort(pr, kind="stable")
@@ -145,17 +154,16 @@ def read_squeeze_curve(path: str | Path) -> pd.DataFrame:
 
 
 def _header(path: str | Path) -> tuple[list[str], list[str]]:
-    """(lower-cased column names of the header row, ``#`` comment lines); empty if unreadable."""
+    """(matching keys of the header row, metadata lines); empty if unreadable."""
     try:
-        lines = Path(path).read_text(encoding="utf-8-sig").splitlines()
-    except (OSError, UnicodeDecodeError):
+        grid = read_grids(path, text=True, comment=True)[0]
+    except (InputError, OSError):
         return [], []
-    comments = [ln for ln in lines if ln.lstrip().startswith("#")]
-    head = next((ln for ln in lines if ln.strip() and not ln.lstrip().startswith("#")), "")
-    return [c.strip().strip('"').lower() for c in head.split(",")], comments
+    return list(grid.keys), list(grid.metadata)
 
 
-def read_friction_table(path: str | Path) -> pd.DataFrame:
+def read_friction_table(path: str | Path, columns: Mapping[str, str] | None = None
+                        ) -> pd.DataFrame:
     """Friction CSV: friction points or the per-pull table of ``exofric reduce`` (MPa, N).
 
     Two layouts are read (columns in any order, extra columns ignored, ``#`` comments allowed):
@@ -169,10 +177,15 @@ def read_friction_table(path: str | Path) -> pd.DataFrame:
     Pressures may repeat, also within one test: repeated pulls at one pressure are
     replicates, which :func:`exofric.friction.fit_gamma` treats as clusters.
 
+    Any format and header spelling of :func:`exofric.io.read_measured_table` (a TSV, a
+    ``;`` file with decimal commas, ``Friction (N)``, other units converted).
+
     Parameters
     ----------
     path : str or Path
-        The CSV file.
+        The table.
+    columns : mapping of str to str, optional
+        ``{key: header}`` for columns with other names (``{"friction_n": "F"}``).
 
     Returns
     -------
@@ -203,12 +216,16 @@ def read_friction_table(path: str | Path) -> pd.DataFrame:
     >>> df["group"].tolist(), df.attrs["kind"]
     (['|0.3', '|0.4', '|0.4'], 'points')
     """
-    cols, comments = _header(path)
-    force = "friction_n" if "friction_n" in cols or "kinetic_n" not in cols else "kinetic_n"
+    keys, comments = _header(path)
+    bases = {split_key(k)[0] for k in keys}
+    mapped = {split_key(str(k).lower())[0] for k in (columns or {})}
+    force = "friction_n" if "friction" in bases | mapped or "kinetic" not in bases | mapped \
+        else "kinetic_n"
+    cols = bases | mapped
     text = ["test", "branch"]
     try:
         df = read_table(path, ["pressure_mpa", force], optional=["test", "branch", "plateau"],
-                        text_columns=text, min_rows=2)
+                        text_columns=text, min_rows=2, columns=columns)
     except InputError as exc:
         if "missing column 'friction_n'" not in str(exc):
             raise
@@ -238,11 +255,12 @@ def read_friction_table(path: str | Path) -> pd.DataFrame:
     df = df[["pressure_mpa", "friction_n", "test", "group", "branch"]]
     _named(df, path)
     df.attrs["synthetic"] = any("SYNTHETIC" in ln.upper() for ln in comments)
-    df.attrs["kind"] = "pulls" if ("kinetic_n" in cols or "pull" in cols) else "points"
+    df.attrs["kind"] = "pulls" if ("kinetic" in cols or "pull" in cols) else "points"
     return df
 
 
-def read_step_response(path: str | Path) -> pd.DataFrame:
+def read_step_response(path: str | Path, columns: Mapping[str, str] | None = None
+                       ) -> pd.DataFrame:
     """Pressure step response CSV: ``time_s``, ``pressure_mpa`` and optional ``command_mpa``.
 
     Times (s) must be distinct; pressures and commands (MPa) >= 0; at least 10 samples.
@@ -250,7 +268,9 @@ def read_step_response(path: str | Path) -> pd.DataFrame:
     Parameters
     ----------
     path : str or Path
-        The CSV file.
+        The table (any format of :func:`exofric.io.read_measured_table`).
+    columns : mapping of str to str, optional
+        ``{key: header}`` for columns with other names (``{"time_ms": "t"}``).
 
     Returns
     -------
@@ -277,5 +297,5 @@ def read_step_response(path: str | Path) -> pd.DataFrame:
     """
     df = read_table(path, ["time_s", "pressure_mpa"], ["command_mpa"],
                     nonnegative=["pressure_mpa", "command_mpa"], unique_within=("time_s", None),
-                    min_rows=10)
+                    min_rows=10, columns=columns)
     return _named(df, path)

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
 
 from exofric.errors import InputError
 from exofric.io._files import read_table
+from exofric.io._table import _decode
 
 _HEADER = re.compile(r"^\s*#\s*([A-Za-z][A-Za-z0-9_]*)\s*[:=]\s*(.*?)\s*$")
 
@@ -54,9 +55,10 @@ def read_header_sizes(path: str | Path, keys: Sequence[str]) -> dict[str, float]
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8-sig")
+        data = p.read_bytes()
     except OSError as exc:
         raise InputError(f"{p}: cannot be read ({exc.strerror or exc})") from None
+    text = _decode(data, p.name)[0].decode("utf-8")  # UTF-16 or Latin-1 files too
     want = {k.lower(): k for k in keys}
     out: dict[str, float] = {}
     for line in text.splitlines():
@@ -79,11 +81,15 @@ def read_header_sizes(path: str | Path, keys: Sequence[str]) -> dict[str, float]
     return out
 
 
-def read_ring_test(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
+def read_ring_test(path: str | Path, columns: Mapping[str, str] | None = None
+                   ) -> tuple[np.ndarray, np.ndarray]:
     """Read a measured ring tensile test: ``displacement_mm`` and ``force_n``, checked.
 
-    A CSV with a header row; ``#`` lines are comments (the ring's sizes may be stated there,
-    see :func:`read_header_sizes`); other columns are ignored. The
+    A table with a header row (any format and header spelling of
+    :func:`exofric.io.read_measured_table`: a Bluehill export with its preamble, ``Extension
+    (mm)`` mapped with ``columns``, other units converted); ``#`` lines are comments (the
+    ring's sizes may be stated there, see :func:`read_header_sizes`); other columns are
+    ignored. The
     displacement is the increase of the pins' separation from where they first touch the
     bore (mm), >= 0 and strictly increasing (one loading curve); the force is the machine's
     load on one pin (N).
@@ -91,7 +97,10 @@ def read_ring_test(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     Parameters
     ----------
     path : str or Path
-        The CSV file.
+        The table.
+    columns : mapping of str to str, optional
+        ``{key: header}`` for columns with other names, e.g. ``{"displacement_mm":
+        "Extension", "force_n": "Load"}``.
 
     Returns
     -------
@@ -115,7 +124,7 @@ def read_ring_test(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     """
     p = Path(path)
     df = read_table(p, ["displacement_mm", "force_n"], nonnegative=["displacement_mm"],
-                    min_rows=1)
+                    min_rows=1, columns=columns)
     d = df["displacement_mm"].to_numpy(dtype=float)
     f = df["force_n"].to_numpy(dtype=float)
     for col, v in (("displacement_mm", d), ("force_n", f)):

@@ -10,7 +10,9 @@
   (:class:`StabilityCheck`).
 * :func:`fit_material` -> :class:`MaterialFit` (per mode :class:`ModeFit`) -- least-squares fit
   to one or several test modes, with standard errors, correlations and the stability check;
-  :func:`treloar_1944` -- Treloar's natural rubber data as a reference set.
+  :func:`treloar_1944` -- Treloar's natural rubber data as a reference set;
+  :func:`silicone_uniaxial` -- uniaxial curves of three soft-robotics silicones (Soft Robotics
+  Materials Database, ODbL).
 
 Units: moduli, stresses and C10, C01, ... in MPa; d in 1/MPa; stretches and Ogden exponents
 unitless; hardness in Shore A. ``docs/materials.md`` has the conventions and the checks.
@@ -25,7 +27,7 @@ Examples
 ('neo-hookean', True)
 """
 
-from exofric.material._fit import MaterialFit, ModeFit, fit_material
+from exofric.material._fit import MaterialFit, ModeFit, ModeStability, fit_material
 from exofric.material._hyperelastic import (
     HYPERELASTIC_MODELS,
     MODES,
@@ -40,9 +42,10 @@ from exofric.material._models import (
     MooneyRivlin,
     shore_to_modulus,
 )
+from exofric.material._silicone import SILICONE_SOURCE, SILICONES, silicone_uniaxial
 from exofric.material._treloar import TRELOAR_SOURCE, treloar_1944
 
 __all__ = ["CORRELATIONS", "Correlation", "HYPERELASTIC_MODELS", "HyperelasticModel", "MODES",
-           "MaterialFit", "MaterialRangeWarning", "ModeFit", "MooneyRivlin", "StabilityCheck",
-           "TRELOAR_SOURCE", "fit_material", "material_model", "shore_to_modulus",
-           "treloar_1944"]
+           "MaterialFit", "MaterialRangeWarning", "ModeFit", "ModeStability", "MooneyRivlin",
+           "SILICONES", "SILICONE_SOURCE", "StabilityCheck", "TRELOAR_SOURCE", "fit_material",
+           "material_model", "shore_to_modulus", "silicone_uniaxial", "treloar_1944"]

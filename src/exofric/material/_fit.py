@@ -1,9 +1,18 @@
 """Fit a hyperelastic model to uniaxial, equibiaxial and planar test data at once.
 
-Least squares (:func:`scipy.optimize.least_squares`, trust-region reflective, bounded) on the
-nominal (engineering) stress of every data point of every mode given, stacked in one residual
-vector. Data given as true (Cauchy) stress are converted first: in all three modes the loaded
+Least squares (:func:`scipy.optimize.least_squares`, trust-region reflective, bounded, analytic
+Jacobians of the closed forms in :mod:`exofric.material._kernels`) on the nominal
+(engineering) stress of every data point of every mode given, stacked in one residual vector.
+Data given as true (Cauchy) stress are converted first: in all three modes the loaded
 direction's ``sigma = l P``.
+
+Admissible fits (issue 31): shear modulus > 0 and ``dP/dl`` above a floor along every measured
+mode over its data range plus ``defaults.FIT_STABILITY_MARGIN_REL``. When the best least-squares
+fit is not admissible, the constrained optimum is found with SLSQP (stability constraints on a
+grid, refined where a 401-point check fails) and reported as constrained. Ogden fits start
+from the discrete local minima of the variable-projection cost over a grid of exponents, run on
+the exponents alone (mu by bounded linear least squares, Kaufman's Jacobian), and polish the
+best on all parameters. Unmeasured modes are only reported (and warned about).
 
 Residuals are **absolute** (MPa) by default: a rig's stress error is mostly the load cell's
 and the area's, roughly the same size at every point, and absolute residuals stay defined at
@@ -23,6 +32,7 @@ import warnings
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from exofric._lsq import correlation, lsq_covariance, standard_errors
 from exofric.errors import InputError, warn_implausible
 from exofric.material._hyperelastic import (
     HYPERELASTIC_MODELS,
@@ -39,7 +49,7 @@ if TYPE_CHECKING:
     import pandas as pd
     from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["MaterialFit", "ModeFit", "fit_material"]
+__all__ = ["MaterialFit", "ModeFit", "ModeStability", "fit_material"]
 
 RESIDUALS = ("absolute", "relative")
 
@@ -101,6 +111,45 @@ class ModeFit:
 
 
 @dataclass(frozen=True)
+class ModeStability:
+    """Drucker stability of a fitted model along one homogeneous path, over a stretch range.
+
+    Attributes
+    ----------
+    mode : str
+        ``uniaxial``, ``biaxial`` or ``planar``.
+    measured : bool
+        Whether the fit had data of this mode (an unmeasured mode's instability is a warning).
+    stretch_min, stretch_max : float
+        The stretch range checked (unitless), 401 evenly spaced stretches.
+    stable : bool
+        ``dP/dl > 0`` over the whole range.
+    unstable_from : float or None
+        The unstable stretch nearest 1 (unitless), None when stable.
+
+    Examples
+    --------
+    >>> from exofric.material import fit_material, treloar_1944
+    >>> fit = fit_material("yeoh", uniaxial=treloar_1944()["uniaxial"])
+    >>> fit.stability_report["uniaxial"].measured, fit.stability_report["planar"].measured
+    (True, False)
+    """
+
+    mode: str
+    measured: bool
+    stretch_min: float
+    stretch_max: float
+    stable: bool
+    unstable_from: float | None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict of the attributes (stretches unitless)."""
+        return {"mode": self.mode, "measured": self.measured, "stretch_min": self.stretch_min,
+                "stretch_max": self.stretch_max, "stable": self.stable,
+                "unstable_from": self.unstable_from}
+
+
+@dataclass(frozen=True)
 class MaterialFit:
     """A hyperelastic model fitted to test data, with its uncertainty and stability.
 
@@ -116,14 +165,30 @@ class MaterialFit:
     modes : dict of str to ModeFit
         Per mode fitted: data, fitted stress, R^2 and RMS (MPa).
     stability : StabilityCheck
-        Drucker check (``dP/dl > 0`` on all three paths) over the data's stretch range.
+        Drucker check (``dP/dl > 0``) of the measured modes, each over its data's stretch
+        range (1 included); ``stretch_min``/``stretch_max`` span all modes.
     residuals : str
         ``absolute`` (MPa) or ``relative`` (unitless) residuals were minimised.
     cost : float
         Half the sum of squared residuals at the optimum (MPa^2 for absolute residuals).
     warnings : tuple of str
-        What the fit warned about (instability allowed, parameters near a bound, strong
-        correlation).
+        What the fit warned about (a constraint or bound active, instability allowed or in an
+        unmeasured mode, strong correlation).
+    constrained : bool
+        True when a stability constraint or a parameter bound is active at the optimum (the
+        unconstrained least-squares optimum was not admissible).
+    active_constraints : tuple of str
+        Which ones, in words.
+    stability_report : dict of str to ModeStability
+        Per path (all three): stable or not over the report range (``stability_range``, by
+        default each measured mode's data range widened by ``margin_rel``; for unmeasured modes
+        that of all data), and whether the mode was measured.
+    multistart : dict
+        ``n_starts`` (local fits run), the RMS of the best, median and worst start
+        (``rms_min_mpa``, ``rms_median_mpa``, ``rms_max_mpa``; ``_rel`` with relative
+        residuals) and ``n_within_1pct`` (starts within 1 % of the best RMS).
+    margin_rel : float
+        The stability margin used (relative, in stretch).
 
     Examples
     --------
@@ -141,6 +206,16 @@ class MaterialFit:
     residuals: str = "absolute"
     cost: float = 0.0
     warnings: tuple[str, ...] = field(default=())
+    constrained: bool = False
+    active_constraints: tuple[str, ...] = field(default=())
+    stability_report: dict[str, ModeStability] = field(default_factory=dict)
+    multistart: dict[str, Any] = field(default_factory=dict)
+    margin_rel: float = 0.0
+
+    @property
+    def admissible(self) -> bool:
+        """Shear modulus > 0 and every measured mode stable over its data range."""
+        return self.model.shear_modulus_mpa > 0.0 and self.stability.stable
 
     @property
     def stretch_range(self) -> tuple[float, float]:
@@ -195,7 +270,9 @@ class MaterialFit:
             ``model``, ``params`` and ``stderr`` by name (``_mpa`` suffix: MPa),
             ``param_units``, ``correlation`` (``names``, ``matrix``), ``shear_modulus_mpa``,
             ``d_per_mpa``, ``bulk_modulus_mpa``, ``residuals``, ``modes`` (R^2, RMS in MPa,
-            stretch range), ``stability`` and ``warnings``.
+            stretch range), ``stability``, ``stability_modes`` (per path: measured, range,
+            stable, unstable_from), ``admissible``, ``constrained``, ``active_constraints``,
+            ``stability_margin_pct``, ``multistart`` and ``warnings``.
         """
         names = self.model.param_names
         d = self.model.to_dict()
@@ -207,6 +284,12 @@ class MaterialFit:
             "residuals": self.residuals,
             "modes": {k: m.to_dict() for k, m in self.modes.items()},
             "stability": self.stability.to_dict(),
+            "stability_modes": {k: v.to_dict() for k, v in self.stability_report.items()},
+            "admissible": self.admissible,
+            "constrained": self.constrained,
+            "active_constraints": list(self.active_constraints),
+            "stability_margin_pct": 100.0 * self.margin_rel,
+            "multistart": dict(self.multistart),
             "warnings": list(self.warnings),
         })
         return d
@@ -296,28 +379,410 @@ def _g0(data: dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]) -> flo
     return g0 if np.isfinite(g0) and g0 > 0 else 1.0
 
 
-def _starts(name: str, g: float) -> list[tuple[list[float], list[float], list[float]]]:
-    """Initial guesses and bounds ``(x0, lower, upper)`` for each start."""
+#: Ogden exponents combined (N at a time) for the multi-start; the best combinations by their
+#: variable-projection cost (optimal mu for fixed exponents) become starts.
+_OGDEN_GRID = (-12.0, -8.0, -5.0, -3.0, -2.0, -1.0, 1.0, 2.0, 3.0, 4.0, 6.0, 9.0, 13.0, 18.0)
+#: Published-style starts (Ogden 1972 on Treloar: 1.3, 5, -2), always tried.
+_OGDEN_CLASSIC: dict[int, list[tuple[float, ...]]] = {
+    1: [(2.0,), (1.3,), (3.0,)],
+    2: [(1.5, 5.0), (2.0, -2.0), (3.0, -1.0)],
+    3: [(1.3, 5.0, -2.0), (2.0, 4.0, -2.0), (1.0, 3.0, -1.0)]}
+_ALPHA_MAX = 30.0
+
+
+def _resolve_model(model: Any, terms: int | None) -> str:
+    """Canonical model name; ``ogden`` with ``terms`` (1-3, default 3) -> ``ogdenN``."""
+    if not isinstance(model, str):
+        raise InputError(f"model must be a model name, got {model!r}", param="model")
+    name = model.strip().lower().replace("_", "-")
+    name = {"neohookean": "neo-hookean", "mooneyrivlin": "mooney-rivlin"}.get(name, name)
+    if terms is not None:
+        if isinstance(terms, bool) or not isinstance(terms, (int, float)) or terms != int(terms) \
+                or not 1 <= int(terms) <= 3:
+            raise InputError(f"terms must be 1, 2 or 3 (Ogden terms), got {terms!r}",
+                             param="terms")
+        if not name.startswith("ogden"):
+            raise InputError(f"terms applies only to the Ogden model, not {name}", param="terms")
+        if name != "ogden" and name != f"ogden{int(terms)}":
+            raise InputError(f"terms {int(terms)} contradicts model {name}: give model ogden "
+                             "with terms, or ogden1..ogden3 alone", param="terms")
+        name = f"ogden{int(terms)}"
+    if name == "ogden":
+        name = "ogden3"
+    if name not in HYPERELASTIC_MODELS:
+        raise InputError(f"model must be one of {', '.join(HYPERELASTIC_MODELS)} (or ogden "
+                         f"with terms 1-3), got {model!r}", param="model")
+    return name
+
+
+def _widened(lo: float, hi: float, margin: float) -> tuple[float, float]:
+    """A data range [lo, hi] (1 included) widened by the margin at the ends away from 1."""
+    lo2 = lo / (1.0 + margin) if lo < 1.0 else lo
+    hi2 = hi * (1.0 + margin) if hi > 1.0 else hi
+    if not hi2 > lo2:
+        hi2 = lo2 * (1.0 + max(margin, 1e-3))
+    return lo2, hi2
+
+
+class _Problem:
+    """Residuals, Jacobian and stability constraints of one fit (all vectorised)."""
+
+    def __init__(self, name: str, data: dict[str, tuple[Any, Any]], scale: Any,
+                 margin: float) -> None:
+        import numpy as np
+
+        from exofric import defaults
+
+        self.name = name
+        self.data = data
+        self.modes = list(data)
+        self._rj_key: bytes | None = None
+        self._rj_val: tuple[Any, Any] = (None, None)
+        self._vp_key: bytes | None = None
+        self._vp_val: tuple[Any, Any] = (None, None)
+        self.p = np.concatenate([p for _, p in data.values()])
+        self.scale = scale
+        self.target = self.p / scale
+        self.n_par = len(HYPERELASTIC_MODELS[name])
+        lam_all = np.concatenate([lam for lam, _ in data.values()])
+        strain = float(np.max(np.abs(lam_all - 1.0)))
+        secant = float(np.max(np.abs(self.p))) / strain if strain > 0 else 1.0
+        self.secant = secant if np.isfinite(secant) and secant > 0 else 1.0
+        self.tau = defaults.FIT_TANGENT_FLOOR_REL * self.secant
+        self.data_range = {m: (min(1.0, float(lam.min())), max(1.0, float(lam.max())))
+                           for m, (lam, _) in data.items()}
+        self.range = {m: _widened(*r, margin) for m, r in self.data_range.items()}
+        self.mu_max = min(defaults.FIT_OGDEN_MU_MAX_REL * self.secant, 1e4)
+        n = int(defaults.FIT_CONSTRAINT_POINTS)
+        self.grid = {m: np.linspace(*self.range[m], n) for m in self.modes}
+        self.fine = {m: np.linspace(*self.range[m], 401) for m in self.modes}
+
+    def violations(self, x: Any) -> dict[str, Any]:
+        """Per mode, the fine-grid stretches where ``dP/dl < tau`` (the worst of each run)."""
+        import numpy as np
+
+        from exofric.material._kernels import tangent_jac
+
+        out = {}
+        for m in self.modes:
+            t, _ = tangent_jac(self.name, m, self.fine[m], x)
+            bad = (t - self.tau) / self.secant < -1e-9
+            if bad.any():
+                idx = np.flatnonzero(bad)
+                runs = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
+                out[m] = np.array([self.fine[m][r[np.argmin(t[r])]] for r in runs])
+        return out
+
+    def refine(self, extra: dict[str, Any]) -> None:
+        """Add stretches to the constraint grids."""
+        import numpy as np
+
+        for m, lam in extra.items():
+            self.grid[m] = np.unique(np.concatenate([self.grid[m], lam]))
+
+    def rj(self, x: Any) -> tuple[Any, Any]:
+        """Residuals and their Jacobian at x (the last evaluation is cached)."""
+        import numpy as np
+
+        from exofric.material._kernels import stress_jac
+
+        key = np.asarray(x, dtype=float).tobytes()
+        if key == self._rj_key:
+            return self._rj_val
+
+        ps, js = [], []
+        for m in self.modes:
+            p, j = stress_jac(self.name, m, self.data[m][0], x)
+            ps.append(p)
+            js.append(j)
+        with np.errstate(all="ignore"):
+            r = np.concatenate(ps) / self.scale - self.target
+            jac = np.vstack(js) / self.scale[:, None]
+        bad = ~np.isfinite(r)
+        if bad.any():
+            r = np.where(bad, 1e6, r)
+        jac = np.where(np.isfinite(jac), jac, 0.0)
+        self._rj_key, self._rj_val = key, (r, jac)
+        return r, jac
+
+    def resid(self, x: Any) -> Any:
+        return self.rj(x)[0]
+
+    def jac(self, x: Any) -> Any:
+        return self.rj(x)[1]
+
+    def cons(self, x: Any) -> tuple[Any, Any]:
+        """``(dP/dl - tau) / secant`` on every measured mode's grid, and its Jacobian."""
+        import numpy as np
+
+        from exofric.material._kernels import tangent_jac
+
+        ts, js = [], []
+        for m in self.modes:
+            t, j = tangent_jac(self.name, m, self.grid[m], x)
+            ts.append(t)
+            js.append(j)
+        return ((np.concatenate(ts) - self.tau) / self.secant,
+                np.vstack(js) / self.secant)
+
+    def ogden_columns(self, a: float) -> tuple[Any, Any]:
+        """``psi(l, a)`` and ``dpsi/da`` stacked over the modes, scaled like the residuals."""
+        import numpy as np
+
+        from exofric.material._kernels import stress_jac
+
+        j = np.vstack([stress_jac("ogden1", m, self.data[m][0], np.array([1.0, a]))[1]
+                       for m in self.modes]) / self.scale[:, None]
+        return j[:, 0], j[:, 1]
+
+    def vp_rj(self, alpha: Any) -> tuple[Any, Any]:
+        """Variable projection for Ogden: residuals at the best mu for these exponents, and
+        Kaufman's Jacobian with respect to the exponents ``P_perp (dA/da_k) mu_k``."""
+        import numpy as np
+
+        key = np.asarray(alpha, dtype=float).tobytes()
+        if key == self._vp_key:
+            return self._vp_val
+        cols = [self.ogden_columns(float(a)) for a in alpha]
+        a_mat = np.column_stack([c[0] for c in cols])
+        d_mat = np.column_stack([c[1] for c in cols])
+        with np.errstate(all="ignore"):
+            if not (np.all(np.isfinite(a_mat)) and np.all(np.isfinite(d_mat))):
+                n = alpha.size
+                return np.full(self.target.size, 1e6), np.zeros((self.target.size, n))
+            q, r_tri = np.linalg.qr(a_mat)
+            diag = np.abs(np.diag(r_tri))
+            if diag.min() > 1e-12 * diag.max():
+                mu = np.linalg.solve(r_tri, q.T @ self.target)
+            else:
+                mu = np.linalg.lstsq(a_mat, self.target, rcond=None)[0]
+            if np.any(np.abs(mu) > self.mu_max):
+                mu = self._bounded_mu(a_mat)
+            free = np.abs(mu) < self.mu_max * (1.0 - 1e-9)
+            r = a_mat @ mu - self.target
+            d = d_mat * mu
+            if free.all():
+                jac = d - q @ (q.T @ d)
+            elif free.any():
+                qf, _ = np.linalg.qr(a_mat[:, free])
+                jac = d - qf @ (qf.T @ d)
+            else:
+                jac = d
+        self._vp_key, self._vp_val = key, (r, jac)
+        return r, jac
+
+    def _bounded_mu(self, a_mat: Any) -> Any:
+        """Linear least squares for mu within ``|mu_i| <= mu_max``: the convex problem's
+        minimum is one of the 3^n ways of holding each mu_i free or at a bound (n <= 3),
+        solved on the normal equations."""
+        import itertools
+
+        import numpy as np
+
+        m = self.mu_max
+        g_mat = a_mat.T @ a_mat
+        b = a_mat.T @ self.target
+        n = b.size
+        # an active set first (fix the worst violator at its bound, release a bound whose
+        # gradient points inside), the enumeration if it does not settle
+        side = np.zeros(n)
+        for _ in range(4 * n):
+            free = side == 0
+            mu = side * m
+            if free.any():
+                rhs = b[free] - g_mat[np.ix_(free, ~free)] @ mu[~free]
+                try:
+                    mu[free] = np.linalg.solve(g_mat[np.ix_(free, free)], rhs)
+                except np.linalg.LinAlgError:
+                    break
+            over = np.where(free, np.abs(mu) - m, -np.inf)
+            if over.max() > 0.0:
+                k = int(np.argmax(over))
+                side[k] = np.sign(mu[k])
+                continue
+            grad = g_mat @ mu - b
+            wrong = np.where(~free, side * grad, -np.inf)  # > 0: moving inside lowers cost
+            if wrong.max() > 1e-14 * max(1.0, float(np.abs(b).max())):
+                side[int(np.argmax(wrong))] = 0.0
+                continue
+            return mu
+        best, best_cost = np.clip(np.zeros(n), -m, m), np.inf
+        for state in itertools.product((0, 1, -1), repeat=n):
+            s = np.asarray(state)
+            mu = np.where(s == 0, 0.0, s * m)
+            free = s == 0
+            if free.any():
+                rhs = b[free] - g_mat[np.ix_(free, ~free)] @ mu[~free]
+                try:
+                    mu[free] = np.linalg.solve(g_mat[np.ix_(free, free)], rhs)
+                except np.linalg.LinAlgError:
+                    continue
+                if np.any(np.abs(mu[free]) > m):
+                    continue
+            c = float(mu @ g_mat @ mu - 2.0 * b @ mu)
+            if c < best_cost:
+                best, best_cost = mu, c
+        return best
+
+    def vp_mu(self, alpha: Any) -> Any:
+        """The best mu (MPa) for these exponents, within the bounds (linear least squares)."""
+        import numpy as np
+
+        a_mat = np.column_stack([self.ogden_columns(float(a))[0] for a in alpha])
+        return self._bounded_mu(a_mat)
+
+    def mu(self, x: Any) -> float:
+        from exofric.material._hyperelastic import _shear_modulus
+
+        return float(_shear_modulus(self.name, tuple(float(v) for v in x)))
+
+
+def _bounds(name: str, secant: float) -> tuple[list[float], list[float]]:
+    """Parameter bounds: C10 >= 0 (neo-Hookean, Yeoh); Ogden |alpha_i| <= 30 and |mu_i| <=
+    ``FIT_OGDEN_MU_MAX_REL`` x the data's secant modulus (larger mu_i are cancelling terms)."""
+    from exofric import defaults
+
     inf = float("inf")
     if name == "neo-hookean":
-        return [([g / 2], [0.0], [inf])]
+        return [0.0], [inf]
     if name == "mooney-rivlin":
-        return [([0.4 * g, 0.1 * g], [-inf, -inf], [inf, inf])]
+        return [-inf, -inf], [inf, inf]
     if name == "yeoh":
-        return [([g / 2, -1e-2 * g, 1e-4 * g], [0.0, -inf, -inf], [inf, inf, inf])]
+        return [0.0, -inf, -inf], [inf, inf, inf]
     n = int(name[-1])
-    table: dict[int, list[tuple[float, ...]]] = {1: [(2.0,), (1.3,), (3.0,)],
-                2: [(1.5, 5.0), (2.0, -2.0), (3.0, -1.0)],
-                3: [(1.3, 5.0, -2.0), (2.0, 4.0, -2.0), (1.0, 3.0, -1.0)]}
-    patterns = table[n]
-    out = []
-    for alphas in patterns:
-        mus = [0.95 * g] + [0.02 * g * (1 if a > 0 else -1) for a in alphas[1:]]
-        x0 = [v for pair in zip(mus, alphas, strict=True) for v in pair]
-        lo = [v for _ in range(n) for v in (-100 * max(g, 1e-3), -30.0)]
-        hi = [v for _ in range(n) for v in (100 * max(g, 1e-3), 30.0)]
-        out.append((x0, lo, hi))
-    return out
+    m = min(defaults.FIT_OGDEN_MU_MAX_REL * secant, 1e4)
+    return ([v for _ in range(n) for v in (-m, -_ALPHA_MAX)],
+            [v for _ in range(n) for v in (m, _ALPHA_MAX)])
+
+
+def _starts(prob: _Problem, g: float, n_keep: int | None) -> list[Any]:
+    """Initial parameter vectors: one for the linear models, a multi-start for Ogden."""
+    import itertools
+
+    import numpy as np
+
+    from exofric import defaults
+    from exofric.material._kernels import stress_jac
+
+    name = prob.name
+    if name == "neo-hookean":
+        return [np.array([g / 2])]
+    if name == "mooney-rivlin":
+        return [np.array([0.4 * g, 0.1 * g])]
+    if name == "yeoh":
+        return [np.array([g / 2, -1e-2 * g, 1e-4 * g])]
+    n = int(name[-1])
+    keep = int(defaults.FIT_OGDEN_STARTS[n] if n_keep is None else n_keep)
+    # psi(l, a) of every exponent of the grid, stacked over the modes, scaled like the residuals
+    alphas = sorted(set(_OGDEN_GRID) | {a for pat in _OGDEN_CLASSIC[n] for a in pat})
+    cols = {}
+    for a in alphas:
+        cols[a] = np.concatenate([stress_jac("ogden1", m, prob.data[m][0],
+                                             np.array([1.0, a]))[1][:, 0]
+                                  for m in prob.modes]) / prob.scale
+    lo, hi = _bounds(name, prob.secant)
+    mu_max = hi[0]
+
+    def vp(pattern: tuple[float, ...]) -> tuple[float, Any]:
+        a = np.column_stack([cols[v] for v in pattern])
+        mu, *_ = np.linalg.lstsq(a, prob.target, rcond=None)
+        mu = np.clip(mu, -0.99 * mu_max, 0.99 * mu_max)
+        return float(np.sum((a @ mu - prob.target) ** 2)), mu
+
+    # the variable-projection cost on the grid of exponent combinations; its discrete local
+    # minima (no neighbour, one exponent one grid step away, is lower) mark the basins and
+    # start the local fits, lowest first, then the best remaining combinations
+    grid = _OGDEN_GRID
+    cost: dict[tuple[int, ...], tuple[float, Any]] = {}
+    for idx in itertools.combinations(range(len(grid)), n):
+        c, mu = vp(tuple(grid[i] for i in idx))
+        cost[idx] = (c if np.isfinite(c) else np.inf, mu)
+
+    def neighbours(idx: tuple[int, ...]) -> list[tuple[int, ...]]:
+        out = []
+        for k in range(n):
+            for step in (-1, 1):
+                cand = list(idx)
+                cand[k] += step
+                if 0 <= cand[k] < len(grid) and len(set(cand)) == n:
+                    out.append(tuple(sorted(cand)))
+        return out
+
+    ranked = sorted(cost, key=lambda idx: cost[idx][0])
+    minima = [idx for idx in ranked if np.isfinite(cost[idx][0])
+              and all(cost[idx][0] <= cost[nb][0] for nb in neighbours(idx))]
+    picks = minima[:keep] + [idx for idx in ranked if idx not in minima][:max(0, keep
+                                                                              - len(minima))]
+    chosen = [(tuple(grid[i] for i in idx), cost[idx][1]) for idx in picks]
+    seen = {tuple(sorted(pat)) for pat, _ in chosen}
+    for pattern in _OGDEN_CLASSIC[n]:  # the exponents are what a start is (mu follows)
+        if tuple(sorted(pattern)) not in seen:
+            chosen.append((pattern, vp(pattern)[1]))
+    return [np.array([v for pair in zip(mu, pattern, strict=True) for v in pair])
+            for pattern, mu in chosen]
+
+
+def _feasible_start(name: str, g: float) -> Any:
+    """A neo-Hookean-equivalent start (stable on every path)."""
+    import numpy as np
+
+    if name == "neo-hookean":
+        return np.array([g / 2])
+    if name == "mooney-rivlin":
+        return np.array([g / 2, 0.0])
+    if name == "yeoh":
+        return np.array([g / 2, 0.0, 0.0])
+    n = int(name[-1])
+    x = [g, 2.0]
+    for a in _OGDEN_CLASSIC[n][0][1:]:
+        x += [0.0, a]
+    return np.array(x)
+
+
+def _admissible(prob: _Problem, x: Any) -> bool:
+    """Shear modulus > 0 and ``dP/dl >= tau`` on the constraint grids and the fine grids."""
+    import numpy as np
+
+    c, _ = prob.cons(x)
+    return bool(np.all(c >= -1e-9) and prob.mu(x) > 0.0 and not prob.violations(x))
+
+
+def _solve_constrained(prob: _Problem, x0s: list[Any], lo: Any, hi: Any,
+                       xs: Any) -> tuple[Any, float] | None:
+    """SLSQP on 0.5 |r|^2 subject to the stability constraints, from several starts; the
+    lowest-cost feasible result (x, cost), or None."""
+    import numpy as np
+    from scipy.optimize import Bounds, minimize
+
+    norm = max(float(prob.target @ prob.target), 1e-300)
+
+    def f(z: Any) -> tuple[float, Any]:
+        r, j = prob.rj(z * xs)
+        return 0.5 * float(r @ r) / norm, (j.T @ r) * xs / norm
+
+    cons = {"type": "ineq", "fun": lambda z: prob.cons(z * xs)[0],
+            "jac": lambda z: prob.cons(z * xs)[1] * xs}
+    bounds = Bounds(lo / xs, hi / xs)
+    best: tuple[Any, float] | None = None
+    for x0 in x0s:
+        x = np.clip(x0, lo, hi)
+        for _ in range(4):  # a coarse grid first; stretches violated in between are added
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                res = minimize(f, x / xs, jac=True, method="SLSQP", bounds=bounds,
+                               constraints=[cons], options={"ftol": 1e-15, "maxiter": 500})
+            x = np.clip(res.x * xs, lo, hi)
+            extra = prob.violations(x) if np.all(np.isfinite(x)) else {}
+            if not extra:
+                break
+            prob.refine(extra)
+        if not np.all(np.isfinite(x)) or not _admissible(prob, x):
+            continue
+        r = prob.resid(x)
+        cost = 0.5 * float(r @ r)
+        if best is None or cost < best[1]:
+            best = (x, cost)
+    return best
 
 
 def fit_material(
@@ -331,14 +796,27 @@ def fit_material(
     d: float | None = None,
     poisson: float = 0.498,
     allow_unstable: bool = False,
+    terms: int | None = None,
+    constrain: bool = True,
+    stability_range: tuple[float, float] | None = None,
+    n_starts: int | None = None,
 ) -> MaterialFit:
     """Fit a hyperelastic model to one or several homogeneous test modes at once.
+
+    By default the fit is **constrained to admissible models**: initial shear modulus > 0 and
+    Drucker-stable (``dP/dl`` at least ``FIT_TANGENT_FLOOR_REL`` x the data's secant modulus)
+    along every measured mode over that mode's stretch range widened by
+    ``defaults.FIT_STABILITY_MARGIN_REL`` (10 %). When the best unconstrained least-squares fit
+    is admissible it is the answer; otherwise the constrained optimum (SLSQP from several
+    starts) is, and the result says so (``constrained``, ``active_constraints``). Modes without
+    data are checked over ``stability_range`` (default: the widened range of the data) and
+    only warned about.
 
     Parameters
     ----------
     model : str
         Model name (see :func:`material_model`): ``neo-hookean``, ``mooney-rivlin``, ``yeoh``,
-        ``ogden1``, ``ogden2``, ``ogden3``.
+        ``ogden1``, ``ogden2``, ``ogden3``, or ``ogden`` with ``terms``.
     uniaxial, biaxial, planar : (array_like, array_like) or None
         Per test mode, ``(stretch, stress_mpa)``: stretch of the loaded direction (unitless,
         > 0, strictly monotonic) and its stress in MPa. At least one mode.
@@ -353,8 +831,22 @@ def fit_material(
     poisson : float
         Small-strain Poisson ratio nu in (0, 0.5) for the default d (``2 (1 - 2 nu) / mu``).
     allow_unstable : bool
-        Accept a fit that is Drucker-unstable within the data's stretch range (then a
-        warning); default: :class:`~exofric.errors.InputError`.
+        Fit without the stability constraints (bounds only) and accept a result that is
+        Drucker-unstable within the data's stretch range, with a warning.
+    terms : int, optional
+        Ogden terms, 1-3, with ``model="ogden"`` (default 3).
+    constrain : bool
+        Impose the admissibility constraints (default). ``False``: bounds only, and a fit
+        unstable within the data's range is an :class:`~exofric.errors.InputError` unless
+        ``allow_unstable``.
+    stability_range : (float, float), optional
+        Stretch range (unitless, ``0 < lo < hi``) of the per-mode stability report; default the
+        data's range widened by the margin (for unmeasured modes: of all data).
+    n_starts : int, optional
+        Ogden: how many exponent combinations start a local fit (the discrete local minima of
+        the variable-projection cost over a grid of exponents, lowest first, then the best
+        other combinations), besides three published-style starts (default
+        ``defaults.FIT_OGDEN_STARTS``: 6, 10, 16 for 1-3 terms).
 
     Returns
     -------
@@ -364,7 +856,8 @@ def fit_material(
     ------
     InputError
         Unknown model, bad data (stretch <= 0, not monotonic, lengths), fewer points than
-        parameters, no mode given, or an unstable fit without ``allow_unstable``.
+        parameters, no mode given, no admissible fit found, or (``constrain=False``) an
+        unstable fit without ``allow_unstable``.
 
     Examples
     --------
@@ -372,19 +865,15 @@ def fit_material(
     >>> stretch = np.linspace(1.1, 3.0, 8)
     >>> stress = 2 * 0.2 * (stretch - stretch**-2)       # neo-Hookean C10 = 0.2 MPa
     >>> fit = fit_material("neo-hookean", uniaxial=(stretch, stress))
-    >>> round(fit.model.params[0], 6), fit.stability.stable
-    (0.2, True)
+    >>> round(fit.model.params[0], 6), fit.stability.stable, fit.constrained
+    (0.2, True, False)
     """
     import numpy as np
     from scipy.optimize import least_squares
 
-    if not isinstance(model, str):
-        raise InputError(f"model must be a model name, got {model!r}", param="model")
-    name = model.strip().lower().replace("_", "-")
-    name = {"neohookean": "neo-hookean", "mooneyrivlin": "mooney-rivlin"}.get(name, name)
-    if name not in HYPERELASTIC_MODELS:
-        raise InputError(f"model must be one of {', '.join(HYPERELASTIC_MODELS)}, got "
-                         f"{model!r}", param="model")
+    from exofric import defaults
+
+    name = _resolve_model(model, terms)
     if residuals not in RESIDUALS:
         raise InputError(f"residuals must be one of {', '.join(RESIDUALS)}, got {residuals!r}",
                          param="residuals")
@@ -394,6 +883,21 @@ def fit_material(
         if k not in MODES or v not in STRESS_KINDS:
             raise InputError(f"stress_kind must be one of {', '.join(STRESS_KINDS)} (per mode: "
                              f"{', '.join(MODES)}), got {k}={v!r}", param="stress_kind")
+    report_range = None
+    if stability_range is not None:
+        try:
+            lo_r, hi_r = (float(v) for v in stability_range)
+        except (TypeError, ValueError):
+            raise InputError("stability_range must be two stretches lo,hi (unitless), got "
+                             f"{stability_range!r}", param="stability_range") from None
+        if not (np.isfinite(lo_r) and np.isfinite(hi_r) and 0.0 < lo_r < hi_r <= 1e3):
+            raise InputError("stability_range must be two stretches 0 < lo < hi <= 1000 "
+                             f"(unitless), got {lo_r:g},{hi_r:g}", param="stability_range")
+        report_range = (lo_r, hi_r)
+    if n_starts is not None and (isinstance(n_starts, bool) or not isinstance(n_starts, int)
+                                 or not 1 <= n_starts <= 200):
+        raise InputError(f"n_starts must be an integer in 1-200, got {n_starts!r}",
+                         param="n_starts")
     given = {"uniaxial": uniaxial, "biaxial": biaxial, "planar": planar}
     data = {m: _mode_data(m, v, kinds.get(m, "engineering"))
             for m, v in given.items() if v is not None}
@@ -412,52 +916,141 @@ def fit_material(
                 raise InputError(f"residuals 'relative' divides by the stress, but {m} has 0 at "
                                  f"index {zero[0]}: use 'absolute' or drop the point",
                                  param="residuals")
-    lam_all = np.concatenate([lam for lam, _ in data.values()])
     p_all = np.concatenate([p for _, p in data.values()])
     scale = p_all if residuals == "relative" else np.ones_like(p_all)
-    modes = list(data)
-
-    def predict(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        mdl = _unchecked(name, x)
-        return np.concatenate([np.asarray(mdl._stress(m, data[m][0], "engineering"))
-                               for m in modes])
-
-    def resid(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        with np.errstate(all="ignore"):
-            r = (predict(x) - p_all) / scale
-        return np.where(np.isfinite(r), r, 1e6)
-
-    best = None
+    margin = float(defaults.FIT_STABILITY_MARGIN_REL)
+    prob = _Problem(name, data, scale, margin)
+    modes = prob.modes
     g0 = _g0(data)
-    for x0, lo, hi in _starts(name, g0):
-        res = least_squares(resid, np.asarray(x0), bounds=(lo, hi), method="trf",
-                            x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=20000)
-        if best is None or res.cost < best.cost:
-            best = res
-    assert best is not None
-    x = best.x
-    notes: list[str] = []
-    dof = n_pts - n_par
-    jac = best.jac
-    if dof > 0:
-        cov = np.linalg.pinv(jac.T @ jac) * (2.0 * best.cost / dof)
-        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    lo_b, hi_b = (np.asarray(b, dtype=float) for b in _bounds(name, prob.secant))
+    constrained_fit = constrain and not allow_unstable
+
+    # --- unconstrained (bounded) least squares from every start ------------------------
+    # Ogden: each start first runs on the exponents alone (variable projection: mu by linear
+    # least squares), the best few are then polished on all parameters
+    inner_lo = lo_b + 1e-12 * np.abs(np.nan_to_num(lo_b, posinf=0.0, neginf=0.0))
+    inner_hi = hi_b - 1e-12 * np.abs(np.nan_to_num(hi_b, posinf=0.0, neginf=0.0))
+
+    def polish(x0: Any) -> tuple[float, Any] | None:
+        x0 = np.clip(x0, inner_lo, inner_hi)
         with np.errstate(all="ignore"):
-            corr = cov / np.outer(se, se)
+            res = least_squares(prob.resid, x0, jac=prob.jac, bounds=(lo_b, hi_b), method="trf",
+                                x_scale="jac", xtol=1e-12, ftol=1e-12, gtol=1e-12,
+                                max_nfev=300)
+        if np.all(np.isfinite(res.x)) and np.isfinite(res.cost):
+            return float(res.cost), res.x
+        return None
+
+    results: list[tuple[float, Any]] = []
+    scanned: list[tuple[float, Any]] = []
+    starts = _starts(prob, g0, n_starts)
+    if name.startswith("ogden"):
+        n_t = n_par // 2
+        a_lo, a_hi = np.full(n_t, -_ALPHA_MAX), np.full(n_t, _ALPHA_MAX)
+
+        def vp_r(a: Any) -> Any:
+            return prob.vp_rj(a)[0]
+
+        def vp_j(a: Any) -> Any:
+            return prob.vp_rj(a)[1]
+
+        for x0 in starts:
+            a0 = np.clip(x0[1::2], a_lo + 1e-9, a_hi - 1e-9)
+            with np.errstate(all="ignore"):
+                res = least_squares(vp_r, a0, jac=vp_j, bounds=(a_lo, a_hi), method="trf",
+                                    xtol=1e-9, ftol=1e-9, gtol=1e-9, max_nfev=300)
+            if np.all(np.isfinite(res.x)) and np.isfinite(res.cost):
+                x_full = np.empty(n_par)
+                x_full[1::2] = res.x
+                x_full[0::2] = prob.vp_mu(res.x)
+                scanned.append((float(res.cost), x_full))
+        scanned.sort(key=lambda r: r[0])
+        # a scanned minimum is a local minimum of the full problem too (mu is optimal for its
+        # exponents) when its mu lie inside the bounds; the best few are polished as well
+        results = [(c, xr) for c, xr in scanned if np.all(xr >= lo_b) and np.all(xr <= hi_b)]
+        for _, x_full in scanned[:3]:
+            found = polish(x_full)
+            if found is not None:
+                results.append(found)
+        n_run = len(scanned)
+        start_costs = [c for c, _ in scanned]
+    else:
+        for x0 in starts:
+            found = polish(x0)
+            if found is not None:
+                results.append(found)
+        n_run = len(results)
+        start_costs = [c for c, _ in results]
+    if not results:
+        raise InputError(f"the {name} fit did not converge from any start; try another model",
+                         param="model")
+    start_rms = np.sqrt(2.0 * np.array(sorted(start_costs)) / n_pts)
+    results.sort(key=lambda r: r[0])
+    cost, x = results[0]
+    constrained = False
+    if constrained_fit and not _admissible(prob, x):
+        ok = [(c, xr) for c, xr in results[:8] if _admissible(prob, xr)]
+        xs = np.array([g0 if n.endswith("_mpa") else 1.0 for n in HYPERELASTIC_MODELS[name]])
+        x0s = [_feasible_start(name, g0)] + [xr for _, xr in results[:3]]
+        if name.startswith("ogden"):  # the exponent scan's next-best minimum too
+            x0s += [xr for _, xr in scanned[3:4]]
+        found = _solve_constrained(prob, x0s, lo_b, hi_b, xs)
+        if ok and (found is None or ok[0][0] <= found[1]):
+            found = (ok[0][1], ok[0][0])
+        if found is None:
+            raise InputError(f"model: no admissible {name} fit found (shear modulus > 0 and "
+                             f"dP/dl > 0 over the data's range + {margin:.0%}); use another "
+                             "model or allow_unstable", param="model")
+        x, cost = found
+        constrained = True
+    if name.startswith("ogden"):  # the terms in a canonical order: exponent descending
+        order = np.argsort(-x[1::2], kind="stable")
+        x = np.concatenate([x[2 * i:2 * i + 2] for i in order])
+    notes: list[str] = []
+    active: list[str] = []
+    if constrained:
+        c, _ = prob.cons(x)
+        off = 0
+        for m in modes:
+            grid = prob.grid[m]
+            cm = c[off:off + grid.size]
+            off += grid.size
+            hit = np.flatnonzero(cm <= 1e-6)
+            if hit.size:
+                at_one = np.abs(grid[hit] - 1.0) < 1e-12
+                if at_one.any():
+                    active.append(f"{m} small-strain modulus at its floor (the data pull the "
+                                  "shear modulus to <= 0)")
+                    hit = hit[~at_one]
+            if hit.size:
+                active.append(f"{m} dP/dl at its floor at stretch "
+                              + ", ".join(f"{v:.3g}" for v in grid[hit][:3])
+                              + (" ..." if hit.size > 3 else ""))
+    near_lo = np.isfinite(lo_b) & (np.abs(x - lo_b) <= 1e-9 * np.maximum(1, np.abs(lo_b)))
+    near_hi = np.isfinite(hi_b) & (np.abs(x - hi_b) <= 1e-9 * np.maximum(1, np.abs(hi_b)))
+    pnames = HYPERELASTIC_MODELS[name]
+    for i in np.flatnonzero(near_lo | near_hi):
+        bound = lo_b[i] if near_lo[i] else hi_b[i]
+        active.append(f"{pnames[i]} at its bound {bound:g}")
+    if active:
+        constrained = True
+        notes.append("constrained fit (" + "; ".join(active) + "): standard errors are "
+                     "indicative only")
+    # --- uncertainty ----------------------------------------------------------------------
+    r_opt, jac = prob.rj(x)
+    cost = 0.5 * float(r_opt @ r_opt)
+    dof = n_pts - n_par
+    if dof > 0:
+        cov = lsq_covariance(jac, 2.0 * cost / dof)
+        se, corr = standard_errors(cov), correlation(cov)
     else:
         se = np.full(n_par, np.nan)
         corr = np.full((n_par, n_par), np.nan)
-    np.fill_diagonal(corr, 1.0)
-    off = np.abs(corr[~np.eye(n_par, dtype=bool)])
-    if off.size and np.nanmax(off) > 0.99:
-        notes.append(f"parameters strongly correlated (|r| = {np.nanmax(off):.3f}): the data "
+        np.fill_diagonal(corr, 1.0)
+    off_diag = np.abs(corr[~np.eye(n_par, dtype=bool)])
+    if off_diag.size and np.nanmax(off_diag) > 0.99:
+        notes.append(f"parameters strongly correlated (|r| = {np.nanmax(off_diag):.3f}): the data "
                      "do not pin each one down; add another test mode or a simpler model")
-    x0_lo, x0_hi = (np.asarray(b, dtype=float) for b in _starts(name, g0)[0][1:])
-    at_bound = (np.isfinite(x0_lo) & (np.abs(x - x0_lo) <= 1e-9 * np.maximum(1, np.abs(x0_lo))))
-    at_bound |= np.isfinite(x0_hi) & (np.abs(x - x0_hi) <= 1e-9 * np.maximum(1, np.abs(x0_hi)))
-    if np.any(at_bound):
-        names = ", ".join(np.asarray(HYPERELASTIC_MODELS[name])[at_bound])
-        notes.append(f"{names} at a bound of the fit: its standard error is indicative only")
     try:
         fitted = material_model(name, x, d=d, poisson=poisson)
     except InputError as exc:
@@ -472,22 +1065,53 @@ def fit_material(
         r2 = 1.0 - ss_res / ss_tot if p.size > 1 and ss_tot > 0 else float("nan")
         mode_fits[m] = ModeFit(m, lam, p, f, r2, float(np.sqrt(ss_res / p.size)),
                                kinds.get(m, "engineering"))
-    lam_lo = min(1.0, float(lam_all.min()))
-    lam_hi = max(1.0, float(lam_all.max()))
-    stab = fitted.stability(lam_lo, lam_hi)
+    # --- stability: measured modes over their data (refused), report per mode (warned) --
+    first: dict[str, float | None] = dict.fromkeys(MODES)
+    for m in modes:
+        chk = fitted.stability(*prob.data_range[m], modes=(m,))
+        first[m] = chk.unstable_from[m]
+    d_lo = min(r[0] for r in prob.data_range.values())
+    d_hi = max(r[1] for r in prob.data_range.values())
+    stab = StabilityCheck(all(v is None for v in first.values()), d_lo, d_hi, first, 401,
+                          tuple(modes))
     if not stab.stable:
-        where = ", ".join(f"{k} from stretch {v:.3g}" for k, v in stab.unstable_from.items()
-                          if v is not None)
+        where = ", ".join(f"{k} from stretch {v:.3g}" for k, v in first.items() if v is not None)
         msg = (f"the {name} fit is Drucker-unstable (dP/dl <= 0) inside the data's stretch "
-               f"range {lam_lo:g}-{lam_hi:g}: {where}")
+               f"range: {where}")
         if not allow_unstable:
-            raise InputError(f"model: {msg}; use another model or allow_unstable",
-                             param="model")
+            raise InputError(f"model: {msg}; use another model, the constrained fit or "
+                             "allow_unstable", param="model")
         notes.append(msg)
+    all_lo = min(r[0] for r in prob.range.values())
+    all_hi = max(r[1] for r in prob.range.values())
+    report: dict[str, ModeStability] = {}
+    for m in MODES:
+        lo_s, hi_s = report_range or prob.range.get(m, (all_lo, all_hi))
+        chk = fitted.stability(lo_s, hi_s, modes=(m,))
+        ms = ModeStability(m, m in data, lo_s, hi_s, chk.unstable_from[m] is None,
+                           chk.unstable_from[m])
+        report[m] = ms
+        if ms.stable or (m in data and first[m] is not None):
+            continue
+        if m in data:
+            notes.append(f"{m}: Drucker-unstable from stretch {ms.unstable_from:.3g}, outside "
+                         f"the data ({prob.data_range[m][1]:.3g}): do not extrapolate there")
+        else:
+            notes.append(f"{m} (not measured): Drucker-unstable from stretch "
+                         f"{ms.unstable_from:.3g} within {lo_s:.3g}-{hi_s:.3g}; the fit predicts "
+                         f"{m} deformation only where it is stable: test that mode, or set "
+                         "stability_range to the stretches your part reaches")
     for note in notes:
         warn_implausible(note)
+    unit = "mpa" if residuals == "absolute" else "rel"
+    multistart = {"n_starts": n_run, f"rms_min_{unit}": float(start_rms[0]),
+                  f"rms_median_{unit}": float(np.median(start_rms)),
+                  f"rms_max_{unit}": float(start_rms[-1]),
+                  "n_within_1pct": int(np.sum(start_rms <= start_rms[0] * 1.01))}
     return MaterialFit(fitted, tuple(float(v) for v in se), corr, mode_fits, stab, residuals,
-                       float(best.cost), tuple(notes))
+                       float(cost), tuple(notes), constrained=constrained,
+                       active_constraints=tuple(active), stability_report=report,
+                       multistart=multistart, margin_rel=margin)
 
 
 def _unchecked(name: str, x: NDArray[np.float64]) -> HyperelasticModel:

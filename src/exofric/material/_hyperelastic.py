@@ -136,6 +136,9 @@ class StabilityCheck:
         1 where ``dP/dl <= 0``, or None where stable.
     n_points : int
         Stretches checked per path.
+    modes : tuple of str
+        The paths checked (default all three; a fit checks the modes it had data of, with
+        ``unstable_from`` None for the others).
 
     Examples
     --------
@@ -149,6 +152,7 @@ class StabilityCheck:
     stretch_max: float
     unstable_from: dict[str, float | None]
     n_points: int = 401
+    modes: tuple[str, ...] = MODES
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: ``stable``, the range checked, per path the first unstable stretch.
@@ -158,9 +162,13 @@ class StabilityCheck:
         dict
             ``criterion`` names the test made.
         """
+        names = {"uniaxial": "uniaxial", "biaxial": "equibiaxial", "planar": "planar"}
+        paths = [names[m] for m in self.modes]
+        listed = paths[0] if len(paths) == 1 else ", ".join(paths[:-1]) + " and " + paths[-1]
         return {
             "stable": self.stable,
-            "criterion": "dP/dl > 0 along uniaxial, equibiaxial and planar paths",
+            "criterion": f"dP/dl > 0 along {listed} path{'s' if len(paths) > 1 else ''}",
+            "modes": list(self.modes),
             "stretch_min": self.stretch_min,
             "stretch_max": self.stretch_max,
             "unstable_from": dict(self.unstable_from),
@@ -462,8 +470,8 @@ class HyperelasticModel:
         return np.asarray(w + (j - 1.0) ** 2 / self.d_per_mpa, dtype=float)
 
     def stability(self, stretch_min: float, stretch_max: float,
-                  n_points: int = 401) -> StabilityCheck:
-        """Drucker stability (``dP/dl > 0``) along all three paths over a stretch range.
+                  n_points: int = 401, modes: tuple[str, ...] = MODES) -> StabilityCheck:
+        """Drucker stability (``dP/dl > 0``) along the homogeneous paths over a stretch range.
 
         Parameters
         ----------
@@ -471,6 +479,8 @@ class HyperelasticModel:
             Range of stretches checked (unitless), ``0 < stretch_min < stretch_max``.
         n_points : int
             Stretches checked per path, evenly spaced (>= 2).
+        modes : tuple of str
+            The paths checked (default all three: uniaxial, biaxial, planar).
 
         Returns
         -------
@@ -484,12 +494,13 @@ class HyperelasticModel:
         n = int(check_range("n_points", n_points, 2, 1e6))
         lam = np.linspace(lo, hi, n)
         order = np.argsort(np.abs(np.log(lam)))  # nearest l = 1 first
-        first: dict[str, float | None] = {}
-        for mode in MODES:
+        checked = tuple(_check_mode(m) for m in modes)
+        first: dict[str, float | None] = dict.fromkeys(MODES)
+        for mode in checked:
             bad = ~(self.tangent_mpa(mode, lam) > 0.0)
             hits = order[bad[order]]
             first[mode] = float(lam[hits[0]]) if hits.size else None
-        return StabilityCheck(all(v is None for v in first.values()), lo, hi, first, n)
+        return StabilityCheck(all(v is None for v in first.values()), lo, hi, first, n, checked)
 
 
 def material_model(name: str, params: ArrayLike, d: float | None = None,

@@ -69,7 +69,8 @@ def plot_material_fit(fit: MaterialFit, fig: Any | None = None, title: str = "")
     bottom.grid(alpha=0.3)
     st = fit.stability
     stab = ("Drucker-stable" if st.stable else "UNSTABLE") + (
-        f" over stretch {st.stretch_min:.3g}-{st.stretch_max:.3g}")
+        f" over stretch {st.stretch_min:.3g}-{st.stretch_max:.3g}") + (
+        " (constrained)" if getattr(fit, "constrained", False) else "")
     top.set_title(title or f"{fit.model.name}: mu = {fit.model.shear_modulus_mpa:.4g} MPa, "
                   f"{fit.residuals} residuals; {stab}", fontsize=SMALL + 1)
     finish(fig, created)

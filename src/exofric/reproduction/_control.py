@@ -170,7 +170,7 @@ class ControlStage:
     --------
     >>> s = fast_result.control       # reproduce(ReproduceConfig.for_mode(fast=True))
     >>> len(s.paper_map.cases), s.paper_map.target_n, round(s.our_map.reduction_pct("pi"), 1)
-    (6, 54.4, 38.2)
+    (6, 54.4, 38.4)
     """
 
     paper_map: CompareResult = field(repr=False)
