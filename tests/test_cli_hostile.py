@@ -76,6 +76,13 @@ def _base(tmp: Path) -> dict[str, list[str]]:
         "control identify": [str(step)],
         "reduce": [str(raw)],
         "control run": ["--device", "sim://?speed=0", "--duration", "1"],
+        "pullout": ["--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire", "1.6",
+                    "--pressure", "0.3", "--mu-wire", "0.3", "--mu-wall", "0.5",
+                    "--mu-wire-wall", "0.2", "--shore", "62.5", "--accuracy", "draft",
+                    "--section"],
+        "stiffness": ["--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire", "1.6",
+                      "--pressures", "0.3", "--radius", "0.1", "--mu-wire", "0.3", "--mu-wall",
+                      "0.5", "--mu-wire-wall", "0.2", "--shore", "62.5", "--accuracy", "draft"],
     }
 
 

@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         FrictionModel,
         GammaFit,
         fit_gamma,
+        joint_stiffness,
         predict,
         pressure_for_friction,
         reduce_log,
@@ -50,7 +51,13 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.geometry import BASE, Structure
     from exofric.material import MooneyRivlin, shore_to_modulus
     from exofric.reproduction import ReproduceConfig, ReproduceResult, reproduce
-    from exofric.simulate import InflationResult, SqueezeResult, inflate, squeeze
+    from exofric.simulate import (
+        InflationResult,
+        SqueezeResult,
+        inflate,
+        pullout,
+        squeeze,
+    )
 
 
 

@@ -87,6 +87,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from exofric.friction._rig import RigConfig, RigRun, simulate_rig
     from exofric.friction._stats import AnovaResult, anova_vs_base, one_way_anova
+    from exofric.friction._stiffness import JointStiffness, joint_stiffness
     from exofric.friction._torque import TorqueCheck, capstan_factor, torque
 
 

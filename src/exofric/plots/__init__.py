@@ -68,6 +68,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from exofric.plots._interfaces import plot_interface_fit
     from exofric.plots._material import plot_material_fit
+    from exofric.plots._pullout import plot_joint_stiffness, plot_pullout
     from exofric.plots._rig import plot_reduction
     from exofric.plots._ring import plot_ring_test
 

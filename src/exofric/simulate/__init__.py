@@ -49,6 +49,13 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from exofric.simulate._common import check_friction
     from exofric.simulate._inflate import InflationResult, inflate
+    from exofric.simulate._pullout import (
+        PulloutResult,
+        SectionPullout,
+        check_pullout_friction,
+        pullout,
+        section_pullout,
+    )
     from exofric.simulate._ring import RingResult, ring_test
     from exofric.simulate._setup import SqueezeSetup
     from exofric.simulate._squeeze import SqueezeResult, squeeze

@@ -1,0 +1,883 @@
+"""Pull-out of the wire through the inflated tube, and the locked knee's stiffness (issue 39).
+
+Three levels (docs/formulation.md, section 4f):
+
+* **Section** (:func:`section_pullout`): the axial (anti-plane) response of the squeezed tube
+  per unit length, from the converged squeeze at P: scalar problem on the reference section
+  (:mod:`exofric.simulate._antiplane`), Coulomb friction on the tube-wire (``mu_wire``) and
+  tube-wall (``mu_wall``) arcs with true stick (augmented Lagrangian), and the rigid-plastic
+  wire-wall line contact (``mu_wire_wall`` x N). The normal pressures are the squeeze's, held.
+* **Length** (:func:`pullout`): shear lag EA u'' = q(u) along the tube with the section's law
+  as an Iwan (parallel Jenkins) model per station (Masing unloading/reloading), static
+  coefficient until a slider first slides, the cable's EA, the pulled end displaced.
+* **Knee**: :func:`exofric.friction.joint_stiffness` turns the first loading
+  (``pullout(..., first_loading=True)``) into T = capstan x F R, theta = delta / R: K(P)
+  (Nm/rad) and T_break(P) (Nm); it lives with the capstan in :mod:`exofric.friction`.
+
+Units: mm, N, MPa; section forces in N per mm of tube; torques in Nm, angles in rad.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Literal, overload
+
+import numpy as np
+
+from exofric import defaults
+from exofric.errors import InputError, check_positive, warn_implausible
+from exofric.fe import nodal_weights
+from exofric.geometry import Structure
+from exofric.material import HyperelasticModel, MooneyRivlin
+from exofric.simulate._antiplane import (
+    CondensedSection,
+    antiplane_stiffness,
+    axial_shear,
+    condense,
+    mooney_rivlin_modulus,
+    recover,
+    solve_friction_steps,
+)
+from exofric.simulate._common import check_friction
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from exofric.simulate._squeeze import SqueezeResult
+
+__all__ = ["PulloutResult", "SectionPullout", "check_pullout_friction", "pullout",
+           "section_pullout"]
+
+PULLOUT_ENDS = ("fixed", "free")
+
+
+# ----------------------------------------------------------------------------------------------
+# results
+
+
+@dataclass(frozen=True)
+class SectionPullout:
+    """Axial pull of the wire through one unit length of squeezed tube (N/mm, mm).
+
+    Attributes
+    ----------
+    pressure_mpa : float
+        Tube pressure (MPa).
+    displacement_mm : ndarray
+        Imposed axial wire displacement per step (mm).
+    force_n_per_mm : ndarray
+        Pull force per unit tube length (N/mm): tube friction plus the wire-wall line contact.
+    tube_force_n_per_mm : ndarray
+        Part carried by the tube-wire arc (N/mm).
+    initial_stiffness_n_per_mm2 : float
+        Initial stiffness of the tube-borne part (N/mm per mm), all arcs stuck.
+    slip_displacement_mm : float
+        Wire displacement at which the whole tube-wire arc slides (mm, to 1/32 of a load
+        step; NaN if not reached).
+    sliding_force_n_per_mm : float
+        Sliding plateau: mu_wire S_wire + mu_wire_wall N (N/mm), or mu_wall S_wall +
+        mu_wire_wall N when the tube slides on the wall first (``ends='free'``).
+    wire_pressure_integral_n_per_mm, wall_pressure_integral_n_per_mm : float
+        S_wire, S_wall of the squeeze state (N/mm, held during the pull).
+    squeeze_force_n_per_mm : float
+        N of the squeeze: the wire-wall line contact's normal force (N/mm).
+    stick_fraction_wire, stick_fraction_wall : ndarray
+        Share (by reference length) of each arc that sticks (no slip increment) in each step
+        (unitless; NaN without that arc).
+    mu_wire, mu_wall, mu_wire_wall : float
+        Kinetic Coulomb coefficients (unitless).
+    ends : str
+        ``'fixed'`` (tube held axially by its end fittings) or ``'free'``.
+    shear_modulus_mpa : float
+        Small-strain shear modulus G of the tube (MPa).
+    modulus_note : str
+        How the anti-plane modulus was built (exact Mooney-Rivlin, or linearised).
+    in_plane_shear_ratio : float
+        Largest |in-plane friction traction| / (mu_wire p) on the wire arc of the squeeze
+        state (0 for a frictionless squeeze): the share of the Coulomb disk the pull neglects.
+    stick_penalty_n_per_mm3 : float
+        Stick penalty of the augmented Lagrangian (N/mm^3).
+    notes : tuple of str
+        Statements (e.g. no contact below the onset: zero force).
+    axial_shear_max : float
+        Largest axial shear |grad_X w| in the tube at full slip (unitless).
+    in_plane_coupling_mpa : float
+        G |g|^2 (MPa): the order of the in-plane stress change the axial shear would cause
+        (neglected: the squeeze's contact pressures are held), to compare with the contact
+        pressures.
+
+    Examples
+    --------
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> s = section_pullout(BASE, MooneyRivlin.from_shore(62.5), 0.6, mu_wire=0.3, mu_wall=0.5,
+    ...                     mu_wire_wall=0.2, accuracy="draft")
+    >>> bool(abs(s.force_n_per_mm[-1] - s.sliding_force_n_per_mm) < 1e-6)
+    True
+    """
+
+    pressure_mpa: float
+    displacement_mm: np.ndarray
+    force_n_per_mm: np.ndarray
+    tube_force_n_per_mm: np.ndarray
+    initial_stiffness_n_per_mm2: float
+    slip_displacement_mm: float
+    sliding_force_n_per_mm: float
+    wire_pressure_integral_n_per_mm: float
+    wall_pressure_integral_n_per_mm: float
+    squeeze_force_n_per_mm: float
+    stick_fraction_wire: np.ndarray
+    stick_fraction_wall: np.ndarray
+    mu_wire: float
+    mu_wall: float
+    mu_wire_wall: float
+    ends: str
+    shear_modulus_mpa: float
+    modulus_note: str
+    in_plane_shear_ratio: float
+    stick_penalty_n_per_mm3: float
+    notes: tuple[str, ...] = ()
+    axial_shear_max: float = 0.0
+    in_plane_coupling_mpa: float = 0.0
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (unit-suffixed keys; per-step lists)."""
+        n = len(self.displacement_mm)
+        return {
+            "pressure_mpa": self.pressure_mpa,
+            "displacement_mm": self.displacement_mm.tolist(),
+            "force_n_per_mm": self.force_n_per_mm.tolist(),
+            "tube_force_n_per_mm": self.tube_force_n_per_mm.tolist(),
+            "initial_stiffness_n_per_mm2": self.initial_stiffness_n_per_mm2,
+            "slip_displacement_mm": (None if not math.isfinite(self.slip_displacement_mm)
+                                     else self.slip_displacement_mm),
+            "sliding_force_n_per_mm": self.sliding_force_n_per_mm,
+            "wire_pressure_integral_n_per_mm": [self.wire_pressure_integral_n_per_mm] * n,
+            "wall_pressure_integral_n_per_mm": self.wall_pressure_integral_n_per_mm,
+            "squeeze_force_n_per_mm": self.squeeze_force_n_per_mm,
+            "stick_fraction_wire": _nan_none(self.stick_fraction_wire),
+            "stick_fraction_wall": _nan_none(self.stick_fraction_wall),
+            "mu_wire": self.mu_wire, "mu_wall": self.mu_wall,
+            "mu_wire_wall": self.mu_wire_wall, "ends": self.ends,
+            "shear_modulus_mpa": self.shear_modulus_mpa, "modulus_note": self.modulus_note,
+            "in_plane_shear_ratio": self.in_plane_shear_ratio,
+            "stick_penalty_n_per_mm3": self.stick_penalty_n_per_mm3,
+            "axial_shear_max": self.axial_shear_max,
+            "in_plane_coupling_mpa": self.in_plane_coupling_mpa,
+            "notes": list(self.notes),
+        }
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per step: displacement (mm), forces (N/mm), stick fractions."""
+        import pandas as pd
+
+        return pd.DataFrame({
+            "displacement_mm": self.displacement_mm, "force_n_per_mm": self.force_n_per_mm,
+            "tube_force_n_per_mm": self.tube_force_n_per_mm,
+            "stick_fraction_wire": self.stick_fraction_wire,
+            "stick_fraction_wall": self.stick_fraction_wall})
+
+    def plot(self, ax: Any | None = None) -> Any:
+        """q(delta): force per length (N/mm) vs wire displacement (mm).
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Where to draw (default a new figure).
+
+        Returns
+        -------
+        matplotlib Axes
+        """
+        from exofric.plots import plot_pullout
+
+        return plot_pullout(self, ax)
+
+
+@dataclass(frozen=True)
+class PulloutResult:
+    """Pull of the wire through the whole tube length: F(delta) at the pulled end (N, mm).
+
+    Attributes
+    ----------
+    displacement_mm : ndarray
+        Pulled-end displacement along the path (mm): 0 -> D -> -D -> D per cycle.
+    force_n : ndarray
+        Cable force at the pulled end (N).
+    static_force_n : float
+        Breakaway: the largest force on the first loading leg (N).
+    sliding_force_n : float
+        Force with the whole length sliding, L x the section's kinetic plateau (N).
+    slip_length_mm : ndarray
+        Length of tube (from the pulled end) over which the wire slides on its whole arc (mm).
+    length_mm, cable_ea_n, mu_static : float
+        Tube length (mm), cable EA (N), static coefficient (unitless).
+    section : SectionPullout
+        The section law used.
+    notes : tuple of str
+        Statements carried from the section (e.g. zero force below the contact onset).
+
+    Examples
+    --------
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> r = pullout(BASE, MooneyRivlin.from_shore(62.5), 0.6, mu_wire=0.3, mu_wall=0.5,
+    ...             mu_wire_wall=0.2, displacement_mm=3.0, accuracy="draft")
+    >>> bool(abs(r.static_force_n - r.sliding_force_n) < 0.01 * r.sliding_force_n)
+    True
+    """
+
+    displacement_mm: np.ndarray
+    force_n: np.ndarray
+    static_force_n: float
+    sliding_force_n: float
+    slip_length_mm: np.ndarray
+    length_mm: float
+    cable_ea_n: float
+    mu_static: float
+    section: SectionPullout = field(repr=False)
+    notes: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (unit-suffixed keys)."""
+        return {
+            "displacement_mm": self.displacement_mm.tolist(), "force_n": self.force_n.tolist(),
+            "static_force_n": self.static_force_n, "sliding_force_n": self.sliding_force_n,
+            "slip_length_mm": self.slip_length_mm.tolist(), "length_mm": self.length_mm,
+            "cable_ea_n": self.cable_ea_n, "mu_static": self.mu_static,
+            "pressure_mpa": self.section.pressure_mpa,
+            "section_sliding_force_n_per_mm": self.section.sliding_force_n_per_mm,
+            "section_initial_stiffness_n_per_mm2": self.section.initial_stiffness_n_per_mm2,
+            "notes": list(self.notes),
+        }
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per path step: displacement (mm), force (N), slip length (mm)."""
+        import pandas as pd
+
+        return pd.DataFrame({"displacement_mm": self.displacement_mm, "force_n": self.force_n,
+                             "slip_length_mm": self.slip_length_mm})
+
+    def plot(self, ax: Any | None = None) -> Any:
+        """F(delta) at the pulled end (N vs mm), the hysteresis loop.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Where to draw (default a new figure).
+
+        Returns
+        -------
+        matplotlib Axes
+        """
+        from exofric.plots import plot_pullout
+
+        return plot_pullout(self, ax)
+
+
+def _nan_none(a: np.ndarray) -> list[float | None]:
+    return [None if not np.isfinite(v) else float(v) for v in np.asarray(a, float)]
+
+
+# ----------------------------------------------------------------------------------------------
+# checks
+
+
+def check_pullout_friction(mu_wire: float, mu_wall: float, mu_wire_wall: float, ends: str,
+                           mu_static: float | None = None) -> tuple[float, float, float, float]:
+    """(mu_wire, mu_wall, mu_wire_wall, mu_static) of a pull, checked (unitless).
+
+    Parameters
+    ----------
+    mu_wire, mu_wall, mu_wire_wall : float
+        Kinetic Coulomb coefficients tube-wire, tube-wall, wire-wall (unitless, [0, 2]).
+    ends : {'fixed', 'free'}
+        The tube's end fittings.
+    mu_static : float or None
+        Static coefficient of the wire's interfaces (unitless, >= ``mu_wire``; None: mu_wire).
+
+    Returns
+    -------
+    tuple of float
+
+    Examples
+    --------
+    >>> check_pullout_friction(0.3, 0.5, 0.2, "fixed", 0.36)
+    (0.3, 0.5, 0.2, 0.36)
+    """
+    mw, mh, mww = _check_pull(mu_wire, mu_wall, mu_wire_wall, ends)
+    return mw, mh, mww, _check_static(mu_static, mw, mww)
+
+
+def _check_pull(mu_wire: float, mu_wall: float, mu_wire_wall: float, ends: str) -> tuple[
+        float, float, float]:
+    mw = check_friction("mu_wire", mu_wire)
+    mh = check_friction("mu_wall", mu_wall)
+    mww = check_friction("mu_wire_wall", mu_wire_wall)
+    if ends not in PULLOUT_ENDS:
+        raise InputError(f"ends must be one of {', '.join(PULLOUT_ENDS)}, got {ends!r}",
+                         param="ends")
+    return mw, mh, mww
+
+
+def _check_static(mu_static: float | None, mu_wire: float, mu_wire_wall: float) -> float:
+    if mu_static is None:
+        return mu_wire
+    ms = check_friction("mu_static", mu_static)
+    if ms < mu_wire:
+        raise InputError(f"mu_static must be >= the kinetic mu_wire ({mu_wire:g}), got {ms:g}",
+                         param="mu_static")
+    return ms
+
+
+# ----------------------------------------------------------------------------------------------
+# section
+
+
+def _modulus(material: Any, nodes: np.ndarray, elements: np.ndarray,
+             disp: np.ndarray) -> tuple[np.ndarray | float, float, str]:
+    """(anti-plane modulus, G MPa, note)."""
+    if isinstance(material, MooneyRivlin):
+        c10, c01 = material.c10_mpa, material.c01_mpa
+    elif isinstance(material, HyperelasticModel) and material.name in ("neo-hookean",
+                                                                       "mooney-rivlin"):
+        mr = material.to_mooney_rivlin()
+        c10, c01 = mr.c10_mpa, mr.c01_mpa
+    else:
+        g = float(material.shear_modulus_mpa)
+        return g, g, (f"{material.name}: A = G I, the small-strain shear modulus (a "
+                      "linearisation: its energy is not quadratic in the axial shear)")
+    a = mooney_rivlin_modulus(nodes, elements, disp, c10, c01)
+    return a, 2.0 * (c10 + c01), ("Mooney-Rivlin with the squeeze's in-plane F2 held: A = 2 C10 "
+                                  "J^-2/3 I + 2 C01 J^-4/3 adj(C2), exact for the axial shear")
+
+
+def _outer_edges(nodes: np.ndarray, elements: np.ndarray, center: tuple[float, float],
+                 r_out: float) -> np.ndarray:
+    """Outer-surface edges (m, 3) of a quad9 polar mesh (local nodes 2, 5, 8)."""
+    e = elements[:, [2, 5, 8]]
+    r = np.hypot(nodes[e, 0] - center[0], nodes[e, 1] - center[1])
+    return e[np.all(np.abs(r - r_out) < 1e-6 * r_out, axis=1)]
+
+
+def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float,
+                   ends: str) -> tuple[CondensedSection, float, float, float, float, str, float,
+                                       Any, np.ndarray]:
+    """(condensed section, factor to full section, G, S_wire, S_wall, note, in-plane ratio,
+    full stiffness, contact node indices)."""
+    st = res.structure
+    nodes, elements = res.nodes, res.elements
+    disp = res.displacements[k]
+    half = res.symmetry.startswith("half")
+    fac = 2.0 if half else 1.0
+    a, g, note = _modulus(res.material, nodes, elements, disp)
+    K, area = antiplane_stiffness(nodes, elements, a)
+    # end fittings: the tube as a rod of E_t A_t = 3 G A held at both ends, under a uniform
+    # load: midspan stiffness 8 E_t A_t / L^2 per mm, spread over the section by area
+    a_t = 0.25 * math.pi * (st.tube_od_mm ** 2 - st.tube_id_mm ** 2)
+    k_anchor = (8.0 * 3.0 * g * a_t / st.length_mm ** 2 if ends == "fixed" else 1e-4 * g)
+    K = K + _diag(k_anchor / fac * area / area.sum())
+    edges = _outer_edges(nodes, elements, st.tube_center_mm, 0.5 * st.tube_od_mm)
+    x_now = nodes + disp
+    w_now = nodal_weights(edges, x_now, len(nodes))
+    w_ref = nodal_weights(edges, nodes, len(nodes))
+    stretch = 1.0 if res.axial_stretch is None else float(res.axial_stretch[k])
+    prof = res.contact[k]
+    idx, cap, on_wire, length = [], [], [], []
+    s = {"wire": 0.0, "wall": 0.0}
+    ratio = 0.0
+    for name, mu in (("wire", mu_wire), ("wall", mu_wall)):
+        arc = prof[name]
+        nd = np.asarray(arc["node"], dtype=int)
+        p = np.asarray(arc["pressure_mpa"], dtype=float)
+        fn = p * w_now[nd] * stretch  # N per mm of tube (reference length)
+        s[name] = fac * float(fn.sum()) / stretch
+        idx.append(nd)
+        cap.append(mu * fn)
+        on_wire.append(np.full(len(nd), name == "wire"))
+        length.append(w_ref[nd])
+        if name == "wire" and len(nd):
+            tq = np.abs(np.asarray(arc["shear_mpa"], dtype=float))
+            ratio = float(np.max(tq / np.maximum(mu * p, 1e-300))) if mu > 0 else 0.0
+    c_idx = np.concatenate(idx)
+    K = K.tocsr()
+    Kc = condense(K, c_idx)
+    sec = CondensedSection(Kc, np.concatenate(on_wire), np.concatenate(cap),
+                           np.concatenate(length))
+    return sec, fac, g, s["wire"], s["wall"], note, ratio, K, c_idx
+
+
+def _diag(v: np.ndarray) -> Any:
+    import scipy.sparse as sp
+
+    return sp.diags(v)
+
+
+def _squeeze_for(structure: Structure, material: Any, pressures: list[float],
+                 accuracy: str | None, mesh: Any) -> SqueezeResult:
+    from exofric.simulate._setup import SqueezeSetup
+
+    return SqueezeSetup(structure, material, accuracy=accuracy, mesh=mesh,
+                        keep_fields=True).solve(pressures)
+
+
+def section_pullout(
+    structure: Structure,
+    material: MooneyRivlin | HyperelasticModel,
+    pressure_mpa: float,
+    *,
+    mu_wire: float,
+    mu_wall: float,
+    mu_wire_wall: float,
+    ends: str = "fixed",
+    accuracy: str | None = None,
+    mesh: Any = None,
+    n_steps: int = defaults.PULLOUT_SECTION_STEPS,
+    stick_penalty: float = defaults.PULLOUT_STICK_PENALTY_N_PER_MM3,
+    creep_tol_mm: float = defaults.PULLOUT_CREEP_TOL_MM,
+    squeeze_result: SqueezeResult | None = None,
+    squeeze_index: int = -1,
+) -> SectionPullout:
+    """Axial pull of the wire through a unit length of the squeezed tube (N/mm vs mm).
+
+    The squeeze at ``pressure_mpa`` is solved (frictionless, plane strain; or pass a
+    ``squeeze_result`` with fields kept), then the anti-plane problem with Coulomb friction
+    (module docstring) is driven by the wire displacement until the whole tube-wire arc slides.
+
+    Parameters
+    ----------
+    structure : Structure
+        Hole, tube, wire (mm) and tube length (mm).
+    material : MooneyRivlin or HyperelasticModel
+        Tube material.
+    pressure_mpa : float
+        Pressure (MPa).
+    mu_wire, mu_wall, mu_wire_wall : float
+        Kinetic Coulomb coefficients (unitless, [0, 2]) tube-wire, tube-wall, wire-wall.
+    ends : {'fixed', 'free'}
+        Tube held axially by its end fittings (a rod of E = 3 G to both ends, as a soft
+        foundation) or free to slide on the wall once the wall arc slides.
+    accuracy, mesh
+        The squeeze's accuracy or explicit mesh (see :func:`~exofric.simulate.squeeze`).
+    n_steps : int
+        Load steps to 3x the estimated slip displacement (more are added until full sliding).
+    stick_penalty : float
+        Stick penalty (N/mm^3) of the augmented Lagrangian.
+    creep_tol_mm : float
+        Largest elastic slip of a sticking node (mm).
+    squeeze_result : SqueezeResult, optional
+        A solved squeeze (fields kept) to start from instead; ``squeeze_index`` picks the
+        pressure.
+    squeeze_index : int
+        Index into ``squeeze_result``'s pressures.
+
+    Returns
+    -------
+    SectionPullout
+
+    Raises
+    ------
+    InputError
+        Bad coefficients or ends, or a squeeze result without fields.
+
+    Examples
+    --------
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> s = section_pullout(BASE, MooneyRivlin.from_shore(62.5), 0.6, mu_wire=0.3,
+    ...                     mu_wall=0.5, mu_wire_wall=0.0, accuracy="draft")
+    >>> round(s.sliding_force_n_per_mm / s.wire_pressure_integral_n_per_mm, 6)
+    0.3
+    """
+    mw, mh, mww = _check_pull(mu_wire, mu_wall, mu_wire_wall, ends)
+    check_positive("stick_penalty", stick_penalty, "N/mm^3")
+    if int(n_steps) < 2:
+        raise InputError(f"n_steps must be >= 2, got {n_steps}", param="n_steps")
+    if squeeze_result is None:
+        squeeze_result = _squeeze_for(structure, material, [float(pressure_mpa)], accuracy, mesh)
+        squeeze_index = -1
+    res = squeeze_result
+    if not res.displacements:
+        raise InputError("squeeze_result must keep its fields (keep_fields=True)",
+                         param="squeeze_result")
+    p = float(res.pressure_mpa[squeeze_index])
+    n_sq = float(res.squeeze_force_n_per_mm[squeeze_index])
+    sec, fac, g, s_wire, s_wall, note, ratio, K_full, c_idx = _build_section(
+        res, squeeze_index, mw, mh, ends)
+    notes: list[str] = []
+    cap_wire = fac * float(sec.capacity[sec.on_wire].sum())
+    cap_wall = fac * float(sec.capacity[~sec.on_wire].sum())
+    q_line = mww * n_sq
+    if ratio > 1e-6:
+        notes.append(f"the squeeze's in-plane friction uses up to {100 * ratio:.0f}% of the "
+                     "wire arc's Coulomb disk; the pull assumes it relaxes as the wire slides "
+                     "axially (the full mu p is available axially)")
+    if not np.any(sec.on_wire) or cap_wire + q_line == 0.0:
+        if not np.any(sec.on_wire):
+            notes.append(f"P = {p:g} MPa is below the contact onset: the tube does not touch "
+                         "the wire, zero force")
+        d = np.zeros(1)
+        z = np.zeros(1)
+        return SectionPullout(p, d, z, z, 0.0, float("nan"), 0.0, s_wire, s_wall, n_sq,
+                              np.full(1, np.nan), np.full(1, np.nan), mw, mh, mww, ends, g,
+                              note, ratio, float(stick_penalty), tuple(notes))
+    on = sec.on_wire
+    k0 = fac * float(sec.K[np.ix_(on, on)].sum())  # all stuck: wire nodes at 1, wall at 0
+    plateau_tube = cap_wire if (ends == "fixed" or cap_wall >= cap_wire) else cap_wall
+    d_est = max(cap_wire / k0, 1e-9) if k0 > 0 else 1.0
+    step = 3.0 * d_est / int(n_steps)
+    deltas = np.arange(int(n_steps) + 1) * step
+    out = solve_friction_steps(sec, deltas, stick_penalty, creep_tol_mm)
+    chunks = 0
+    # extend until the wire arc slides on its whole length, or the tube slides on the wall
+    while (np.any(out["stick"][-1][on]) and np.any(out["stick"][-1][~on])
+           and chunks < 20 and cap_wire > 0 and plateau_tube == cap_wire):
+        more = deltas[-1] + np.arange(1, int(n_steps) + 1) * step
+        nxt = _continue(sec, out, deltas, more, stick_penalty, creep_tol_mm)
+        deltas = np.concatenate([deltas, more])
+        out = nxt
+        chunks += 1
+    q_tube = fac * out["force"]
+    stick = out["stick"]
+    lw = sec.length
+    stick_wire = np.array([(lw[on] * s_[on]).sum() / lw[on].sum() for s_ in stick])
+    wall_len = lw[~on].sum()
+    stick_wall = (np.array([(lw[~on] * s_[~on]).sum() / wall_len for s_ in stick])
+                  if wall_len > 0 else np.full(len(stick), np.nan))
+    full = np.flatnonzero(stick_wire == 0.0)
+    slip_d = float(deltas[full[0]]) if full.size else float("nan")
+    if full.size and full[0] > 0:
+        # the full-slip displacement to 1/32 of a step: re-run the monotone path with the
+        # step that crossed it subdivided (the law is path-independent under monotone load)
+        j = int(full[0])
+        fine = np.linspace(deltas[j - 1], deltas[j], 33)[1:]
+        ref = solve_friction_steps(sec, np.concatenate([deltas[:j], fine]), stick_penalty,
+                                   creep_tol_mm)
+        none = ~np.any(ref["stick"][j:][:, on], axis=1)
+        slip_d = float(fine[int(np.argmax(none))])
+    if cap_wire > 0 and not full.size:
+        notes.append("the tube-wire arc did not slide on its whole length within "
+                     f"{deltas[-1]:.3g} mm (the tube slides on the wall)")
+    force = q_tube + np.where(deltas > 0.0, q_line, 0.0)
+    # neglected reverse coupling: the axial shear g changes the in-plane stresses by ~ G |g|^2
+    # (second order), against contact pressures of order S_wire / arc: measured, not applied
+    j = int(full[0]) if full.size else len(deltas) - 1
+    w_full = recover(K_full, c_idx, out["w"][j])
+    g_max = axial_shear(res.nodes, res.elements, w_full)
+    return SectionPullout(p, deltas, force, q_tube, k0, slip_d, plateau_tube + q_line,
+                          s_wire, s_wall, n_sq, stick_wire, stick_wall, mw, mh, mww, ends, g,
+                          note, ratio, float(stick_penalty), tuple(notes), g_max,
+                          g * g_max ** 2)
+
+
+def _continue(sec: CondensedSection, out: dict[str, np.ndarray], deltas: np.ndarray,
+              more: np.ndarray, penalty: float, tol: float) -> dict[str, np.ndarray]:
+    """Re-run the path with ``more`` steps appended (the solver is cheap; keeps one code path)."""
+    allsteps = np.concatenate([deltas, more])
+    return solve_friction_steps(sec, allsteps, penalty, tol)
+
+
+# ----------------------------------------------------------------------------------------------
+# along the length: Iwan section law + shear lag
+
+
+@dataclass(frozen=True)
+class _Iwan:
+    """Parallel Jenkins elements (stiffness N/mm^2, kinetic capacity N/mm) plus a spring."""
+
+    k: np.ndarray
+    f: np.ndarray
+    spring: float
+    n_tube: int
+
+
+def _iwan(delta: np.ndarray, q: np.ndarray, line_cap: float, line_k: float) -> _Iwan:
+    """Iwan model reproducing the monotone backbone q(delta) (piecewise linear, concave)."""
+    d = np.asarray(delta, float)
+    qq = np.asarray(q, float)
+    ks: list[float] = []
+    fs: list[float] = []
+    spring = 0.0
+    if len(d) >= 2 and qq[-1] > 0:
+        s = np.diff(qq) / np.diff(d)
+        s = np.clip(np.minimum.accumulate(s), 0.0, None)
+        s_end = 0.0 if s[-1] <= 1e-9 * s[0] else float(s[-1])
+        s_next = np.append(s[1:], s_end)
+        kj = s - s_next
+        keep = kj > 0
+        ks += list(kj[keep])
+        fs += list(kj[keep] * d[1:][keep])
+        spring = s_end
+    n_tube = len(ks)
+    if line_cap > 0:
+        ks.append(line_k)
+        fs.append(line_cap)
+    return _Iwan(np.array(ks), np.array(fs), spring, n_tube)
+
+
+def _shear_lag(law: _Iwan, ea: float, length: float, path: np.ndarray, ratio: float,
+               n_z: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pulled-end force F (N) along ``path`` (mm); also u (steps, nodes) and sliding flags.
+
+    EA u'' = q(u) on [0, L], u(0) = delta, EA u'(L) = 0 (the cable beyond the tube is free);
+    linear elements, lumped q; each node carries its Jenkins sliders (static capacity ``ratio``
+    x kinetic until a slider slides, kinetic while it slides).
+    """
+    from scipy.linalg import solve_banded
+
+    n = int(n_z)
+    h = length / n
+    hl = np.full(n + 1, h)
+    hl[0] = hl[-1] = 0.5 * h
+    ne = len(law.k)
+    pos = np.zeros((n + 1, ne))      # slider positions (mm)
+    slid = np.zeros((n + 1, ne), bool)
+    u = np.zeros(n + 1)
+    kE = ea / h
+    forces = np.zeros(len(path))
+    full = np.zeros((len(path), n + 1), bool)
+    us = np.zeros((len(path), n + 1))
+
+    def q_of(u: np.ndarray, cap: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        tr = law.k * (u[:, None] - pos)
+        st = np.abs(tr) <= cap
+        fe = np.where(st, tr, np.sign(tr) * cap)
+        return fe.sum(axis=1) + law.spring * u, (law.k * st).sum(axis=1) + law.spring, st
+
+    def energy(u: np.ndarray, cap: np.ndarray) -> float:
+        x = u[:, None] - pos
+        kx = law.k * np.abs(x)
+        psi = np.where(kx <= cap, 0.5 * law.k * x * x, cap * np.abs(x) - 0.5 * cap ** 2 / law.k)
+        return float(0.5 * kE * (np.diff(u) ** 2).sum()
+                     + (hl * (psi.sum(axis=1) + 0.5 * law.spring * u * u)).sum())
+
+    def ku(u: np.ndarray) -> np.ndarray:
+        r = np.zeros(n + 1)
+        du = np.diff(u)
+        r[:-1] -= kE * du
+        r[1:] += kE * du
+        return r
+
+    for i, d in enumerate(path):
+        kin = slid.copy()
+        for _ in range(ne + 2):
+            cap = np.where(kin, law.f, ratio * law.f)
+            u[0] = d
+            for _it in range(100):
+                q, dq, st = q_of(u, cap)
+                r = ku(u) + hl * q
+                r[0] = 0.0
+                if np.abs(r[1:]).max() <= max(1e-9 * max(1.0, np.abs(hl * q).max()),
+                                                1e-12 * kE * max(1.0, np.abs(u).max())):
+                    break
+                ab = np.zeros((3, n))
+                ab[1] = 2 * kE + hl[1:] * dq[1:]
+                ab[1, -1] = kE + hl[-1] * dq[-1]
+                ab[0, 1:] = -kE
+                ab[2, :-1] = -kE
+                du = -solve_banded((1, 1), ab, r[1:])
+                # a convex energy is minimised: Armijo backtracking stops active-set cycling
+                e0, slope, alpha = energy(u, cap), float(r[1:] @ du), 1.0
+                while alpha > 1e-6:
+                    trial = u.copy()
+                    trial[1:] += alpha * du
+                    if energy(trial, cap) <= e0 + 1e-4 * alpha * slope:
+                        break
+                    alpha *= 0.5
+                u[1:] += (alpha if alpha > 1e-6 else 1.0) * du
+            else:
+                raise InputError("pull-out along the length: Newton did not converge at "
+                                 f"displacement {d:g} mm (reduce --displacement steps)")
+            new = ~st & ~kin
+            if ratio == 1.0 or not np.any(new):
+                break
+            kin |= new
+        q, dq, st = q_of(u, cap)
+        tr = law.k * (u[:, None] - pos)
+        sl = ~st
+        pos = np.where(sl, u[:, None] - np.sign(tr) * cap / np.where(law.k > 0, law.k, 1.0),
+                       pos)
+        slid = sl
+        r = ku(u) + hl * q
+        forces[i] = r[0]
+        nt = law.n_tube
+        full[i] = np.all(sl[:, :nt], axis=1) if nt else np.all(sl, axis=1)
+        us[i] = u
+    return forces, us, full
+
+
+def _path(d: float, cycles: int, steps: int) -> np.ndarray:
+    up = np.linspace(0.0, d, steps + 1)
+    legs = [up]
+    for _ in range(int(cycles)):
+        legs.append(np.linspace(d, -d, 2 * steps + 1)[1:])
+        legs.append(np.linspace(-d, d, 2 * steps + 1)[1:])
+    return np.concatenate(legs)
+
+
+@overload
+def pullout(structure: Structure, material: MooneyRivlin | HyperelasticModel,
+            pressure_mpa: float, *, mu_wire: float, mu_wall: float, mu_wire_wall: float,
+            mu_static: float | None = ..., cable_ea_n: float = ..., ends: str = ...,
+            displacement_mm: float = ..., cycles: int = ..., section: Literal[False] = ...,
+            accuracy: str | None = ..., mesh: Any = ..., n_z: int = ..., n_path: int = ...,
+            line_stick_rel: float = ..., squeeze_result: SqueezeResult | None = ...,
+            squeeze_index: int = ..., first_loading: bool = ...) -> PulloutResult: ...
+
+
+@overload
+def pullout(structure: Structure, material: MooneyRivlin | HyperelasticModel,
+            pressure_mpa: float, *, mu_wire: float, mu_wall: float, mu_wire_wall: float,
+            mu_static: float | None = ..., cable_ea_n: float = ..., ends: str = ...,
+            displacement_mm: float = ..., cycles: int = ..., section: Literal[True],
+            accuracy: str | None = ..., mesh: Any = ..., n_z: int = ..., n_path: int = ...,
+            line_stick_rel: float = ..., squeeze_result: SqueezeResult | None = ...,
+            squeeze_index: int = ..., first_loading: bool = ...) -> SectionPullout: ...
+
+
+@overload
+def pullout(structure: Structure, material: MooneyRivlin | HyperelasticModel,
+            pressure_mpa: float, *, mu_wire: float, mu_wall: float, mu_wire_wall: float,
+            mu_static: float | None = ..., cable_ea_n: float = ..., ends: str = ...,
+            displacement_mm: float = ..., cycles: int = ..., section: bool = ...,
+            accuracy: str | None = ..., mesh: Any = ..., n_z: int = ..., n_path: int = ...,
+            line_stick_rel: float = ..., squeeze_result: SqueezeResult | None = ...,
+            squeeze_index: int = ..., first_loading: bool = ...
+            ) -> PulloutResult | SectionPullout: ...
+
+
+def pullout(
+    structure: Structure,
+    material: MooneyRivlin | HyperelasticModel,
+    pressure_mpa: float,
+    *,
+    mu_wire: float,
+    mu_wall: float,
+    mu_wire_wall: float,
+    mu_static: float | None = None,
+    cable_ea_n: float = defaults.CABLE_EA_N,
+    ends: str = "fixed",
+    displacement_mm: float = 1.0,
+    cycles: int = 1,
+    section: bool = False,
+    accuracy: str | None = None,
+    mesh: Any = None,
+    n_z: int = defaults.PULLOUT_Z_ELEMENTS,
+    n_path: int = defaults.PULLOUT_PATH_STEPS,
+    line_stick_rel: float = defaults.PULLOUT_LINE_STICK_REL,
+    squeeze_result: SqueezeResult | None = None,
+    squeeze_index: int = -1,
+    first_loading: bool = False,
+) -> PulloutResult | SectionPullout:
+    """Pull the wire through the tube: F(delta) at the pulled end, breakaway, sliding (N, mm).
+
+    Parameters
+    ----------
+    structure, material, pressure_mpa, ends
+        As :func:`section_pullout` (mm, MPa).
+    mu_wire, mu_wall, mu_wire_wall : float
+        Kinetic Coulomb coefficients (unitless, [0, 2]) tube-wire, tube-wall, wire-wall.
+    mu_static : float, optional
+        Static coefficient of the wire's interfaces (unitless, >= ``mu_wire``); every slider
+        of the section law holds ``mu_static / mu_wire`` x its kinetic capacity until it
+        slides. Default: ``mu_wire`` (no static peak).
+    cable_ea_n : float
+        Cable axial stiffness EA (N), default :data:`exofric.defaults.CABLE_EA_N`.
+    displacement_mm : float
+        Amplitude D of the pulled end (mm), 0 < D <= L: path 0 -> D, then ``cycles`` x
+        (D -> -D -> D).
+    cycles : int
+        Back-and-forth cycles (>= 0).
+    section : bool
+        Return the per-unit-length :class:`SectionPullout` only.
+    accuracy, mesh
+        The squeeze's accuracy level or explicit mesh.
+    n_z, n_path : int
+        Cable elements along L; steps per displacement D of the path.
+    line_stick_rel : float
+        Stick spring of the wire-wall line contact relative to the section's initial
+        stiffness (unitless; the rigid limit as it grows).
+    squeeze_result, squeeze_index
+        A solved squeeze (fields kept) to start from.
+    first_loading : bool
+        Only the first leg 0 -> ``displacement_mm``, finely stepped up to past the estimated
+        breakaway (``cycles`` ignored): what the knee's stiffness is read on.
+
+    Returns
+    -------
+    PulloutResult or SectionPullout
+
+    Raises
+    ------
+    InputError
+        Bad coefficients, ``mu_static < mu_wire``, a displacement outside (0, L], EA <= 0.
+
+    Examples
+    --------
+    >>> from exofric.geometry import BASE
+    >>> from exofric.material import MooneyRivlin
+    >>> r = pullout(BASE, MooneyRivlin.from_shore(62.5), 0.6, mu_wire=0.3, mu_wall=0.5,
+    ...             mu_wire_wall=0.2, mu_static=0.36, displacement_mm=3.0, accuracy="draft")
+    >>> bool(r.static_force_n > r.sliding_force_n)
+    True
+    """
+    mw, _, mww = _check_pull(mu_wire, mu_wall, mu_wire_wall, ends)
+    ms = _check_static(mu_static, mw, mww)
+    ea = check_positive("cable_ea_n", cable_ea_n, "N")
+    L = structure.length_mm
+    dmax = float(displacement_mm)
+    if not (math.isfinite(dmax) and 0.0 < dmax <= L):
+        raise InputError(f"displacement_mm must be in (0, {L:g}] mm (the tube length), got "
+                         f"{displacement_mm!r}", param="displacement_mm")
+    if int(cycles) < 0:
+        raise InputError(f"cycles must be >= 0, got {cycles}", param="cycles")
+    if dmax > 10.0:
+        warn_implausible(f"displacement_mm = {dmax:g} mm: the squeeze state is held, which "
+                         "assumes the wire's travel is small against the tube's length")
+    sec = section_pullout(structure, material, pressure_mpa, mu_wire=mw, mu_wall=mu_wall,
+                          mu_wire_wall=mww, ends=ends, accuracy=accuracy, mesh=mesh,
+                          squeeze_result=squeeze_result, squeeze_index=squeeze_index)
+    if section:
+        return sec
+    path = _first_loading(sec, L, ea, dmax, int(n_path)) if first_loading else None
+    return _length_from_section(sec, L, ea, ms / mw if mw > 0 else 1.0, dmax, int(cycles),
+                                int(n_z), int(n_path), line_stick_rel, ms, path)
+
+
+def _first_loading(sec: SectionPullout, L: float, ea: float, dmax: float, n: int) -> np.ndarray:
+    """The first leg 0 -> dmax (mm) with ``n`` steps up to past the estimated breakaway.
+
+    The breakaway comes near the section's full-slip displacement plus the cable's stretch
+    under the whole-length sliding force (L q_slide L / (2 EA)); K(P) is read on that branch,
+    so the steps resolve it wherever it lies in [0, dmax]; ``n // 4`` steps cover the rest.
+    """
+    ds = sec.slip_displacement_mm if math.isfinite(sec.slip_displacement_mm) else dmax
+    d_b = min(dmax, 1.5 * ds + sec.sliding_force_n_per_mm * L * L / (2.0 * ea))
+    head = np.linspace(0.0, d_b, n + 1)
+    if d_b >= dmax:
+        return head
+    return np.concatenate([head, np.linspace(d_b, dmax, max(n // 4, 2) + 1)[1:]])
+
+
+def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float, dmax: float,
+                         cycles: int, n_z: int, n_path: int, line_rel: float,
+                         ms: float, path: np.ndarray | None = None) -> PulloutResult:
+    line_cap = sec.mu_wire_wall * sec.squeeze_force_n_per_mm
+    k0 = sec.initial_stiffness_n_per_mm2
+    law = _iwan(sec.displacement_mm, sec.tube_force_n_per_mm, line_cap,
+                line_rel * max(k0, 1e-12))
+    if path is None:
+        path = _path(dmax, cycles, n_path)
+    notes = list(sec.notes)
+    if law.k.size == 0:
+        return PulloutResult(path, np.zeros_like(path), 0.0, 0.0, np.zeros_like(path), L, ea,
+                             ms, sec, tuple(notes))
+    forces, us, full = _shear_lag(law, ea, L, path, ratio, n_z)
+    z = np.linspace(0.0, L, n_z + 1)
+    slip_len = np.array([float(z[f].max()) + L / n_z / 2 if np.any(f) else 0.0 for f in full])
+    slip_len = np.minimum(slip_len, L)
+    first = slice(0, int(np.argmax(path)) + 1)
+    return PulloutResult(path, forces, float(np.max(forces[first])),
+                         float(L * sec.sliding_force_n_per_mm), slip_len, L, ea, ms, sec,
+                         tuple(notes))
