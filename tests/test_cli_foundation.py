@@ -85,3 +85,22 @@ def test_bare_exofric_prints_help_without_an_empty_error_line(cli) -> None:
     assert r.code == 0, r.err
     assert "Usage" in r.out and "reduce" in r.out
     assert "error" not in r.err
+
+
+def test_missing_optional_dependency_names_its_extra(monkeypatch, capsys):
+    """A command that needs an extra `make demo` does not install (issue 34: `exofric sweep`
+    after `make demo` said 'internal error ... please report it'): one line naming the extra,
+    exit 2."""
+    import typer
+
+    import exofric.cli as cli
+
+    class Command:
+        def main(self, *_args, **_kwargs):
+            raise ModuleNotFoundError("No module named 'pyarrow'", name="pyarrow")
+
+    monkeypatch.setattr(typer.main, "get_command", lambda _app: Command())
+    code = cli.run(["sweep", "x.toml"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert "pip install 'exofric[dask]'" in err[0] and "internal error" not in err[0]

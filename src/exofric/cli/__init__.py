@@ -183,6 +183,14 @@ def run(argv: Sequence[str] | None = None) -> int:
             head = "stopped" if getattr(exc, "vent_confirmed", True) else "VENT NOT CONFIRMED"
             print(f"exofric: {head}: {' '.join(str(exc).split())}", file=sys.stderr)
             return int(getattr(exc, "exit_code", 4))
+        missing = str(getattr(exc, "name", "") or "") if isinstance(exc, ModuleNotFoundError) \
+            else ""
+        extra = _EXTRA_OF.get(missing.split(".")[0])
+        if extra is not None:   # an optional dependency, not a bug: name what installs it
+            print(f"exofric: error: this needs the optional package {missing!r} (not installed "
+                  f"by `make demo`): pip install 'exofric[{extra}]', or `make test`, which "
+                  "installs every extra", file=sys.stderr)
+            return 2
         if os.environ.get("EXOFRIC_DEBUG"):
             raise
         # A bug, not the user's input: one line, never a traceback (EXOFRIC_DEBUG=1 shows it).
@@ -194,6 +202,13 @@ def run(argv: Sequence[str] | None = None) -> int:
     if code == 130:        # typer turns Ctrl-C into exit code 130 (a control loop vented first)
         print("exofric: interrupted", file=sys.stderr)
     return code
+
+
+#: Optional packages -> the extra of pyproject.toml that installs them (``make demo`` installs
+#: the runtime dependencies only; ``make test`` every extra).
+_EXTRA_OF = {"pyarrow": "dask", "dask": "dask", "distributed": "dask", "nptdms": "tdms",
+             "openpyxl": "xlsx", "pymodbus": "hardware", "serial": "hardware",
+             "playwright": "report", "felupe": "bench", "tensortrax": "bench"}
 
 
 def _is_fe(args: list[str]) -> bool:

@@ -50,7 +50,8 @@ def settings_from(skip_mm: float, skip_s: float, plateau_tol: float,
 COLUMNS_OPTION = typer.Option(
     None, "--columns", help="Map your headers to exofric's: time=t,pressure_kpa=P1,force_n=Fx "
     "(units: pressure mpa/kpa/pa/bar/mbar/psi, force n/kn/kgf/lbf, displacement mm/m/um/in, "
-    "time s/ms/min).")
+    "time s/ms/min). Headers such as 'Time (s)', 'Pressure [kPa]' or a units row are read "
+    "without it.")
 SKIP_MM_OPTION = typer.Option(D.REDUCE_SKIP_MM, "--skip-mm", help="Travel in mm left out at the "
                               "start of each pull (stretch, breakaway) before the steady window.")
 SKIP_S_OPTION = typer.Option(D.REDUCE_SKIP_S, "--skip-s", help="Time in s left out at the start "

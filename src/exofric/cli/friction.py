@@ -227,7 +227,8 @@ def _register_fit(app: typer.Typer) -> None:
                                   "affine (F = gamma N + F0)."),
         ci: str = typer.Option("auto", help="95% CI: auto (cluster with replicates, else "
                                "analytic), analytic (t x HC3), ols, bootstrap (pairs), cluster "
-                               "(CR3 over pressure plateaus) or odr (errors in pressure too)."),
+                               "(CR2, Bell-McCaffrey dof, over pressure plateaus) or odr (errors "
+                               "in pressure too)."),
         pressure_sd: float | None = typer.Option(None, "--pressure-sd", help="Pressure error sd "
                                                  "in MPa for --ci odr (raw logs: each pull's "
                                                  "standard error)."),
