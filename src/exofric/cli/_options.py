@@ -4,14 +4,17 @@ command's module). Units: MPa for material constants.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+import typer
 
 from exofric.cli._common import parse_floats
 
 if TYPE_CHECKING:
     from exofric.material import HyperelasticModel, MooneyRivlin
 
-__all__ = ["MODEL_HELP", "PARAMS_HELP", "material_from_options"]
+__all__ = ["C01_OPTION", "C10_OPTION", "D_OPTION", "MODEL_HELP", "MODEL_OPTION", "PARAMS_HELP",
+           "PARAMS_OPTION", "SHORE_OPTION", "material_from_options"]
 
 MODEL_HELP = ("Hyperelastic model instead of the Shore route: neo-hookean, mooney-rivlin, yeoh "
               "or ogden (ogden1-3; constants from --params; --d optional). Not with "
@@ -65,3 +68,13 @@ def material_from_options(
         shore if (c10, c01, d) == (None, None, None) else None,
         correlation if (c10, c01, d) == (None, None, None) else None,
     )
+
+
+# The material option group: every command that builds a tube material takes these six (then
+# material_from_options); declared once.
+SHORE_OPTION: Any = typer.Option(None, help="Shore A hardness (Eqs 3-6).")
+C10_OPTION: Any = typer.Option(None, help="Override C10 (MPa).")
+C01_OPTION: Any = typer.Option(None, help="Override C01 (MPa).")
+D_OPTION: Any = typer.Option(None, help="Override d (1/MPa).")
+MODEL_OPTION: Any = typer.Option(None, "--model", help=MODEL_HELP)
+PARAMS_OPTION: Any = typer.Option(None, "--params", help=PARAMS_HELP)

@@ -16,7 +16,15 @@ from exofric.cli._common import (
     plot_path,
     write_outputs,
 )
-from exofric.cli._options import MODEL_HELP, PARAMS_HELP, material_from_options
+from exofric.cli._options import (
+    C01_OPTION,
+    C10_OPTION,
+    D_OPTION,
+    MODEL_OPTION,
+    PARAMS_OPTION,
+    SHORE_OPTION,
+    material_from_options,
+)
 
 
 def register(app: typer.Typer) -> None:
@@ -26,15 +34,15 @@ def register(app: typer.Typer) -> None:
     def inflate_cmd(
         tube_od: float = typer.Option(..., help="Tube outer diameter d1 (mm)."),
         tube_id: float = typer.Option(..., help="Tube inner diameter (mm)."),
-        shore: float = typer.Option(None, help="Shore A hardness (Eqs 3-6)."),
+        shore: float = SHORE_OPTION,
         pressures: str = typer.Option(
             "0.1,0.2,0.3,0.4,0.5,0.6", help="Comma-separated increasing pressures (MPa)."
         ),
-        c10: float = typer.Option(None, help="Override C10 (MPa)."),
-        c01: float = typer.Option(None, help="Override C01 (MPa)."),
-        d: float = typer.Option(None, help="Override d (1/MPa)."),
-        model: str = typer.Option(None, "--model", help=MODEL_HELP),
-        params: str = typer.Option(None, "--params", help=PARAMS_HELP),
+        c10: float = C10_OPTION,
+        c01: float = C01_OPTION,
+        d: float = D_OPTION,
+        model: str = MODEL_OPTION,
+        params: str = PARAMS_OPTION,
         accuracy: str = typer.Option(
             None, help="Accuracy level: draft, standard or fine (two nested meshes, error "
             f"estimate of the diameters; default {defaults.ACCURACY}). Not with --n-radial."),

@@ -8,7 +8,15 @@ import typer
 
 from exofric import defaults
 from exofric.cli._common import JSON_OPTION, console, emit, parse_floats, plot_path, save_figure
-from exofric.cli.inflate import MODEL_HELP, PARAMS_HELP, material_from_options
+from exofric.cli._options import (
+    C01_OPTION,
+    C10_OPTION,
+    D_OPTION,
+    MODEL_OPTION,
+    PARAMS_OPTION,
+    SHORE_OPTION,
+    material_from_options,
+)
 
 ENDS_HELP = ("Tube ends: fixed (end fittings hold the tube axially) or free (the tube may slide "
              "on the hole wall once its wall arc slides).")
@@ -41,12 +49,12 @@ def register(app: typer.Typer) -> None:
         cycles: int = typer.Option(1, help="Back-and-forth cycles D -> -D -> D."),
         section: bool = typer.Option(False, "--section", help="Only the per-unit-length "
                                      "problem (N/mm vs mm)."),
-        shore: float = typer.Option(None, help="Shore A hardness (Eqs 3-6)."),
-        c10: float = typer.Option(None, help="Override C10 (MPa)."),
-        c01: float = typer.Option(None, help="Override C01 (MPa)."),
-        d: float = typer.Option(None, help="Override d (1/MPa)."),
-        model: str = typer.Option(None, "--model", help=MODEL_HELP),
-        params: str = typer.Option(None, "--params", help=PARAMS_HELP),
+        shore: float = SHORE_OPTION,
+        c10: float = C10_OPTION,
+        c01: float = C01_OPTION,
+        d: float = D_OPTION,
+        model: str = MODEL_OPTION,
+        params: str = PARAMS_OPTION,
         accuracy: str = typer.Option(None, help="Squeeze accuracy: draft, standard or fine."),
         plot: Path = typer.Option(None, help="PNG: force against displacement."),
         as_json: bool = JSON_OPTION,
@@ -104,12 +112,12 @@ def register(app: typer.Typer) -> None:
         ends: str = typer.Option("fixed", "--ends", help=ENDS_HELP),
         displacement: float = typer.Option(3.0, help="Pulled-end travel (mm) of each pull "
                                            "(must pass the breakaway)."),
-        shore: float = typer.Option(None, help="Shore A hardness (Eqs 3-6)."),
-        c10: float = typer.Option(None, help="Override C10 (MPa)."),
-        c01: float = typer.Option(None, help="Override C01 (MPa)."),
-        d: float = typer.Option(None, help="Override d (1/MPa)."),
-        model: str = typer.Option(None, "--model", help=MODEL_HELP),
-        params: str = typer.Option(None, "--params", help=PARAMS_HELP),
+        shore: float = SHORE_OPTION,
+        c10: float = C10_OPTION,
+        c01: float = C01_OPTION,
+        d: float = D_OPTION,
+        model: str = MODEL_OPTION,
+        params: str = PARAMS_OPTION,
         accuracy: str = typer.Option(None, help="Squeeze accuracy: draft, standard or fine."),
         plot: Path = typer.Option(None, help="PNG: K(P) and T_break(P)."),
         as_json: bool = JSON_OPTION,

@@ -7,7 +7,15 @@ from pathlib import Path
 import typer
 
 from exofric.cli._common import JSON_OPTION, console, emit, narrow_table, plot_path, save_figure
-from exofric.cli._options import MODEL_HELP, PARAMS_HELP, material_from_options
+from exofric.cli._options import (
+    C01_OPTION,
+    C10_OPTION,
+    D_OPTION,
+    MODEL_OPTION,
+    PARAMS_OPTION,
+    SHORE_OPTION,
+    material_from_options,
+)
 
 #: Most load steps the CLI accepts (each a converged output point).
 MAX_STEPS = 200
@@ -22,12 +30,12 @@ def register(app: typer.Typer) -> None:
         ring_id: float = typer.Option(..., "--id", help="Ring (tube) inner diameter (mm)."),
         width: float = typer.Option(..., "--width", help="Ring width: its axial length (mm)."),
         pin: float = typer.Option(..., "--pin", help="Pin diameter (mm), < --id."),
-        shore: float = typer.Option(None, help="Shore A hardness (Eqs 3-6)."),
-        c10: float = typer.Option(None, help="Override C10 (MPa)."),
-        c01: float = typer.Option(None, help="Override C01 (MPa)."),
-        d: float = typer.Option(None, help="Override d (1/MPa)."),
-        model: str = typer.Option(None, "--model", help=MODEL_HELP),
-        params: str = typer.Option(None, "--params", help=PARAMS_HELP),
+        shore: float = SHORE_OPTION,
+        c10: float = C10_OPTION,
+        c01: float = C01_OPTION,
+        d: float = D_OPTION,
+        model: str = MODEL_OPTION,
+        params: str = PARAMS_OPTION,
         section: str = typer.Option(
             "plane-stress", help="plane-stress (default: the ring's faces are free; exact for a "
             "narrow ring), generalised-plane-strain (a wide ring: one uniform axial stretch, "

@@ -19,7 +19,15 @@ from exofric.cli._common import (
     save_figure,
     write_outputs,
 )
-from exofric.cli._options import MODEL_HELP, PARAMS_HELP, material_from_options
+from exofric.cli._options import (
+    C01_OPTION,
+    C10_OPTION,
+    D_OPTION,
+    MODEL_OPTION,
+    PARAMS_OPTION,
+    SHORE_OPTION,
+    material_from_options,
+)
 
 DEFAULT_P = ",".join(f"{0.05 * i:.2f}" for i in range(1, 13))
 
@@ -50,12 +58,12 @@ def register(app: typer.Typer) -> None:
         tube_od: float = typer.Option(..., help="Tube outer diameter d1 (mm)."),
         tube_id: float = typer.Option(..., help="Tube inner diameter (mm)."),
         wire: float = typer.Option(..., help="Wire diameter d2 (mm)."),
-        shore: float = typer.Option(None, help="Shore A hardness (Eqs 3-6)."),
-        c10: float = typer.Option(None, help="Override C10 (MPa)."),
-        c01: float = typer.Option(None, help="Override C01 (MPa)."),
-        d: float = typer.Option(None, help="Override d (1/MPa)."),
-        model: str = typer.Option(None, "--model", help=MODEL_HELP),
-        params: str = typer.Option(None, "--params", help=PARAMS_HELP),
+        shore: float = SHORE_OPTION,
+        c10: float = C10_OPTION,
+        c01: float = C01_OPTION,
+        d: float = D_OPTION,
+        model: str = MODEL_OPTION,
+        params: str = PARAMS_OPTION,
         length: float = typer.Option(116.0, help="Tube length L (mm) for total forces."),
         pressures: str = typer.Option(DEFAULT_P, help="Increasing pressures (MPa)."),
         accuracy: str = typer.Option(
