@@ -452,3 +452,15 @@ PULLOUT_LINE_STICK_REL: Final = 1e3
 __all__ += ["CABLE_EA_N", "PULLOUT_CREEP_TOL_MM", "PULLOUT_LINE_STICK_REL",
             "PULLOUT_PATH_STEPS", "PULLOUT_SECTION_STEPS", "PULLOUT_STICK_PENALTY_N_PER_MM3",
             "PULLOUT_Z_ELEMENTS"]
+
+
+# --- The paper's two constants that serve as defaults ----------------------------------------
+#: Poisson's ratio behind the compressibility d of the paper's Eq 6 (unitless): silicone as
+#: nearly incompressible, d = 2 (1 - 2 nu) / mu.
+POISSON: Final = 0.498
+#: The paper's equivalent friction coefficient gamma (Eq 7, unitless), the default wherever a
+#: gamma is needed and none is given; equal to ``exofric.paper.scalar("gamma")``
+#: (tests/test_defaults_literals.py).
+PAPER_GAMMA: Final = 0.7168
+
+__all__ += ["PAPER_GAMMA", "POISSON"]

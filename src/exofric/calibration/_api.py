@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from exofric import defaults as D
 from exofric.calibration._methods import Evaluator, bisection, bounded, joint, known_hardness
 from exofric.calibration._models import (
     DEFAULT_MODEL,
@@ -90,7 +91,7 @@ def calibrate(
     model: str | ModelFn = DEFAULT_MODEL,
     correlation: str = "paper",
     c01_ratio: float = 0.05,
-    poisson: float = 0.498,
+    poisson: float = D.POISSON,
     c10_convention: C10Convention = "eq4",
     xtol: float = 0.01,
     ends: str = "plane-strain",

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
+from exofric import defaults as D
 from exofric.errors import InputError, check_positive, check_pressures
 from exofric.material import MooneyRivlin
 
@@ -119,7 +120,7 @@ def material_for(
     *,
     correlation: str = "paper",
     c01_ratio: float = 0.05,
-    poisson: float = 0.498,
+    poisson: float = D.POISSON,
     c10_convention: C10Convention = "eq4",
 ) -> MooneyRivlin:
     """Mooney-Rivlin constants (MPa, 1/MPa) for a trial Shore A hardness (Eqs 3-6).
@@ -208,7 +209,7 @@ def make_model(
     *,
     correlation: str = "paper",
     c01_ratio: float = 0.05,
-    poisson: float = 0.498,
+    poisson: float = D.POISSON,
     c10_convention: C10Convention = "eq4",
     mesh: MeshSpec | None = None,
     ends: str = "plane-strain",

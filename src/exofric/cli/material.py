@@ -7,6 +7,7 @@ from typing import Any
 
 import typer
 
+from exofric import defaults as D
 from exofric.cli._common import (
     JSON_OPTION,
     console,
@@ -29,7 +30,7 @@ def register(app: typer.Typer) -> None:
             "paper", help="Shore -> E0 correlation: paper (Eq 3), gent, qi, astm-log10."
         ),
         c01_ratio: float = typer.Option(0.05, help="C01/C10 ratio (Eq 5), in [0, 1]."),
-        poisson: float = typer.Option(0.498, help="Poisson's ratio nu (Eq 6), in (0, 0.5)."),
+        poisson: float = typer.Option(D.POISSON, help="Poisson's ratio nu (Eq 6), in (0, 0.5)."),
         model: str | None = typer.Option(
             None, help="With --fit/--treloar: neo-hookean, mooney-rivlin, yeoh, ogden (with "
             "--terms), ogden1, ogden2, ogden3."),

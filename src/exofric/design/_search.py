@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from exofric import defaults as D
 from exofric.errors import InputError, check_finite, check_positive, check_range
 from exofric.friction import FrictionModel, SqueezeCurve
 
@@ -364,7 +365,7 @@ def search_designs(
         vals = frame[col].dropna().unique() if col in frame else np.array([])
         return float(vals[0]) if len(vals) else default
 
-    g = check_positive("gamma", gamma if gamma is not None else _from_frame("gamma", 0.7168))
+    g = check_positive("gamma", gamma if gamma is not None else _from_frame("gamma", D.PAPER_GAMMA))
     f0 = check_finite("f0_n (N)", f0_n if f0_n is not None else _from_frame("f0_n", 0.0))
     m = design_metrics(frame, t, r, pmax, g, f0)
     if objective == "pressure":

@@ -131,7 +131,7 @@ class MaterialSpec:
 
     correlation: str = "paper"
     c01_ratio: float = 0.05
-    poisson: float = 0.498
+    poisson: float = defaults.POISSON
 
     def material(self, shore: float) -> MooneyRivlin:
         """:meth:`MooneyRivlin.from_shore` with these options (constants in MPa, 1/MPa).
@@ -244,7 +244,7 @@ class SweepSpec:
     name: str
     pressures_mpa: tuple[float, ...]
     designs: tuple[Design, ...]
-    gamma: float = 0.7168
+    gamma: float = defaults.PAPER_GAMMA
     f0_n: float = 0.0
     arm_radius_m: float = 0.10
     threshold_pct: float = 20.0
@@ -384,7 +384,7 @@ def _material(t: Mapping[str, Any]) -> MaterialSpec:
     _known("[material]", t, ("correlation", "c01_ratio", "poisson"))
     m = MaterialSpec(str(t.get("correlation", "paper")),
                      _num("[material] c01_ratio", t.get("c01_ratio", 0.05)),
-                     _num("[material] poisson", t.get("poisson", 0.498)))
+                     _num("[material] poisson", t.get("poisson", defaults.POISSON)))
     m.material(62.5)  # validates the options once (InputError names the bad one)
     return m
 
@@ -525,7 +525,7 @@ def parse_sweep(data: Mapping[str, Any], *, name: str = "sweep") -> SweepSpec:
         name=str(data.get("name", name)),
         pressures_mpa=tuple(float(x) for x in np.asarray(p)),
         designs=tuple(out),
-        gamma=check_positive("gamma", _num("gamma", data.get("gamma", 0.7168))),
+        gamma=check_positive("gamma", _num("gamma", data.get("gamma", defaults.PAPER_GAMMA))),
         f0_n=_num("f0_n", data.get("f0_n", 0.0)),
         arm_radius_m=check_positive("arm_radius_m", _num("arm_radius_m",
                                                          data.get("arm_radius_m", 0.10)), "m"),

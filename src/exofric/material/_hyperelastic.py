@@ -67,7 +67,7 @@ HYPERELASTIC_MODELS: dict[str, tuple[str, ...]] = {
 }
 
 #: Default Poisson ratio behind the default d (the paper's, Eq 6).
-_POISSON = 0.498
+_POISSON = defaults.POISSON
 
 
 def _mode_stretches(mode: str, lam: Any) -> tuple[Any, Any, Any]:

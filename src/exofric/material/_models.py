@@ -302,7 +302,7 @@ class MooneyRivlin:
         shore: float,
         correlation: str = "paper",
         c01_ratio: float = 0.05,
-        poisson: float = 0.498,
+        poisson: float = defaults.POISSON,
         c10_divisor: float | None = None,
     ) -> MooneyRivlin:
         """Build the material from Shore A hardness by the paper's Eqs 3-6.

@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from exofric import defaults as D
 from exofric import paper
 from exofric.calibration import (
     CalibrationResult,
@@ -120,7 +121,7 @@ def stage_table2() -> Table2Stage:
     shore = float(printed["shore"])
     mat = MooneyRivlin.from_shore(shore)
     slip = material_for(shore, c10_convention="paper-slip")
-    poisson = 0.498
+    poisson = D.POISSON
     ours: dict[str, Any] = {**mat.to_dict(), "shore": shore, "poisson": poisson}
     ours_slip: dict[str, Any] = {**slip.to_dict(), "shore": shore, "poisson": poisson}
     labels = {
