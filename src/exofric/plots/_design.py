@@ -100,23 +100,63 @@ def plot_design_map(
     'design-map.png'
     """
     import numpy as np
-    from matplotlib.lines import Line2D
 
     t = search.table
     dx, dy = map_axes(t)
     x, y = x or dx, y or dy
-    # every design is drawn: one panel per combination of the other varying dimensions
-    # (only dimensions that vary within a cell: a tube ID scaled with d1 adds no panels)
+    facet_cols, combos = _facets(t, x, y)
+    n = len(combos)
+    ncol = min(n, 3)
+    nrow = -(-n // ncol)
+    fig, axes, created = _panels(ax, n, nrow, ncol)
+    lo, hi = float(t["torque_at_pmax_nm"].min()), float(t["torque_at_pmax_nm"].max())
+    reach = t["reaches_target"].to_numpy(bool) if "reaches_target" in t else \
+        (t["torque_at_pmax_nm"] >= search.target_torque_nm).to_numpy(bool)
+    t = t.assign(_reach=reach)
+    sc = None
+    for a, combo in zip(axes, combos, strict=True):
+        pairs: list[tuple[str, Any]] = list(zip(facet_cols, combo, strict=True))
+        sel = np.ones(len(t), bool)
+        for c, w in pairs:
+            sel &= (t[c] == w).to_numpy()
+        sc = _draw_panel(a, t[sel], x, y, lo, hi, pairs, search.best, skipped) or sc
+    for i, a in enumerate(axes):
+        if i // ncol == nrow - 1 or i + ncol >= n:
+            a.set_xlabel(_LABELS.get(x, x))
+        if i % ncol == 0:
+            a.set_ylabel(_LABELS.get(y, y))
+    if sc is not None:
+        fig.colorbar(sc, ax=axes, label=f"torque at {search.pmax_mpa:g} MPa (Nm)", shrink=0.9)
+    handles = _legend_handles(search, skipped)
+    head = (f"Target {search.target_torque_nm:g} Nm, R = {search.arm_radius_m:g} m, gamma = "
+            f"{search.gamma:g}, pmax = {search.pmax_mpa:g} MPa; numbers: torque (Nm); "
+            f"{len(t)} designs")
+    if created:
+        fig.suptitle(head, fontsize=SMALL + 1)
+        fig.legend(handles=handles, fontsize=SMALL, loc="outside lower center", ncol=2,
+                   frameon=False)
+    else:
+        axes[0].set_title(head if n == 1 else axes[0].get_title(), fontsize=SMALL)
+        axes[-1].legend(handles=handles, fontsize=SMALL - 1, loc="best")
+    return axes[0]
+
+
+def _facets(t: pd.DataFrame, x: str, y: str) -> tuple[list[str], list[tuple[Any, ...]]]:
+    """The dimensions other than x and y that vary within a cell, and their combinations (one
+    panel each; a tube ID scaled with d1 adds none)."""
     facet_cols: list[str] = []
     for c in _AXIS_ORDER:
         if c not in (x, y) and t.groupby([x, y, *facet_cols])[c].nunique().max() > 1:
             facet_cols.append(c)
     combos = (list(t.groupby(facet_cols, sort=True).groups) if facet_cols else [()])
-    combos = [c if isinstance(c, tuple) else (c,) for c in combos]
-    v: Any
-    n = len(combos)
-    ncol = min(n, 3)
-    nrow = -(-n // ncol)
+    return facet_cols, [c if isinstance(c, tuple) else (c,) for c in combos]
+
+
+def _panels(ax: Any | None, n: int, nrow: int, ncol: int) -> tuple[Any, list[Any], bool]:
+    """(figure, the n panel Axes, whether the figure is new): a new figure, or the caller's
+    Axes split into the panels."""
+    import numpy as np
+
     if ax is None:
         import matplotlib.pyplot as plt
 
@@ -137,54 +177,51 @@ def plot_design_map(
             axes = [fig.add_subplot(gs[i // ncol, i % ncol]) for i in range(nrow * ncol)]
     for extra in axes[n:]:
         extra.remove()
-    axes = axes[:n]
-    lo, hi = float(t["torque_at_pmax_nm"].min()), float(t["torque_at_pmax_nm"].max())
-    reach = t["reaches_target"].to_numpy(bool) if "reaches_target" in t else \
-        (t["torque_at_pmax_nm"] >= search.target_torque_nm).to_numpy(bool)
-    t = t.assign(_reach=reach)
+    return fig, axes[:n], created
+
+
+def _draw_panel(a: Any, sub: pd.DataFrame, x: str, y: str, lo: float, hi: float,
+                pairs: list[tuple[str, Any]], best: Any, skipped: pd.DataFrame | None) -> Any:
+    """One panel: the designs (torque in Nm as colour and number; square if it reaches the
+    target; edge by the validated region), impossible ones, the best; its scatter or None."""
+    import numpy as np
+
     sc = None
-    best = search.best
-    for a, combo in zip(axes, combos, strict=True):
-        sel = np.ones(len(t), bool)
-        for c, v in zip(facet_cols, combo, strict=True):
-            sel &= (t[c] == v).to_numpy()
-        sub = t[sel]
-        for reached, marker in ((True, "s"), (False, "o")):
-            part = sub[sub["_reach"] == reached]
-            if not len(part):
-                continue
-            sc = a.scatter(part[x], part[y], c=part["torque_at_pmax_nm"], cmap="viridis",
-                           vmin=lo, vmax=hi, s=330 if reached else 260, marker=marker,
-                           edgecolors=["black" if v else "red"
-                                       for v in part["in_validated_region"].to_numpy(bool)],
-                           linewidths=1.8, zorder=3)
-        for _, r in sub.iterrows():
-            a.annotate(f"{r['torque_at_pmax_nm']:.0f}", (r[x], r[y]), ha="center", va="center",
-                       fontsize=SMALL - 1, zorder=4,
-                       color="white" if r["torque_at_pmax_nm"] < 0.5 * (lo + hi) else "black")
-        if skipped is not None and len(skipped):
-            ok = np.ones(len(skipped), bool)
-            for c, v in zip(facet_cols, combo, strict=True):
-                ok &= (skipped[c] == v).to_numpy()
-            sk = skipped[ok]
-            if len(sk):
-                a.scatter(sk[x], sk[y], marker="x", s=50, color="0.5", zorder=2)
-        pairs: list[tuple[str, Any]] = list(zip(facet_cols, combo, strict=True))
-        if best is not None and all(best[c] == w for c, w in pairs):
-            a.scatter([best[x]], [best[y]], marker="*", s=140, color="orange", edgecolors="k",
-                      zorder=5, transform=a.transData)
-        if facet_cols:
-            a.set_title(", ".join(f"{_SHORT.get(c, c)} = {w:g}" for c, w in pairs),
-                        fontsize=SMALL + 1)
-        a.margins(0.25)
-        a.grid(alpha=0.3)
-    for i, a in enumerate(axes):
-        if i // ncol == nrow - 1 or i + ncol >= n:
-            a.set_xlabel(_LABELS.get(x, x))
-        if i % ncol == 0:
-            a.set_ylabel(_LABELS.get(y, y))
-    if sc is not None:
-        fig.colorbar(sc, ax=axes, label=f"torque at {search.pmax_mpa:g} MPa (Nm)", shrink=0.9)
+    for reached, marker in ((True, "s"), (False, "o")):
+        part = sub[sub["_reach"] == reached]
+        if not len(part):
+            continue
+        sc = a.scatter(part[x], part[y], c=part["torque_at_pmax_nm"], cmap="viridis",
+                       vmin=lo, vmax=hi, s=330 if reached else 260, marker=marker,
+                       edgecolors=["black" if v else "red"
+                                   for v in part["in_validated_region"].to_numpy(bool)],
+                       linewidths=1.8, zorder=3)
+    for _, r in sub.iterrows():
+        a.annotate(f"{r['torque_at_pmax_nm']:.0f}", (r[x], r[y]), ha="center", va="center",
+                   fontsize=SMALL - 1, zorder=4,
+                   color="white" if r["torque_at_pmax_nm"] < 0.5 * (lo + hi) else "black")
+    if skipped is not None and len(skipped):
+        ok = np.ones(len(skipped), bool)
+        for c, w in pairs:
+            ok &= (skipped[c] == w).to_numpy()
+        sk = skipped[ok]
+        if len(sk):
+            a.scatter(sk[x], sk[y], marker="x", s=50, color="0.5", zorder=2)
+    if best is not None and all(best[c] == w for c, w in pairs):
+        a.scatter([best[x]], [best[y]], marker="*", s=140, color="orange", edgecolors="k",
+                  zorder=5, transform=a.transData)
+    if pairs:
+        a.set_title(", ".join(f"{_SHORT.get(c, c)} = {w:g}" for c, w in pairs),
+                    fontsize=SMALL + 1)
+    a.margins(0.25)
+    a.grid(alpha=0.3)
+    return sc
+
+
+def _legend_handles(search: DesignSearch, skipped: pd.DataFrame | None) -> list[Any]:
+    """The legend's entries: what the marker shapes, edges, crosses and the star mean."""
+    from matplotlib.lines import Line2D
+
     tgt = f"{search.target_torque_nm:g} Nm"
     handles = [
         Line2D([], [], marker="s", ls="none", ms=11, mfc="0.8", mec="k", mew=1.5,
@@ -199,16 +236,8 @@ def plot_design_map(
     if skipped is not None and len(skipped):
         handles.append(Line2D([], [], marker="x", ls="none", color="0.5",
                               label="impossible design"))
+    best = search.best
     if best is not None:
         handles.append(Line2D([], [], marker="*", ls="none", ms=13, mfc="orange", mec="k",
                               label=f"best ({search.objective}): {best['name']}"))
-    head = (f"Target {tgt}, R = {search.arm_radius_m:g} m, gamma = {search.gamma:g}, "
-            f"pmax = {search.pmax_mpa:g} MPa; numbers: torque (Nm); {len(t)} designs")
-    if created:
-        fig.suptitle(head, fontsize=SMALL + 1)
-        fig.legend(handles=handles, fontsize=SMALL, loc="outside lower center", ncol=2,
-                   frameon=False)
-    else:
-        axes[0].set_title(head if n == 1 else axes[0].get_title(), fontsize=SMALL)
-        axes[-1].legend(handles=handles, fontsize=SMALL - 1, loc="best")
-    return axes[0]
+    return handles
