@@ -46,10 +46,11 @@ import time
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
+from exofric import defaults as D
 from exofric._lsq import correlation as correlation_matrix
 from exofric._lsq import lsq_covariance, standard_errors
 from exofric.errors import (
@@ -1130,6 +1131,431 @@ def _stability(fitted: HyperelasticModel, fe_max_stretch: float,
     return stab, notes
 
 
+# --------------------------------------------------------------------------------------------
+# The steps of calibrate_material
+
+
+class _ShorePrior(NamedTuple):
+    """The Shore A prior: hardness (Shore A), its mu (MPa), sd of ln mu (unitless), sd (Shore A).
+
+    A tuple, so :class:`_Problem` reads it by position as before (``prior[1]`` is mu in MPa).
+    """
+
+    shore: float
+    mu_mpa: float
+    sd_ln: float
+    shore_sd: float
+
+
+@dataclass(frozen=True)
+class _Tube:
+    """The tube of the inflation/ring models: OD, ID start and fixed ID (mm), fit flag."""
+
+    od_mm: float | None
+    id_start_mm: float | None
+    id_fixed_mm: float | None
+    fit_id: bool
+    needed: bool
+
+
+@dataclass(frozen=True)
+class _Start:
+    """Start, bounds and magnitude floors of the fitted parameters (each in its unit), and the
+    relative finite-difference step (unitless)."""
+
+    x0: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    floors: np.ndarray
+    step_rel: float
+
+    def steps(self, x: np.ndarray) -> np.ndarray:
+        """Finite-difference steps at ``x`` (each parameter's unit)."""
+        return self.step_rel * np.maximum(np.abs(x), self.floors)
+
+
+@dataclass(frozen=True)
+class _Optimum:
+    """The optimiser's end: parameters (their units), scaled residuals and half their sum of
+    squares (unitless), whether it converged, and its notes."""
+
+    x: np.ndarray
+    residuals: np.ndarray
+    cost: float
+    converged: bool
+    notes: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class _Uncertainty:
+    """The fit's covariance: Jacobian of the scaled residuals, s^2 (unitless), covariance,
+    standard errors and correlation of the parameters, standard error of mu (MPa), notes."""
+
+    jac: np.ndarray
+    s2: float
+    cov: np.ndarray
+    stderr: np.ndarray
+    correlation: np.ndarray
+    shear_modulus_stderr_mpa: float
+    notes: tuple[str, ...]
+
+
+def _noise_levels(inflation_noise_rel: float | None, tensile_noise_rel: float | None,
+                  ring_noise_rel: float | None, stderr_from: str | None
+                  ) -> tuple[dict[str, float], str]:
+    """Noise level per dataset kind (unitless fractions) and the covariance scale's source."""
+    if stderr_from is not None and stderr_from not in ("residuals", "noise"):
+        raise InputError(f"stderr_from must be residuals or noise, got {stderr_from!r}",
+                         param="stderr_from")
+    noise = {"inflation": _noise("inflation", inflation_noise_rel),
+             "tensile": _noise("tensile", tensile_noise_rel),
+             "ring": _noise("ring", ring_noise_rel)}
+    if stderr_from is None:
+        given = (inflation_noise_rel, tensile_noise_rel, ring_noise_rel)
+        stderr_from = "noise" if any(v is not None for v in given) else "residuals"
+    return noise, stderr_from
+
+
+def _datasets_in(inflation: Any, tensile: Any, stress_kind: str | Mapping[str, str], ring: Any
+                 ) -> tuple[InflationData | None, dict[str, tuple[np.ndarray, np.ndarray]]]:
+    """The checked inflation data (pressure MPa, OD mm; or None) and tensile curves (stretch,
+    nominal stress MPa) per mode; the ring's type checked and at least one dataset given."""
+    tens = _tensile_data(tensile, stress_kind)
+    data = None
+    if inflation is not None:
+        from exofric.calibration._api import _as_data
+
+        data = _as_data(inflation)
+        if data.shore is not None:
+            raise InputError("inflation data with a shore column: give the hardness as "
+                             "shore_prior instead", param="inflation")
+    if ring is not None and not isinstance(ring, RingTest):
+        raise InputError(f"ring must be a RingTest, got {type(ring).__name__}", param="ring")
+    if data is None and not tens and ring is None:
+        raise InputError("calibrate_material needs at least one dataset: inflation, tensile or "
+                         "ring (a Shore prior alone is not data)", param="inflation")
+    return data, tens
+
+
+def _tube(tube_od_mm: float | None, tube_id_mm: float | None, fit_tube_id: bool, *,
+          inflation: bool, ring: RingTest | None) -> _Tube:
+    """The tube's OD and ID (mm, checked) and whether the ID is fitted (inflation data or a
+    ring of the tube's ID); the ID's start is 0.6 OD when not given."""
+    if not (inflation or ring is not None):
+        od = check_positive("tube_od_mm", tube_od_mm, "mm") if tube_od_mm is not None else None
+        return _Tube(od, None, None, fit_id=False, needed=False)
+    ring_od = ring.ring_od_mm if ring is not None else None
+    if tube_od_mm is None and ring_od is None:
+        raise InputError("tube_od_mm is required with inflation or ring data (mm)",
+                         param="tube_od_mm")
+    od_in = tube_od_mm if tube_od_mm is not None else ring_od
+    assert od_in is not None
+    od = check_positive("tube_od_mm", od_in, "mm")
+    tid0 = None
+    if tube_id_mm is not None:
+        tid0 = check_positive("tube_id_mm", tube_id_mm, "mm")
+        if tid0 >= od:
+            raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {tid0:g}",
+                             param="tube_id_mm")
+    uses_id = inflation or (ring is not None and ring.ring_id_mm is None)
+    fit_id = bool(fit_tube_id) and uses_id
+    tid_fixed = None
+    if uses_id and not fit_id:
+        if tid0 is None:
+            raise InputError("tube_id_mm is required (mm) when the tube ID is not fitted",
+                             param="tube_id_mm")
+        tid_fixed = tid0
+    if ring is not None and ring.ring_id_mm is None and tid_fixed is not None:
+        check_pin(ring.pin_mm, tid_fixed)
+    return _Tube(od, tid0 if tid0 is not None else 0.6 * od, tid_fixed, fit_id=fit_id,
+                 needed=True)
+
+
+def _shore_prior(shore_prior: float | None, shore_sd: float, correlation: str
+                 ) -> _ShorePrior | None:
+    """The Shore A prior on mu = E(Shore) / 3 (MPa) and its sd on ln mu, or None."""
+    if shore_prior is None:
+        return None
+    from exofric.material import shore_to_modulus
+
+    s = check_range("shore_prior", shore_prior, 0.0, 100.0, lo_open=True, hi_open=True)
+    sd = check_range("shore_sd", shore_sd, 0.0, 50.0, lo_open=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        e0 = shore_to_modulus(s, correlation)
+        e_hi = shore_to_modulus(min(s + sd, 99.9), correlation)
+        e_lo = shore_to_modulus(max(s - sd, 0.1), correlation)
+    sd_ln = 0.5 * abs(math.log(e_hi) - math.log(e_lo))
+    return _ShorePrior(s, e0 / 3.0, sd_ln, sd)
+
+
+def _start_modulus(name: str, tens: dict[str, tuple[np.ndarray, np.ndarray]],
+                   prior: _ShorePrior | None, data: InflationData | None, tube: _Tube
+                   ) -> tuple[float, list[float] | None]:
+    """Start shear modulus mu0 (MPa): of a tensile-only fit (whose parameters, in their units,
+    are then the start), else the prior's, else the closed-form inflation's, else 1 MPa."""
+    if tens:
+        from exofric.material import fit_material
+
+        x_model: list[float] | None = None
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                start_fit = fit_material(name, tens.get("uniaxial"), tens.get("biaxial"),
+                                         tens.get("planar"), allow_unstable=True)
+            x_model = list(start_fit.model.params)
+            mu0 = start_fit.model.shear_modulus_mpa
+        except InputError:
+            mu0 = _mu_from_tensile(tens)
+        return mu0, x_model
+    if prior is not None:
+        return prior.mu_mpa, None
+    if data is not None and tube.od_mm is not None and tube.id_start_mm is not None:
+        return _mu_from_inflation(data, tube.od_mm, tube.id_start_mm) or 1.0, None
+    return 1.0, None
+
+
+def _id_bounds(od: float, ring: RingTest | None) -> tuple[float, float]:
+    """Bounds (mm) of a fitted tube ID: 2-98 % of the OD (mm), above the pin of a ring of the
+    tube's ID."""
+    id_lo = 0.02 * od
+    if ring is not None and ring.ring_id_mm is None:
+        id_lo = max(id_lo, ring.pin_mm * 1.001)
+    id_hi = 0.98 * od
+    if id_lo >= id_hi:
+        raise InputError(f"pin_mm must be < the tube's inner diameter, which is < "
+                         f"{id_hi:g} mm, got {ring.pin_mm if ring else float('nan'):g}",
+                         param="pin_mm")
+    return id_lo, id_hi
+
+
+def _ring_only_start(prob: _Problem, x0: np.ndarray, lo: np.ndarray, hi: np.ndarray
+                     ) -> np.ndarray:
+    """The start (parameters in their units) with its MPa parameters rescaled so the ring
+    force (N) there meets the data's largest force, kept within the bounds."""
+    # force is linear in a common scale of the MPa parameters (displacement control and
+    # d ~ 1/mu): rescale the start so its force meets the data
+    assert prob.ring is not None
+    f = prob.predict(x0)
+    if f is None or not np.max(np.abs(f["ring"])) > 0:
+        return x0
+    ratio = float(np.max(np.abs(prob.ring.force_n)) / np.max(np.abs(f["ring"])))
+    mpa = np.array([n.endswith("_mpa") for n in prob.names])
+    return np.clip(np.where(mpa, x0 * ratio, x0), lo, hi)
+
+
+def _start_and_bounds(prob: _Problem, mu0: float, x_model: list[float] | None, tube: _Tube,
+                      fe: bool) -> _Start:
+    """Start, bounds and floors (each parameter's unit) of the model's parameters from mu0
+    (MPa) or a tensile fit's ``x_model``, then of the tube ID (mm) when fitted."""
+    x_start, lo, hi = _model_start(prob.name, mu0)
+    x0 = list(x_model if x_model is not None else x_start)
+    floors = _floors(prob.name, mu0)
+    if tube.fit_id:
+        assert tube.od_mm is not None and tube.id_start_mm is not None
+        id_lo, id_hi = _id_bounds(tube.od_mm, prob.ring)
+        x0.append(min(max(tube.id_start_mm, id_lo), id_hi))
+        lo.append(id_lo)
+        hi.append(id_hi)
+        floors = np.append(floors, 1e-3 * float(tube.od_mm))
+    lo_a, hi_a = np.asarray(lo, float), np.asarray(hi, float)
+    x0_a = np.clip(np.asarray(x0, float), lo_a, hi_a)
+    if (prob.ring is not None and prob.inflation is None and not prob.tensile
+            and prob.prior is None):
+        x0_a = _ring_only_start(prob, x0_a, lo_a, hi_a)
+    return _Start(x0_a, lo_a, hi_a, floors, 1e-5 if fe else 1e-7)
+
+
+def _optimise(prob: _Problem, start: _Start, fe: bool, max_nfev: int) -> _Optimum:
+    """Bounded least squares (scipy's trf) of the scaled residuals from the start; a start or
+    an end where a forward model fails is a ConvergenceError."""
+    from scipy.optimize import least_squares
+
+    if np.any(prob.residuals(start.x0) == _FAILED):
+        detail = prob.failures[-1] if prob.failures else "non-finite model values"
+        raise ConvergenceError(f"the forward models fail at the starting point: {detail}")
+    tol = 1e-10 if fe else 1e-14
+    res = least_squares(prob.residuals, start.x0,
+                        jac=lambda x: prob.jac(x, start.steps(x), start.lo, start.hi),
+                        bounds=(start.lo, start.hi), method="trf",
+                        x_scale=np.maximum(np.abs(start.x0), start.floors),
+                        ftol=tol, xtol=tol, gtol=tol, max_nfev=int(max_nfev))
+    x = np.asarray(res.x, dtype=float)
+    r = prob.residuals(x)
+    if np.any(r == _FAILED):
+        raise ConvergenceError("the joint calibration ended where a forward model fails: "
+                               + (prob.failures[-1] if prob.failures else ""))
+    converged = bool(res.status > 0)
+    notes = () if converged else (f"least squares stopped before converging ({res.message})",)
+    return _Optimum(x, r, 0.5 * float(r @ r), converged, notes)
+
+
+def _shear_modulus_stderr(name: str, x: np.ndarray, n_model: int, cov: np.ndarray) -> float:
+    """Standard error (MPa) of mu from the covariance of all p fitted parameters."""
+    grad_mu = np.zeros(x.size)  # mu is linear in the parameters of every model
+    mu_at = _unchecked(name, x[:n_model]).shear_modulus_mpa
+    for k in range(n_model):
+        e = np.zeros(n_model)
+        e[k] = 1.0
+        grad_mu[k] = _unchecked(name, x[:n_model] + e).shear_modulus_mpa - mu_at
+    return math.sqrt(max(float(grad_mu @ cov @ grad_mu), 0.0))
+
+
+def _uncertainty(prob: _Problem, opt: _Optimum, start: _Start, fe: bool,
+                 stderr_from: str) -> _Uncertainty:
+    """Covariance ``s^2 (J^T J)^+`` from the central-difference Jacobian at the optimum, with
+    ``s^2`` from the residuals (``2 cost / (n - p)``) or the noise levels (1)."""
+    x = opt.x
+    p, n = x.size, opt.residuals.size
+    steps = 1e2 * start.steps(x) if fe else 1e1 * start.steps(x)
+    J = prob.jac(x, steps, start.lo, start.hi, central=True)
+    dof = n - p
+    notes: tuple[str, ...] = ()
+    if stderr_from == "residuals" and dof <= 0:
+        notes = (f"{n} residuals for {p} parameters: standard errors from the noise levels",)
+    s2 = 2.0 * opt.cost / dof if stderr_from == "residuals" and dof > 0 else 1.0
+    cov = lsq_covariance(J, s2)
+    return _Uncertainty(J, s2, cov, standard_errors(cov), correlation_matrix(cov),
+                        _shear_modulus_stderr(prob.name, x, prob.n_model, cov), notes)
+
+
+def _eigen(J: np.ndarray, scales: np.ndarray, s2: float
+           ) -> tuple[np.ndarray, np.ndarray, float, np.ndarray, float]:
+    """Eigenvalues/vectors of ``J_r^T J_r`` (relative parameters, unitless), its condition
+    number, the worst direction (largest component positive) and its sd (relative step)."""
+    Jr = J * scales[None, :]
+    lam, vecs = np.linalg.eigh(Jr.T @ Jr)
+    lam = np.clip(lam, 0.0, None)
+    cond = math.sqrt(lam[-1] / lam[0]) if lam[0] > 0 else float("inf")
+    v = vecs[:, 0].copy()
+    if v[int(np.argmax(np.abs(v)))] < 0:
+        v = -v
+    sd_rel = math.sqrt(s2 / lam[0]) if lam[0] > 0 else float("inf")
+    return lam, vecs, cond, v, sd_rel
+
+
+def _max_correlation(corr: np.ndarray, names: tuple[str, ...]
+                     ) -> tuple[float, tuple[str, ...]]:
+    """The largest off-diagonal correlation (unitless, signed; NaN with one parameter) and
+    its pair of parameter names (empty with one parameter)."""
+    p = len(names)
+    if p <= 1:
+        return float("nan"), ()
+    off = np.abs(corr) * (1 - np.eye(p))
+    off = np.where(np.isfinite(off), off, 0.0)
+    i, j = np.unravel_index(int(np.argmax(off)), off.shape)
+    return float(corr[i, j]), (names[min(i, j)], names[max(i, j)])
+
+
+def _identifiability_reason(names: tuple[str, ...], v: np.ndarray, sd_rel: float, cond: float,
+                            maxc: float, pair: tuple[str, ...]) -> tuple[bool, str]:
+    """Whether the fit is identifiable (correlation and condition limits) and why (one line)."""
+    p = len(names)
+    why = []
+    if p > 1 and abs(maxc) > CORRELATION_LIMIT:
+        why.append(f"{pair[0]} and {pair[1]} correlate at {maxc:.4f} (|r| > "
+                   f"{CORRELATION_LIMIT:g})")
+    if cond > CONDITION_LIMIT:
+        why.append(f"condition number {cond:.3g} > {CONDITION_LIMIT:g}")
+    if why:
+        worst = ", ".join(f"{c:+.3f} {nm}" for nm, c in zip(names, v, strict=True))
+        return False, ("; ".join(why) + f": the data barely see the direction ({worst}) in "
+                       f"relative parameters, known to +-{100 * sd_rel:.3g} % (1 sd)")
+    return True, (f"max |correlation| {abs(maxc):.3f}, condition number {cond:.3g}" if p > 1
+                  else "one parameter")
+
+
+def _identifiability(prob: _Problem, x: np.ndarray, unc: _Uncertainty, floors: np.ndarray,
+                     profile_points: int, profile_span_sd: float) -> Identifiability:
+    """The identifiability report at the optimum ``x``: eigen-analysis in relative parameters
+    (scales ``max(|x|, floors)``, each parameter's unit), correlation, misfit profile."""
+    names = prob.names
+    scales = np.maximum(np.abs(x), floors)
+    lam, vecs, cond, v, sd_rel = _eigen(unc.jac, scales, unc.s2)
+    maxc, pair = _max_correlation(unc.correlation, names)
+    ok, reason = _identifiability_reason(names, v, sd_rel, cond, maxc, pair)
+    prof = prob.profile(x, v, scales, unc.s2, span_rel=None, span_sd=profile_span_sd,
+                        n_points=profile_points, sd_rel=sd_rel) if profile_points else None
+    return Identifiability(names, scales, lam, vecs, cond, v, sd_rel, maxc, pair, ok, reason,
+                           prof)
+
+
+def _identifiability_notes(ident: Identifiability, fit_id: bool, ring: RingTest | None
+                           ) -> list[str]:
+    """The note of a fit that is not identifiable, with a hint when a ring would help."""
+    if ident.identifiable:
+        return []
+    hint = ""
+    if fit_id and ring is None:
+        hint = (" A ring test (or a measured tube ID, or tensile data) separates modulus "
+                "from wall thickness.")
+    return [f"not identifiable: {ident.reason}.{hint}"]
+
+
+def _bound_notes(names: tuple[str, ...], x: np.ndarray, lo: np.ndarray, hi: np.ndarray
+                 ) -> list[str]:
+    """A note per parameter that stopped at a bound (values in each parameter's unit)."""
+    notes = []
+    for k in range(x.size):
+        span = hi[k] - lo[k]
+        near = min(x[k] - lo[k], hi[k] - x[k])
+        if np.isfinite(near) and near <= 1e-6 * (span if np.isfinite(span) else abs(x[k]) + 1):
+            notes.append(f"{names[k]} stopped at its bound {x[k]:.4g}: the standard errors are "
+                         "indicative only")
+    return notes
+
+
+def _checked_stability(prob: _Problem, x: np.ndarray, fe: bool, allow_unstable: bool
+                       ) -> tuple[HyperelasticModel, StabilityCheck, list[str]]:
+    """The fitted material, its Drucker check over the data's stretches (refused when unstable
+    unless allowed) and the notes of instability allowed or beyond the data."""
+    name = prob.name
+    try:
+        fitted = prob.material(x)
+    except InputError as exc:
+        raise InputError(f"the {name} fit gives an invalid material ({exc}); try another "
+                         "model", param="model") from None
+    stab, unmeasured = _stability(fitted, prob.max_stretch, prob.tensile, fe_data=fe)
+    notes = []
+    if not stab.stable:
+        where = ", ".join(f"{k} from stretch {v_:.3g}" for k, v_ in stab.unstable_from.items()
+                          if v_ is not None)
+        msg = (f"the {name} fit is Drucker-unstable (dP/dl <= 0) within the stretches the data "
+               f"reach, {stab.stretch_min:.3g}-{stab.stretch_max:.3g}: {where}")
+        if not allow_unstable:
+            raise InputError(f"model: {msg}; use another model or allow_unstable",
+                             param="model")
+        notes.append(msg)
+    return fitted, stab, notes + unmeasured
+
+
+def _dataset_fits(prob: _Problem, x: np.ndarray) -> dict[str, DatasetFit]:
+    """Data, fitted values and residual scale (each dataset's unit) per dataset and prior."""
+    pred = prob.predict(x)
+    assert pred is not None
+    meas = prob.measured()
+    noise = prob.noise
+    data, ring, prior = prob.inflation, prob.ring, prob.prior
+    datasets: dict[str, DatasetFit] = {}
+    if data is not None:
+        datasets["inflation"] = DatasetFit(
+            "inflation", "pressure_mpa", "outer_diameter_mm", data.pressure_mpa,
+            data.outer_diameter_mm, pred["inflation"],
+            noise["inflation"] * float(np.mean(data.outer_diameter_mm)), noise["inflation"])
+    for m, (lam_t, _) in prob.tensile.items():
+        datasets[m] = DatasetFit(m, "stretch", "stress_mpa", lam_t, meas[m], pred[m],
+                                 prob.scale[m], noise["tensile"])
+    if ring is not None:
+        datasets["ring"] = DatasetFit("ring", "displacement_mm", "force_n", ring.displacement_mm,
+                                      ring.force_n, pred["ring"], prob.scale["ring"],
+                                      noise["ring"])
+    if prior is not None:
+        datasets["shore-prior"] = DatasetFit("shore-prior", "shore", "shear_modulus_mpa",
+                                             np.array([prior[0]]), np.array([prior[1]]),
+                                             pred["shore-prior"], prior[2], prior[3])
+    return datasets
+
+
 def calibrate_material(
     model: str,
     *,
@@ -1148,7 +1574,7 @@ def calibrate_material(
     tensile_noise_rel: float | None = None,
     ring_noise_rel: float | None = None,
     stderr_from: str | None = None,
-    poisson: float = 0.498,
+    poisson: float = D.POISSON,
     allow_unstable: bool = False,
     profile_points: int = 9,
     profile_span_sd: float = 3.0,
@@ -1233,274 +1659,42 @@ def calibrate_material(
     >>> r.names, 0.19 < r.model.params[0] < 0.21
     (('c10_mpa',), True)
     """
-    from scipy.optimize import least_squares
-
     t0 = time.perf_counter()
     name = _model_name(model)
     ends = check_ends(ends)
-    if stderr_from is not None and stderr_from not in ("residuals", "noise"):
-        raise InputError(f"stderr_from must be residuals or noise, got {stderr_from!r}",
-                         param="stderr_from")
-    noise = {"inflation": _noise("inflation", inflation_noise_rel),
-             "tensile": _noise("tensile", tensile_noise_rel),
-             "ring": _noise("ring", ring_noise_rel)}
-    if stderr_from is None:
-        given = (inflation_noise_rel, tensile_noise_rel, ring_noise_rel)
-        stderr_from = "noise" if any(v is not None for v in given) else "residuals"
+    noise, stderr_from = _noise_levels(inflation_noise_rel, tensile_noise_rel, ring_noise_rel,
+                                       stderr_from)
     nu = check_range("poisson", poisson, 0.0, 0.5, lo_open=True, hi_open=True)
-    tens = _tensile_data(tensile, stress_kind)
-    data = None
-    if inflation is not None:
-        from exofric.calibration._api import _as_data
+    data, tens = _datasets_in(inflation, tensile, stress_kind, ring)
+    tube = _tube(tube_od_mm, tube_id_mm, fit_tube_id, inflation=data is not None, ring=ring)
+    prior = _shore_prior(shore_prior, shore_sd, correlation)
+    prob = _Problem(name, inflation=data, od=tube.od_mm, tube_id_fixed=tube.id_fixed_mm,
+                    fit_id=tube.fit_id, tensile=tens, ring=ring, prior=prior, noise=noise,
+                    ends=ends, poisson=nu, inflation_mesh=inflation_mesh, ring_mesh=ring_mesh)
+    fe = data is not None or ring is not None  # forward models by FE in the loop
 
-        data = _as_data(inflation)
-        if data.shore is not None:
-            raise InputError("inflation data with a shore column: give the hardness as "
-                             "shore_prior instead", param="inflation")
-    if ring is not None and not isinstance(ring, RingTest):
-        raise InputError(f"ring must be a RingTest, got {type(ring).__name__}", param="ring")
-    if data is None and not tens and ring is None:
-        raise InputError("calibrate_material needs at least one dataset: inflation, tensile or "
-                         "ring (a Shore prior alone is not data)", param="inflation")
-    od = None
-    needs_tube = data is not None or ring is not None
-    fit_id = False
-    tid_fixed = None
-    tid0 = None
-    if needs_tube:
-        ring_od = ring.ring_od_mm if ring is not None else None
-        if tube_od_mm is None and ring_od is None:
-            raise InputError("tube_od_mm is required with inflation or ring data (mm)",
-                             param="tube_od_mm")
-        od_in = tube_od_mm if tube_od_mm is not None else ring_od
-        assert od_in is not None
-        od = check_positive("tube_od_mm", od_in, "mm")
-        if tube_id_mm is not None:
-            tid0 = check_positive("tube_id_mm", tube_id_mm, "mm")
-            if tid0 >= od:
-                raise InputError(f"tube_id_mm must be < tube_od_mm ({od:g} mm), got {tid0:g}",
-                                 param="tube_id_mm")
-        uses_id = data is not None or (ring is not None and ring.ring_id_mm is None)
-        fit_id = bool(fit_tube_id) and uses_id
-        if uses_id and not fit_id:
-            if tid0 is None:
-                raise InputError("tube_id_mm is required (mm) when the tube ID is not fitted",
-                                 param="tube_id_mm")
-            tid_fixed = tid0
-        if ring is not None and ring.ring_id_mm is None and tid_fixed is not None:
-            check_pin(ring.pin_mm, tid_fixed)
-        if tid0 is None:
-            tid0 = 0.6 * od
-    elif tube_od_mm is not None:
-        od = check_positive("tube_od_mm", tube_od_mm, "mm")
-    prior = None
-    if shore_prior is not None:
-        from exofric.material import shore_to_modulus
-
-        s = check_range("shore_prior", shore_prior, 0.0, 100.0, lo_open=True, hi_open=True)
-        sd = check_range("shore_sd", shore_sd, 0.0, 50.0, lo_open=True)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            e0 = shore_to_modulus(s, correlation)
-            e_hi = shore_to_modulus(min(s + sd, 99.9), correlation)
-            e_lo = shore_to_modulus(max(s - sd, 0.1), correlation)
-        sd_ln = 0.5 * abs(math.log(e_hi) - math.log(e_lo))
-        prior = (s, e0 / 3.0, sd_ln, sd)
-    prob = _Problem(name, inflation=data, od=od, tube_id_fixed=tid_fixed, fit_id=fit_id,
-                    tensile=tens, ring=ring, prior=prior, noise=noise, ends=ends, poisson=nu,
-                    inflation_mesh=inflation_mesh, ring_mesh=ring_mesh)
-
-    # --- start and bounds -------------------------------------------------------------
-    from exofric.material import fit_material
-
-    x_model: list[float] | None = None
-    notes: list[str] = []
-    if tens:
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                start_fit = fit_material(name, tens.get("uniaxial"), tens.get("biaxial"),
-                                         tens.get("planar"), allow_unstable=True)
-            x_model = list(start_fit.model.params)
-            mu0 = start_fit.model.shear_modulus_mpa
-        except InputError:
-            mu0 = _mu_from_tensile(tens)
-    elif prior is not None:
-        mu0 = prior[1]
-    elif data is not None and od is not None and tid0 is not None:
-        mu0 = _mu_from_inflation(data, od, tid0) or 1.0
-    else:
-        mu0 = 1.0
-    start = _model_start(name, mu0)
-    if x_model is None:
-        x_model = list(start[0])
-    lo = list(start[1])
-    hi = list(start[2])
-    x0 = list(x_model)
-    if fit_id:
-        assert od is not None and tid0 is not None
-        id_lo = 0.02 * od
-        if ring is not None and ring.ring_id_mm is None:
-            id_lo = max(id_lo, ring.pin_mm * 1.001)
-        id_hi = 0.98 * od
-        if id_lo >= id_hi:
-            raise InputError(f"pin_mm must be < the tube's inner diameter, which is < "
-                             f"{id_hi:g} mm, got {ring.pin_mm if ring else float('nan'):g}",
-                             param="pin_mm")
-        x0.append(min(max(tid0, id_lo), id_hi))
-        lo.append(id_lo)
-        hi.append(id_hi)
-    lo_a, hi_a = np.asarray(lo, float), np.asarray(hi, float)
-    x0_a = np.clip(np.asarray(x0, float), lo_a, hi_a)
-    floors = _floors(name, mu0)
-    if fit_id:
-        floors = np.append(floors, 1e-3 * float(od or 1.0))
-    if ring is not None and data is None and not tens and prior is None:
-        # force is linear in a common scale of the MPa parameters (displacement control and
-        # d ~ 1/mu): rescale the start so its force meets the data
-        f = prob.predict(x0_a)
-        if f is not None and np.max(np.abs(f["ring"])) > 0:
-            ratio = float(np.max(np.abs(ring.force_n)) / np.max(np.abs(f["ring"])))
-            mpa = np.array([n.endswith("_mpa") for n in prob.names])
-            x0_a = np.where(mpa, x0_a * ratio, x0_a)
-            x0_a = np.clip(x0_a, lo_a, hi_a)
-    fe = data is not None or ring is not None
-    step_rel = 1e-5 if fe else 1e-7
-
-    def steps_at(x: np.ndarray) -> np.ndarray:
-        return step_rel * np.maximum(np.abs(x), floors)
-
-    if np.any(prob.residuals(x0_a) == _FAILED):
-        detail = prob.failures[-1] if prob.failures else "non-finite model values"
-        raise ConvergenceError(f"the forward models fail at the starting point: {detail}")
-
-    tol = 1e-10 if fe else 1e-14
-    res = least_squares(prob.residuals, x0_a,
-                        jac=lambda x: prob.jac(x, steps_at(x), lo_a, hi_a),
-                        bounds=(lo_a, hi_a), method="trf",
-                        x_scale=np.maximum(np.abs(x0_a), floors),
-                        ftol=tol, xtol=tol, gtol=tol, max_nfev=int(max_nfev))
-    x = np.asarray(res.x, dtype=float)
-    r = prob.residuals(x)
-    if np.any(r == _FAILED):
-        raise ConvergenceError("the joint calibration ended where a forward model fails: "
-                               + (prob.failures[-1] if prob.failures else ""))
-    cost = 0.5 * float(r @ r)
-    converged = bool(res.status > 0)
-    if not converged:
-        notes.append(f"least squares stopped before converging ({res.message})")
+    # --- start and bounds, the optimisation -------------------------------------------
+    mu0, x_model = _start_modulus(name, tens, prior, data, tube)
+    start = _start_and_bounds(prob, mu0, x_model, tube, fe)
+    opt = _optimise(prob, start, fe, max_nfev)
+    x = opt.x
 
     # --- uncertainty and identifiability ----------------------------------------------
-    names = prob.names
-    p = x.size
-    n = r.size
-    scales = np.maximum(np.abs(x), floors)
-    J = prob.jac(x, 1e2 * steps_at(x) if fe else 1e1 * steps_at(x), lo_a, hi_a, central=True)
-    dof = n - p
-    if stderr_from == "residuals" and dof <= 0:
-        notes.append(f"{n} residuals for {p} parameters: standard errors from the noise levels")
-    s2 = 2.0 * cost / dof if stderr_from == "residuals" and dof > 0 else 1.0
-    cov = lsq_covariance(J, s2)
-    se = standard_errors(cov)
-    corr = correlation_matrix(cov)
-    grad_mu = np.zeros(p)  # mu is linear in the parameters of every model
-    mu_at = _unchecked(name, x[: prob.n_model]).shear_modulus_mpa
-    for k in range(prob.n_model):
-        e = np.zeros(prob.n_model)
-        e[k] = 1.0
-        grad_mu[k] = _unchecked(name, x[: prob.n_model] + e).shear_modulus_mpa - mu_at
-    se_mu = math.sqrt(max(float(grad_mu @ cov @ grad_mu), 0.0))
-
-    Jr = J * scales[None, :]
-    lam, vecs = np.linalg.eigh(Jr.T @ Jr)
-    lam = np.clip(lam, 0.0, None)
-    cond = math.sqrt(lam[-1] / lam[0]) if lam[0] > 0 else float("inf")
-    v = vecs[:, 0].copy()
-    if v[int(np.argmax(np.abs(v)))] < 0:
-        v = -v
-    sd_rel = math.sqrt(s2 / lam[0]) if lam[0] > 0 else float("inf")
-    if p > 1:
-        off = np.abs(corr) * (1 - np.eye(p))
-        off = np.where(np.isfinite(off), off, 0.0)
-        i, j = np.unravel_index(int(np.argmax(off)), off.shape)
-        maxc = float(corr[i, j])
-        pair: tuple[str, ...] = (names[min(i, j)], names[max(i, j)])
-    else:
-        maxc, pair = float("nan"), ()
-    why = []
-    if p > 1 and abs(maxc) > CORRELATION_LIMIT:
-        why.append(f"{pair[0]} and {pair[1]} correlate at {maxc:.4f} (|r| > "
-                   f"{CORRELATION_LIMIT:g})")
-    if cond > CONDITION_LIMIT:
-        why.append(f"condition number {cond:.3g} > {CONDITION_LIMIT:g}")
-    ok = not why
-    worst = ", ".join(f"{c:+.3f} {nm}" for nm, c in zip(names, v, strict=True))
-    reason = ("; ".join(why) + f": the data barely see the direction ({worst}) in relative "
-              f"parameters, known to +-{100 * sd_rel:.3g} % (1 sd)") if why else \
-        (f"max |correlation| {abs(maxc):.3f}, condition number {cond:.3g}" if p > 1 else
-         "one parameter")
-    if not ok:
-        hint = ""
-        if fit_id and ring is None:
-            hint = (" A ring test (or a measured tube ID, or tensile data) separates modulus "
-                    "from wall thickness.")
-        notes.append(f"not identifiable: {reason}.{hint}")
-    prof = prob.profile(x, v, scales, s2, span_rel=None, span_sd=profile_span_sd,
-                        n_points=profile_points, sd_rel=sd_rel) if profile_points else None
-    ident = Identifiability(names, scales, lam, vecs, cond, v, sd_rel, maxc, pair, ok, reason,
-                            prof)
+    unc = _uncertainty(prob, opt, start, fe, stderr_from)
+    ident = _identifiability(prob, x, unc, start.floors, profile_points, profile_span_sd)
 
     # --- bounds, stability, result ----------------------------------------------------
-    for k in range(p):
-        span = hi_a[k] - lo_a[k]
-        near = min(x[k] - lo_a[k], hi_a[k] - x[k])
-        if np.isfinite(near) and near <= 1e-6 * (span if np.isfinite(span) else abs(x[k]) + 1):
-            notes.append(f"{names[k]} stopped at its bound {x[k]:.4g}: the standard errors are "
-                         "indicative only")
-    try:
-        fitted = prob.material(x)
-    except InputError as exc:
-        raise InputError(f"the {name} fit gives an invalid material ({exc}); try another "
-                         "model", param="model") from None
-    stab, unmeasured = _stability(fitted, prob.max_stretch, tens,
-                                  fe_data=data is not None or ring is not None)
-    if not stab.stable:
-        where = ", ".join(f"{k} from stretch {v_:.3g}" for k, v_ in stab.unstable_from.items()
-                          if v_ is not None)
-        msg = (f"the {name} fit is Drucker-unstable (dP/dl <= 0) within the stretches the data "
-               f"reach, {stab.stretch_min:.3g}-{stab.stretch_max:.3g}: {where}")
-        if not allow_unstable:
-            raise InputError(f"model: {msg}; use another model or allow_unstable",
-                             param="model")
-        notes.append(msg)
-    notes += unmeasured
-    pred = prob.predict(x)
-    assert pred is not None
-    meas = prob.measured()
-    datasets: dict[str, DatasetFit] = {}
-    if data is not None:
-        datasets["inflation"] = DatasetFit(
-            "inflation", "pressure_mpa", "outer_diameter_mm", data.pressure_mpa,
-            data.outer_diameter_mm, pred["inflation"],
-            noise["inflation"] * float(np.mean(data.outer_diameter_mm)), noise["inflation"])
-    for m, (lam_t, _) in tens.items():
-        datasets[m] = DatasetFit(m, "stretch", "stress_mpa", lam_t, meas[m], pred[m],
-                                 prob.scale[m], noise["tensile"])
-    if ring is not None:
-        datasets["ring"] = DatasetFit("ring", "displacement_mm", "force_n", ring.displacement_mm,
-                                      ring.force_n, pred["ring"], prob.scale["ring"],
-                                      noise["ring"])
-    if prior is not None:
-        datasets["shore-prior"] = DatasetFit("shore-prior", "shore", "shear_modulus_mpa",
-                                             np.array([prior[0]]), np.array([prior[1]]),
-                                             pred["shore-prior"], prior[2], prior[3])
-    tube_id = prob.tube_id(x) if needs_tube else None
+    fitted, stab, stab_notes = _checked_stability(prob, x, fe, allow_unstable)
+    notes = [*opt.notes, *unc.notes, *_identifiability_notes(ident, tube.fit_id, ring),
+             *_bound_notes(prob.names, x, start.lo, start.hi), *stab_notes]
+    datasets = _dataset_fits(prob, x)
     result = MaterialCalibration(
-        model=fitted, tube_od_mm=od, tube_id_mm=tube_id, tube_id_fitted=fit_id, names=names,
-        values=tuple(float(v_) for v_ in x), stderr=tuple(float(v_) for v_ in se),
-        correlation=corr, shear_modulus_stderr_mpa=se_mu, datasets=datasets,
-        identifiability=ident, stability=stab, cost=cost, stderr_from=stderr_from, ends=ends,
-        converged=converged, n_model_evaluations=prob.calls,
+        model=fitted, tube_od_mm=tube.od_mm, tube_id_mm=prob.tube_id(x) if tube.needed else None,
+        tube_id_fitted=tube.fit_id, names=prob.names, values=tuple(float(v_) for v_ in x),
+        stderr=tuple(float(v_) for v_ in unc.stderr), correlation=unc.correlation,
+        shear_modulus_stderr_mpa=unc.shear_modulus_stderr_mpa, datasets=datasets,
+        identifiability=ident, stability=stab, cost=opt.cost, stderr_from=stderr_from,
+        ends=ends, converged=opt.converged, n_model_evaluations=prob.calls,
         elapsed_s=time.perf_counter() - t0, notes=tuple(notes))
     object.__setattr__(result, "_problem", prob)
     for note in notes:
