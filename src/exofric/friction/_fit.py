@@ -697,6 +697,234 @@ def _odr(
     return beta, sd
 
 
+def _check_gamma_options(model: str, ci: str) -> ClusterVariant:
+    """Check ``model``, ``ci`` and the module's cluster variant; return the variant."""
+    if model not in ("proportional", "affine"):
+        raise InputError(f"model must be 'proportional' or 'affine', got {model!r}")
+    methods = ("auto", "analytic", "ols", "bootstrap", "cluster", "odr")
+    if ci not in methods:
+        raise InputError(f"ci must be one of {', '.join(methods)}, got {ci!r}")
+    variant = _CLUSTER_VARIANT
+    if variant not in _VARIANT_TEXT:
+        raise InputError(f"_CLUSTER_VARIANT must be 'cr1', 'cr3' or 'cr2bm', got {variant!r}")
+    return variant
+
+
+@dataclass(frozen=True)
+class _GammaPoints:
+    """The friction points a gamma fit uses (inside the squeeze curve, sorted by pressure).
+
+    ``p`` in MPa; ``n`` (squeeze force at ``p``) and ``f`` (friction) in N; ``lab`` the cluster
+    label per point, ``codes`` its code 0..g-1; ``sd_p`` (MPa) and ``sd_f`` (N) the points'
+    standard deviations for ``ci="odr"`` (else None); ``n_given`` the points given in all.
+    """
+
+    p: NDArray[np.float64]
+    n: NDArray[np.float64]
+    f: NDArray[np.float64]
+    lab: NDArray[Any]
+    codes: NDArray[np.intp]
+    g: int
+    replicates: bool
+    by_pressure: bool
+    n_given: int
+    sd_p: NDArray[np.float64] | None
+    sd_f: NDArray[np.float64] | None
+
+    @property
+    def m(self) -> int:
+        """Number of points used."""
+        return int(self.p.size)
+
+    @property
+    def what(self) -> str:
+        """What the clusters are, for the interval's note."""
+        return "pressure clusters" if self.by_pressure else "clusters"
+
+
+def _gamma_points(
+    friction_pressure_mpa: ArrayLike, friction_n: ArrayLike, squeeze_pressure_mpa: ArrayLike,
+    squeeze_force_n: ArrayLike, groups: ArrayLike | None, ci: str,
+    pressure_sd_mpa: ArrayLike | None, friction_sd_n: ArrayLike | None, model: str,
+    edge_tol: float,
+) -> _GammaPoints:
+    """Check the inputs, match N(P) (MPa, N) to the friction points and form the clusters."""
+    pf, ff = check_series("friction_pressure_mpa", friction_pressure_mpa, "friction_n",
+                          friction_n, x_unit="MPa", y_unit="N", increasing=False,
+                          min_points=1)
+    labels = None if groups is None else _labels(groups, pf.size)
+    sd_p_all = sd_f_all = None
+    if ci == "odr":
+        sd_p_all = _point_sd("pressure_sd_mpa", pressure_sd_mpa, pf.size, "MPa")
+        sd_f_all = _point_sd("friction_sd_n", friction_sd_n, pf.size, "N")
+    elif pressure_sd_mpa is not None or friction_sd_n is not None:
+        raise InputError("pressure_sd_mpa and friction_sd_n are only used with ci='odr', "
+                         f"got ci={ci!r}")
+    n_all, inside = match_squeeze(squeeze_pressure_mpa, squeeze_force_n, pf, edge_tol_mpa=edge_tol)
+    affine = model == "affine"
+    n_min = 3 if affine else 2
+    if int(inside.sum()) < n_min:
+        raise InputError(
+            f"only {int(inside.sum())} friction points lie inside the squeeze curve's pressure "
+            f"range; the {model} fit needs at least {n_min}"
+        )
+    order = np.argsort(pf[inside], kind="stable")
+    p, n, f = pf[inside][order], n_all[inside][order], ff[inside][order]
+    lab = p if labels is None else labels[inside][order]
+    codes, g = _factorize(lab)
+    replicates = bool(np.bincount(codes).max() >= 2)
+    if not np.any(n != 0.0) or (affine and np.ptp(n) == 0.0):
+        raise InputError("squeeze force is constant at the friction pressures; gamma is undefined")
+    return _GammaPoints(
+        p=p, n=n, f=f, lab=lab, codes=codes, g=g, replicates=replicates,
+        by_pressure=labels is None, n_given=int(pf.size),
+        sd_p=None if sd_p_all is None else sd_p_all[inside][order],
+        sd_f=None if sd_f_all is None else sd_f_all[inside][order],
+    )
+
+
+def _gamma_method(ci: CiMethod, pts: _GammaPoints, n_min: int, model: str
+                  ) -> tuple[CiMethod, str]:
+    """The interval method (``"auto"`` resolved) and the note's fallback clause, if any."""
+    g = pts.g
+    fallback = ""
+    method: CiMethod = ci
+    if ci == "auto":
+        method = "cluster" if pts.replicates and g >= n_min else "analytic"
+        if pts.replicates and g < n_min:
+            fallback = (f"; only {g} {pts.what} (a cluster-robust interval needs {n_min}), so "
+                        "replicates are treated as independent")
+    if method == "cluster" and g < n_min:
+        raise InputError(f"ci cluster needs at least {n_min} clusters for the {model} fit, "
+                         f"got {g}")
+    return method, fallback
+
+
+def _cluster_se(pts: _GammaPoints, beta: NDArray[np.float64], affine: bool,
+                variant: ClusterVariant, dof: int
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None, str]:
+    """Cluster-robust standard errors (unitless, N), Bell-McCaffrey dof (CR2) and the note."""
+    n, f, g = pts.n, pts.f, pts.g
+    x = np.column_stack([n, np.ones_like(n)]) if affine else n[:, None]
+    dofs = None
+    if variant == "cr2bm":
+        cov, dofs = _cr2_bm(x, f, beta, pts.codes, g)
+        se = np.sqrt(np.diag(cov))
+        dof_text = f"{dofs[0]:.1f} (Bell-McCaffrey)"
+    else:
+        se = np.sqrt(np.diag(_cluster_covariance(x, f, beta, pts.codes, g, variant)))
+        dof_text = str(dof)
+    note = (f"cluster-robust ({_VARIANT_TEXT[variant]}) over {g} {pts.what} of {pts.m} points; "
+            f"t with {dof_text} dof")
+    return se, dofs, note
+
+
+def _odr_se(pts: _GammaPoints, beta: NDArray[np.float64], affine: bool,
+            squeeze_pressure_mpa: ArrayLike, squeeze_force_n: ArrayLike, edge_tol: float,
+            dof: int) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
+    """The ODR estimate (gamma, F0 in N), its parameter sds and the note."""
+    assert pts.sd_p is not None and pts.sd_f is not None
+    curve = SqueezeCurve(squeeze_pressure_mpa, squeeze_force_n)
+    sd_p, sd_f = pts.sd_p, pts.sd_f
+    beta, sd = _odr(curve, pts.p, pts.f, sd_p, sd_f, beta, affine, edge_tol)
+    if float(beta[0]) <= 0:
+        raise InputError(f"ODR gamma = {float(beta[0]):.4g} is not positive; check the data")
+    note = (f"errors-in-variables (ODR; pressure sd {_sd_text(sd_p, 'MPa')}, friction "
+            f"sd {_sd_text(sd_f, 'N')}), parameter sd scaled by the residual variance; "
+            f"t with {dof} dof; {pts.m} points treated as independent")
+    return beta, sd, note
+
+
+def _t_interval(
+    method: CiMethod, pts: _GammaPoints, beta: NDArray[np.float64], affine: bool,
+    variant: ClusterVariant, fallback: str, squeeze: tuple[ArrayLike, ArrayLike],
+    edge_tol: float,
+) -> tuple[float, float, tuple[float, float], tuple[float, float] | None, str]:
+    """t x standard-error 95 % CIs: (gamma, F0 in N, gamma CI, F0 CI in N, note)."""
+    from scipy import stats
+
+    m, k = pts.m, (2 if affine else 1)
+    gamma, f0 = (float(v) for v in beta)
+    dof = (pts.g - 1) if method == "cluster" else (m - k)
+    dofs = np.full(k, float(dof))
+    if method == "cluster":
+        se, bm_dofs, note = _cluster_se(pts, beta[:k], affine, variant, dof)
+        if bm_dofs is not None:
+            dofs = bm_dofs
+    elif method == "odr":
+        beta, sd, note = _odr_se(pts, beta, affine, *squeeze, edge_tol, dof)
+        gamma, f0 = float(beta[0]), float(beta[1])
+        se = sd[:k]
+    else:
+        se = np.sqrt(np.diag(_covariance(pts.n, gamma * pts.n + f0 - pts.f, affine,
+                                         robust=method == "analytic")))
+        note = (("HC3 heteroscedasticity-robust" if method == "analytic" else
+                 "classical OLS (equal variances)")
+                + f"; t with {dof} dof; {m} points treated as independent" + fallback)
+    tq = [float(stats.t.ppf(0.975, d)) if d > 0 else float("nan") for d in dofs]
+    g_ci = (gamma - tq[0] * float(se[0]), gamma + tq[0] * float(se[0]))
+    f0_ci = (f0 - tq[1] * float(se[1]), f0 + tq[1] * float(se[1])) if affine else None
+    return gamma, f0, g_ci, f0_ci, note
+
+
+def _bootstrap_interval(pts: _GammaPoints, affine: bool, n_boot: int, seed: int
+                        ) -> tuple[tuple[float, float], tuple[float, float] | None, str]:
+    """Pairs-bootstrap percentile 95 % CIs of gamma and F0 (N), and the note."""
+    n, f, m = pts.n, pts.f, pts.m
+    rng = np.random.default_rng(seed)
+    # resamples in blocks of rows (about 2^21 indices each): memory linear in m, and the
+    # same index stream, so the same interval, as drawing all n_boot x m at once
+    block = max(1, _BOOT_BLOCK // m)
+    parts = []
+    for start in range(0, int(n_boot), block):
+        idx = rng.integers(0, m, size=(min(block, int(n_boot) - start), m))
+        nb, fb = n[idx], f[idx]
+        ok = (np.ptp(nb, axis=1) > 0) if affine else np.any(nb != 0, axis=1)
+        parts.append(_solve(nb[ok], fb[ok], affine))
+    est = np.concatenate(parts)
+    lo, hi = np.percentile(est, [2.5, 97.5], axis=0)
+    g_ci = (float(lo[0]), float(hi[0]))
+    f0_ci = (float(lo[1]), float(hi[1])) if affine else None
+    note = (f"pairs bootstrap over {m} points ({int(n_boot)} resamples, percentile); points "
+            "treated as independent")
+    return g_ci, f0_ci, note
+
+
+def _gamma_result(
+    pts: _GammaPoints, model: ModelKind, gamma: float, f0: float,
+    g_ci: tuple[float, float], f0_ci: tuple[float, float] | None, method: CiMethod,
+    note: str, lof: LackOfFit | None,
+) -> GammaFit:
+    """The :class:`GammaFit` of a fitted gamma (unitless) and F0 (N) with its error measures."""
+    p, n, f = pts.p, pts.n, pts.f
+    pred = gamma * n + f0
+    res = pred - f
+    rel = relative_errors(pred, f)
+    ok = np.isfinite(rel)
+    mean_rel = float(np.mean(np.abs(rel[ok]))) if np.any(ok) else float("nan")
+    rms_rel = float(100.0 * np.sqrt(float(res @ res) / float(f @ f))) if np.any(f) else float("nan")
+    p_tuple = _tuple(p)                 # shared by pressure_mpa and group (same values)
+    return GammaFit(
+        model=FrictionModel(gamma, f0),
+        kind=model,
+        gamma_ci95=g_ci,
+        f0_ci95_n=f0_ci,
+        ci_method=method,
+        pressure_mpa=p_tuple,
+        squeeze_force_n=_tuple(n),
+        friction_n=_tuple(f),
+        predicted_friction_n=_tuple(pred),
+        relative_error_pct=mean_rel,
+        max_relative_error_pct=_signed_max(rel),
+        relative_rms_residual_pct=rms_rel,
+        n_dropped=int(pts.n_given - pts.m),
+        n_clusters=pts.g,
+        lack_of_fit=lof,
+        ci_note=note,
+        group=p_tuple if pts.by_pressure else _tuple(np.asarray(pts.lab)),
+    )
+
+
 def fit_gamma(
     friction_pressure_mpa: ArrayLike,
     friction_n: ArrayLike,
@@ -777,136 +1005,26 @@ def fit_gamma(
     >>> rep.ci_method, rep.n_clusters, rep.lack_of_fit.df_pure_error
     ('cluster', 5, 20)
     """
-    from scipy import stats
-
-    if model not in ("proportional", "affine"):
-        raise InputError(f"model must be 'proportional' or 'affine', got {model!r}")
-    methods = ("auto", "analytic", "ols", "bootstrap", "cluster", "odr")
-    if ci not in methods:
-        raise InputError(f"ci must be one of {', '.join(methods)}, got {ci!r}")
-    variant = _CLUSTER_VARIANT
-    if variant not in _VARIANT_TEXT:
-        raise InputError(f"_CLUSTER_VARIANT must be 'cr1', 'cr3' or 'cr2bm', got {variant!r}")
+    variant = _check_gamma_options(model, ci)
     seed = check_seed("seed", seed)
-    pf, ff = check_series("friction_pressure_mpa", friction_pressure_mpa, "friction_n",
-                          friction_n, x_unit="MPa", y_unit="N", increasing=False,
-                          min_points=1)
-    labels = None if groups is None else _labels(groups, pf.size)
-    if ci == "odr":
-        sd_p_all = _point_sd("pressure_sd_mpa", pressure_sd_mpa, pf.size, "MPa")
-        sd_f_all = _point_sd("friction_sd_n", friction_sd_n, pf.size, "N")
-    elif pressure_sd_mpa is not None or friction_sd_n is not None:
-        raise InputError("pressure_sd_mpa and friction_sd_n are only used with ci='odr', "
-                         f"got ci={ci!r}")
     edge_tol = 0.005
-    n_all, inside = match_squeeze(squeeze_pressure_mpa, squeeze_force_n, pf, edge_tol_mpa=edge_tol)
+    pts = _gamma_points(friction_pressure_mpa, friction_n, squeeze_pressure_mpa,
+                        squeeze_force_n, groups, ci, pressure_sd_mpa, friction_sd_n, model,
+                        edge_tol)
     affine = model == "affine"
     n_min = 3 if affine else 2
-    if int(inside.sum()) < n_min:
-        raise InputError(
-            f"only {int(inside.sum())} friction points lie inside the squeeze curve's pressure "
-            f"range; the {model} fit needs at least {n_min}"
-        )
-    order = np.argsort(pf[inside], kind="stable")
-    p, n, f = pf[inside][order], n_all[inside][order], ff[inside][order]
-    lab = p if labels is None else labels[inside][order]
-    codes, g = _factorize(lab)
-    replicates = bool(np.bincount(codes).max() >= 2)
-    if not np.any(n != 0.0) or (affine and np.ptp(n) == 0.0):
-        raise InputError("squeeze force is constant at the friction pressures; gamma is undefined")
-    beta = _solve(n, f, affine)
+    beta = _solve(pts.n, pts.f, affine)
     gamma, f0 = (float(v) for v in beta)
     if gamma <= 0:
         raise InputError(f"fitted gamma = {gamma:.4g} is not positive; check the data pairing")
-    m, k = n.size, (2 if affine else 1)
-    lof = _lack_of_fit(f, f - (gamma * n + f0), codes, g, k) if replicates else None
-    what = "pressure clusters" if labels is None else "clusters"
-    fallback = ""
-    method: CiMethod = ci
-    if ci == "auto":
-        method = "cluster" if replicates and g >= n_min else "analytic"
-        if replicates and g < n_min:
-            fallback = (f"; only {g} {what} (a cluster-robust interval needs {n_min}), so "
-                        "replicates are treated as independent")
-    if method == "cluster" and g < n_min:
-        raise InputError(f"ci cluster needs at least {n_min} clusters for the {model} fit, "
-                         f"got {g}")
-    f0_ci: tuple[float, float] | None = None
+    k = 2 if affine else 1
+    lof = (_lack_of_fit(pts.f, pts.f - (gamma * pts.n + f0), pts.codes, pts.g, k)
+           if pts.replicates else None)
+    method, fallback = _gamma_method(ci, pts, n_min, model)
     if method in ("analytic", "ols", "cluster", "odr"):
-        dof = (g - 1) if method == "cluster" else (m - k)
-        dofs = np.full(k, float(dof))
-        if method == "cluster":
-            x = np.column_stack([n, np.ones_like(n)]) if affine else n[:, None]
-            if variant == "cr2bm":
-                cov, dofs = _cr2_bm(x, f, beta[:k], codes, g)
-                se = np.sqrt(np.diag(cov))
-                dof_text = f"{dofs[0]:.1f} (Bell-McCaffrey)"
-            else:
-                se = np.sqrt(np.diag(_cluster_covariance(x, f, beta[:k], codes, g, variant)))
-                dof_text = str(dof)
-            note = (f"cluster-robust ({_VARIANT_TEXT[variant]}) over {g} {what} of {m} points; "
-                    f"t with {dof_text} dof")
-        elif method == "odr":
-            curve = SqueezeCurve(squeeze_pressure_mpa, squeeze_force_n)
-            sd_p, sd_f = sd_p_all[inside][order], sd_f_all[inside][order]
-            beta, sd = _odr(curve, p, f, sd_p, sd_f, beta, affine, edge_tol)
-            gamma, f0 = float(beta[0]), float(beta[1])
-            if gamma <= 0:
-                raise InputError(f"ODR gamma = {gamma:.4g} is not positive; check the data")
-            se = sd[:k]
-            note = (f"errors-in-variables (ODR; pressure sd {_sd_text(sd_p, 'MPa')}, friction "
-                    f"sd {_sd_text(sd_f, 'N')}), parameter sd scaled by the residual variance; "
-                    f"t with {dof} dof; {m} points treated as independent")
-        else:
-            se = np.sqrt(np.diag(_covariance(n, gamma * n + f0 - f, affine,
-                                             robust=method == "analytic")))
-            note = (("HC3 heteroscedasticity-robust" if method == "analytic" else
-                     "classical OLS (equal variances)")
-                    + f"; t with {dof} dof; {m} points treated as independent" + fallback)
-        tq = [float(stats.t.ppf(0.975, d)) if d > 0 else float("nan") for d in dofs]
-        g_ci = (gamma - tq[0] * float(se[0]), gamma + tq[0] * float(se[0]))
-        if affine:
-            f0_ci = (f0 - tq[1] * float(se[1]), f0 + tq[1] * float(se[1]))
+        gamma, f0, g_ci, f0_ci, note = _t_interval(
+            method, pts, beta, affine, variant, fallback,
+            (squeeze_pressure_mpa, squeeze_force_n), edge_tol)
     else:
-        rng = np.random.default_rng(seed)
-        # resamples in blocks of rows (about 2^21 indices each): memory linear in m, and the
-        # same index stream, so the same interval, as drawing all n_boot x m at once
-        block = max(1, _BOOT_BLOCK // m)
-        parts = []
-        for start in range(0, int(n_boot), block):
-            idx = rng.integers(0, m, size=(min(block, int(n_boot) - start), m))
-            nb, fb = n[idx], f[idx]
-            ok = (np.ptp(nb, axis=1) > 0) if affine else np.any(nb != 0, axis=1)
-            parts.append(_solve(nb[ok], fb[ok], affine))
-        est = np.concatenate(parts)
-        lo, hi = np.percentile(est, [2.5, 97.5], axis=0)
-        g_ci = (float(lo[0]), float(hi[0]))
-        f0_ci = (float(lo[1]), float(hi[1])) if affine else None
-        note = (f"pairs bootstrap over {m} points ({int(n_boot)} resamples, percentile); points "
-                "treated as independent")
-    pred = gamma * n + f0
-    res = pred - f
-    rel = relative_errors(pred, f)
-    ok = np.isfinite(rel)
-    mean_rel = float(np.mean(np.abs(rel[ok]))) if np.any(ok) else float("nan")
-    rms_rel = float(100.0 * np.sqrt(float(res @ res) / float(f @ f))) if np.any(f) else float("nan")
-    p_tuple = _tuple(p)                 # shared by pressure_mpa and group (same values)
-    return GammaFit(
-        model=FrictionModel(gamma, f0),
-        kind=model,
-        gamma_ci95=g_ci,
-        f0_ci95_n=f0_ci,
-        ci_method=method,
-        pressure_mpa=p_tuple,
-        squeeze_force_n=_tuple(n),
-        friction_n=_tuple(f),
-        predicted_friction_n=_tuple(pred),
-        relative_error_pct=mean_rel,
-        max_relative_error_pct=_signed_max(rel),
-        relative_rms_residual_pct=rms_rel,
-        n_dropped=int(pf.size - m),
-        n_clusters=g,
-        lack_of_fit=lof,
-        ci_note=note,
-        group=p_tuple if labels is None else _tuple(np.asarray(lab)),
-    )
+        g_ci, f0_ci, note = _bootstrap_interval(pts, affine, n_boot, seed)
+    return _gamma_result(pts, model, gamma, f0, g_ci, f0_ci, method, note, lof)

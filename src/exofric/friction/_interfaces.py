@@ -780,6 +780,249 @@ def _scaled_condition(x: NDArray[np.float64]) -> float:
     return float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
 
 
+def _check_interface_options(tests: Sequence[InterfaceTest], model: str, ci: str,
+                             edge_tol_mpa: float, max_condition_number: float
+                             ) -> tuple[list[InterfaceTest], float, float]:
+    """Check the options; return the tests, the edge tolerance (MPa) and the kappa threshold."""
+    if model not in ("proportional", "affine"):
+        raise InputError(f"model must be 'proportional' or 'affine', got {model!r}")
+    methods = ("auto", "analytic", "ols", "cluster")
+    if ci not in methods:
+        raise InputError(f"ci must be one of {', '.join(methods)} for the interface law, got "
+                         f"{ci!r}")
+    tests = list(tests)
+    if not tests:
+        raise InputError("fit_interfaces needs at least one structure's tests")
+    for t in tests:
+        if not isinstance(t, InterfaceTest):
+            raise InputError("tests must be InterfaceTest objects (FE curves + friction "
+                             "points of one structure)", param="tests")
+    tol = check_range("edge_tol_mpa", edge_tol_mpa, 0.0, 0.1, unit="MPa")
+    kmax = check_range("max_condition_number", max_condition_number, 1.0, 1e9)
+    return tests, tol, kmax
+
+
+@dataclass(frozen=True)
+class _InterfacePoints:
+    """The points an interface fit uses: structure, P (MPa), S_wire, N, F (N), cluster label.
+
+    Each structure's points are sorted by pressure; ``labels`` join the block index and the
+    point's group (or pressure) with ``\\x1f``; ``n_given`` counts all points given.
+    """
+
+    names: tuple[str, ...]
+    p: NDArray[np.float64]
+    s: NDArray[np.float64]
+    n: NDArray[np.float64]
+    f: NDArray[np.float64]
+    labels: NDArray[Any]
+    n_given: int
+
+    @property
+    def m(self) -> int:
+        """Number of points used."""
+        return int(self.p.size)
+
+
+def _interface_points(tests: list[InterfaceTest], tol: float, model: str, k: int
+                      ) -> _InterfacePoints:
+    """Read S and N (N) off each structure's curves at its test pressures (MPa), in range."""
+    rows: list[tuple[str, float, float, float, float, str]] = []
+    n_all = 0
+    for i, t in enumerate(tests):
+        p = np.asarray(t.pressure_mpa)
+        f = np.asarray(t.friction_n)
+        s, n, inside = t.curves.at(p, edge_tol_mpa=tol)
+        n_all += p.size
+        lab = t.groups if t.groups else tuple(p.tolist())
+        name = t.curves.name or f"structure {i + 1}"
+        order = np.argsort(p, kind="stable")
+        for j in order:
+            if inside[j]:
+                rows.append((name, float(p[j]), float(s[j]), float(n[j]), float(f[j]),
+                             f"{i}\x1f{lab[j]}"))
+    m = len(rows)
+    if m < k + 1:
+        raise InputError(f"only {m} friction points lie inside the FE curves' pressure ranges; "
+                         f"the {model} interface fit needs at least {k + 1}")
+    return _InterfacePoints(
+        names=tuple(r[0] for r in rows), p=np.array([r[1] for r in rows]),
+        s=np.array([r[2] for r in rows]), n=np.array([r[3] for r in rows]),
+        f=np.array([r[4] for r in rows]), labels=np.array([r[5] for r in rows]),
+        n_given=n_all,
+    )
+
+
+def _interface_design(pts: _InterfacePoints, affine: bool) -> tuple[NDArray[np.float64], float]:
+    """The design [S, N (, 1)] (N) and its scaled condition number; InputError if singular."""
+    cols = [pts.s, pts.n] + ([np.ones(pts.m)] if affine else [])
+    x = np.column_stack(cols)
+    kappa = _scaled_condition(x)
+    if not kappa < 1e10:
+        raise InputError(
+            "wire_pressure_integral_n and squeeze_force_n are proportional (or zero) at the "
+            "test pressures, so mu_tube and mu_wall cannot be separated; fit gamma instead "
+            "(law gamma) or add a structure of different geometry")
+    return x, kappa
+
+
+def _interface_method(ci: str, replicates: bool, g: int, k: int, model: str
+                      ) -> tuple[str, str]:
+    """The interval method (``"auto"`` resolved) and the note's fallback clause, if any."""
+    method = ci
+    fallback = ""
+    if ci == "auto":
+        method = "cluster" if replicates and g > k else "analytic"
+        if replicates and g <= k:
+            fallback = (f"; only {g} clusters (a cluster-robust interval needs {k + 1}), so "
+                        "replicates are treated as independent")
+    if method == "cluster" and g <= k:
+        raise InputError(f"ci cluster needs at least {k + 1} clusters for the {model} "
+                         f"interface fit, got {g}")
+    return method, fallback
+
+
+def _interface_covariance(
+    method: str, x: NDArray[np.float64], f: NDArray[np.float64], beta: NDArray[np.float64],
+    codes: NDArray[np.intp], g: int, fallback: str,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
+    """Covariance of the coefficients (unitless, N), t dof per coefficient and the note."""
+    from exofric.friction import _fit as fitmod
+
+    m, k = x.shape
+    e = f - x @ beta
+    dofs = np.full(k, float(m - k))
+    if method == "cluster":
+        variant = fitmod._CLUSTER_VARIANT
+        if variant == "cr2bm":
+            cov, dofs = fitmod._cr2_bm(x, f, beta, codes, g)
+            dof_text = f"{dofs[0]:.1f} (Bell-McCaffrey)"
+        else:
+            cov = fitmod._cluster_covariance(x, f, beta, codes, g, variant)
+            dofs = np.full(k, float(g - 1))
+            dof_text = str(g - 1)
+        note = (f"cluster-robust ({fitmod._VARIANT_TEXT[variant]}) over {g} (structure, "
+                f"pressure) clusters of {m} points; t with {dof_text} dof")
+    elif method == "ols":
+        cov = lsq_covariance(x, residual_variance(e, k))
+        note = f"classical OLS (equal variances); t with {m - k} dof; points independent"
+    else:
+        cov = hc3_covariance(x, e)
+        note = (f"HC3 heteroscedasticity-robust; t with {m - k} dof; {m} points treated as "
+                "independent" + fallback)
+    return cov, dofs, note
+
+
+@dataclass(frozen=True)
+class _InterfaceInterval:
+    """The 95 % CI of an interface fit: method, note, standard errors, half-widths (unitless,
+    F0 in N), the t dof of mu_tube, the mu_tube-mu_wall correlation and the cluster count."""
+
+    method: str
+    note: str
+    se: NDArray[np.float64]
+    half: NDArray[np.float64]
+    dof: float
+    corr: float
+    n_clusters: int
+
+
+def _interface_interval(
+    method: str, x: NDArray[np.float64], f: NDArray[np.float64], beta: NDArray[np.float64],
+    codes: NDArray[np.intp], g: int, fallback: str,
+) -> _InterfaceInterval:
+    """t x standard-error 95 % CIs of the coefficients by ``method`` (F in N)."""
+    from scipy import stats
+
+    cov, dofs, note = _interface_covariance(method, x, f, beta, codes, g, fallback)
+    se = standard_errors(cov)
+    tq = np.array([float(stats.t.ppf(0.975, d)) if d > 0 else float("nan") for d in dofs])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        corr = float(cov[0, 1] / np.sqrt(cov[0, 0] * cov[1, 1]))
+    return _InterfaceInterval(method=method, note=note, se=se, half=tq * se,
+                              dof=float(dofs[0]), corr=corr, n_clusters=g)
+
+
+def _identifiability(kappa: float, kmax: float, corr: float, beta: NDArray[np.float64],
+                     half: NDArray[np.float64]) -> tuple[bool, str]:
+    """Whether mu_tube and mu_wall are separated (kappa, CI half-widths ``half``) and why."""
+    reasons = []
+    if kappa > kmax:
+        reasons.append(
+            f"the design is collinear: condition number {kappa:.3g} > {kmax:g} (estimate "
+            f"correlation {corr:.4f}); S_wire/N varies too little over the data "
+            "(one structure, or structures with like wrap ratios), so only their combination, "
+            "gamma, is determined; add a structure of different geometry")
+    for nm, b, h in (("mu_tube", beta[0], half[0]), ("mu_wall", beta[1], half[1])):
+        if not (np.isfinite(h) and h <= CI_REL_MAX * abs(b)):
+            reasons.append(f"{nm}'s 95 % CI [{b - h:.4g}, {b + h:.4g}] is wider than "
+                           f"+-{100 * CI_REL_MAX:g} % of its estimate")
+    if not reasons:
+        return True, (f"condition number {kappa:.3g} <= {kmax:g} and both 95 % CIs within "
+                      f"+-{100 * CI_REL_MAX:g} % of the estimates")
+    return False, "mu_tube and mu_wall are not separated by these data: " + "; ".join(reasons)
+
+
+def _interface_warnings(identifiable: bool, reason: str, beta: NDArray[np.float64]
+                        ) -> list[str]:
+    """The fit's warnings: not identifiable, a coefficient negative or above ``MU_WARN``."""
+    warns: list[str] = []
+    if not identifiable:
+        warns.append(reason)
+    for nm, b in (("mu_tube", beta[0]), ("mu_wall", beta[1])):
+        if b < 0:
+            warns.append(f"fitted {nm} = {b:.4g} is negative, which is unphysical: the data "
+                         "do not support the interface law as fitted (collinear design, "
+                         "model error or mispaired files)")
+        elif b > MU_WARN:
+            warns.append(f"fitted {nm} = {b:.4g} is above {MU_WARN:g}: implausible for a "
+                         "Coulomb coefficient; check the data pairing")
+    return [" ".join(w.split()) for w in warns]
+
+
+def _interface_result(
+    pts: _InterfacePoints, model: ModelKind, x: NDArray[np.float64],
+    beta: NDArray[np.float64], iv: _InterfaceInterval, kappa: float, kmax: float,
+    identifiable: bool, reason: str, warns: list[str], lof: Any,
+) -> InterfaceFit:
+    """The :class:`InterfaceFit`, with the pooled single-gamma fit of the same points."""
+    from exofric.friction import _fit as fitmod
+
+    affine = model == "affine"
+    m, f_used, se = pts.m, pts.f, iv.se
+    pred = x @ beta
+    e = f_used - pred
+    lo, hi = beta - iv.half, beta + iv.half
+    # pooled single-gamma comparison on the same points
+    xg = np.column_stack([pts.n] + ([np.ones(m)] if affine else []))
+    bg, *_ = np.linalg.lstsq(xg, f_used, rcond=None)
+    pred_g = xg @ bg
+    rel = fitmod.relative_errors(pred, f_used)
+    ok = np.isfinite(rel)
+    mean_rel = float(np.mean(np.abs(rel[ok]))) if np.any(ok) else float("nan")
+    rms = (float(100.0 * np.sqrt(float(e @ e) / float(f_used @ f_used)))
+           if np.any(f_used) else float("nan"))
+    return InterfaceFit(
+        kind=model,
+        mu_tube=float(beta[0]), mu_wall=float(beta[1]), f0_n=float(beta[2]) if affine else 0.0,
+        mu_tube_ci=(float(lo[0]), float(hi[0])), mu_wall_ci=(float(lo[1]), float(hi[1])),
+        f0_ci_n=(float(lo[2]), float(hi[2])) if affine else None,
+        mu_tube_se=float(se[0]), mu_wall_se=float(se[1]),
+        f0_se_n=float(se[2]) if affine else None,
+        correlation=iv.corr, condition_number=kappa, identifiable=identifiable,
+        identifiability_reason=reason, ci_method=iv.method, ci_note=iv.note, dof=iv.dof,
+        n_clusters=iv.n_clusters, lack_of_fit=lof, structure=pts.names,
+        pressure_mpa=tuple(pts.p.tolist()),
+        wire_pressure_integral_n=tuple(pts.s.tolist()),
+        squeeze_force_n=tuple(pts.n.tolist()), friction_n=tuple(f_used.tolist()),
+        predicted_friction_n=tuple(pred.tolist()), relative_error_pct=mean_rel,
+        max_relative_error_pct=fitmod._signed_max(rel), relative_rms_residual_pct=rms,
+        n_dropped=int(pts.n_given - m), gamma_pooled=float(bg[0]),
+        gamma_predicted_friction_n=tuple(pred_g.tolist()), warnings=tuple(warns),
+        group=tuple(str(v).split("\x1f", 1)[1] for v in pts.labels), condition_number_max=kmax,
+    )
+
+
 def fit_interfaces(
     tests: Sequence[InterfaceTest],
     *,
@@ -841,159 +1084,27 @@ def fit_interfaces(
     >>> round(fit.mu_tube, 9), round(fit.mu_wall, 9), round(fit.condition_number, 1)
     (0.5, 0.2, 13.1)
     """
-    from scipy import stats
-
     from exofric.friction import _fit as fitmod
 
-    if model not in ("proportional", "affine"):
-        raise InputError(f"model must be 'proportional' or 'affine', got {model!r}")
-    methods = ("auto", "analytic", "ols", "cluster")
-    if ci not in methods:
-        raise InputError(f"ci must be one of {', '.join(methods)} for the interface law, got "
-                         f"{ci!r}")
-    tests = list(tests)
-    if not tests:
-        raise InputError("fit_interfaces needs at least one structure's tests")
-    for t in tests:
-        if not isinstance(t, InterfaceTest):
-            raise InputError("tests must be InterfaceTest objects (FE curves + friction "
-                             "points of one structure)", param="tests")
-    tol = check_range("edge_tol_mpa", edge_tol_mpa, 0.0, 0.1, unit="MPa")
-    kmax = check_range("max_condition_number", max_condition_number, 1.0, 1e9)
-    rows: list[tuple[str, float, float, float, float, str]] = []
-    n_all = 0
-    for i, t in enumerate(tests):
-        p = np.asarray(t.pressure_mpa)
-        f = np.asarray(t.friction_n)
-        s, n, inside = t.curves.at(p, edge_tol_mpa=tol)
-        n_all += p.size
-        lab = t.groups if t.groups else tuple(p.tolist())
-        name = t.curves.name or f"structure {i + 1}"
-        order = np.argsort(p, kind="stable")
-        for j in order:
-            if inside[j]:
-                rows.append((name, float(p[j]), float(s[j]), float(n[j]), float(f[j]),
-                             f"{i}\x1f{lab[j]}"))
+    tests, tol, kmax = _check_interface_options(tests, model, ci, edge_tol_mpa,
+                                                max_condition_number)
     affine = model == "affine"
     k = 3 if affine else 2
-    m = len(rows)
-    if m < k + 1:
-        raise InputError(f"only {m} friction points lie inside the FE curves' pressure ranges; "
-                         f"the {model} interface fit needs at least {k + 1}")
-    names = tuple(r[0] for r in rows)
-    p_used = np.array([r[1] for r in rows])
-    s_used = np.array([r[2] for r in rows])
-    n_used = np.array([r[3] for r in rows])
-    f_used = np.array([r[4] for r in rows])
-    labels = np.array([r[5] for r in rows])
-    cols = [s_used, n_used] + ([np.ones(m)] if affine else [])
-    x = np.column_stack(cols)
-    kappa = _scaled_condition(x)
-    if not kappa < 1e10:
-        raise InputError(
-            "wire_pressure_integral_n and squeeze_force_n are proportional (or zero) at the "
-            "test pressures, so mu_tube and mu_wall cannot be separated; fit gamma instead "
-            "(law gamma) or add a structure of different geometry")
-    beta, *_ = np.linalg.lstsq(x, f_used, rcond=None)
-    pred = x @ beta
-    e = f_used - pred
-    codes, g = fitmod._factorize(labels)
+    pts = _interface_points(tests, tol, model, k)
+    x, kappa = _interface_design(pts, affine)
+    beta = np.asarray(np.linalg.lstsq(x, pts.f, rcond=None)[0], dtype=np.float64)
+    e = pts.f - x @ beta
+    codes, g = fitmod._factorize(pts.labels)
     replicates = bool(np.bincount(codes).max() >= 2)
-    lof = fitmod._lack_of_fit(f_used, -e, codes, g, k) if replicates else None
-    method = ci
-    fallback = ""
-    if ci == "auto":
-        method = "cluster" if replicates and g > k else "analytic"
-        if replicates and g <= k:
-            fallback = (f"; only {g} clusters (a cluster-robust interval needs {k + 1}), so "
-                        "replicates are treated as independent")
-    if method == "cluster" and g <= k:
-        raise InputError(f"ci cluster needs at least {k + 1} clusters for the {model} "
-                         f"interface fit, got {g}")
-    dofs = np.full(k, float(m - k))
-    if method == "cluster":
-        variant = fitmod._CLUSTER_VARIANT
-        if variant == "cr2bm":
-            cov, dofs = fitmod._cr2_bm(x, f_used, beta, codes, g)
-            dof_text = f"{dofs[0]:.1f} (Bell-McCaffrey)"
-        else:
-            cov = fitmod._cluster_covariance(x, f_used, beta, codes, g, variant)
-            dofs = np.full(k, float(g - 1))
-            dof_text = str(g - 1)
-        note = (f"cluster-robust ({fitmod._VARIANT_TEXT[variant]}) over {g} (structure, "
-                f"pressure) clusters of {m} points; t with {dof_text} dof")
-    elif method == "ols":
-        cov = lsq_covariance(x, residual_variance(e, k))
-        note = f"classical OLS (equal variances); t with {m - k} dof; points independent"
-    else:
-        cov = hc3_covariance(x, e)
-        note = (f"HC3 heteroscedasticity-robust; t with {m - k} dof; {m} points treated as "
-                "independent" + fallback)
-    se = standard_errors(cov)
-    tq = np.array([float(stats.t.ppf(0.975, d)) if d > 0 else float("nan") for d in dofs])
-    lo, hi = beta - tq * se, beta + tq * se
-    with np.errstate(divide="ignore", invalid="ignore"):
-        corr = float(cov[0, 1] / np.sqrt(cov[0, 0] * cov[1, 1]))
-    # identifiability
-    reasons = []
-    if kappa > kmax:
-        reasons.append(
-            f"the design is collinear: condition number {kappa:.3g} > {kmax:g} (estimate "
-            f"correlation {corr:.4f}); S_wire/N varies too little over the data "
-            "(one structure, or structures with like wrap ratios), so only their combination, "
-            "gamma, is determined; add a structure of different geometry")
-    for nm, b, h in (("mu_tube", beta[0], tq[0] * se[0]), ("mu_wall", beta[1], tq[1] * se[1])):
-        if not (np.isfinite(h) and h <= CI_REL_MAX * abs(b)):
-            reasons.append(f"{nm}'s 95 % CI [{b - h:.4g}, {b + h:.4g}] is wider than "
-                           f"+-{100 * CI_REL_MAX:g} % of its estimate")
-    identifiable = not reasons
-    if identifiable:
-        reason = (f"condition number {kappa:.3g} <= {kmax:g} and both 95 % CIs within "
-                  f"+-{100 * CI_REL_MAX:g} % of the estimates")
-    else:
-        reason = "mu_tube and mu_wall are not separated by these data: " + "; ".join(reasons)
-    warns: list[str] = []
-    if not identifiable:
-        warns.append(reason)
-    for nm, b in (("mu_tube", beta[0]), ("mu_wall", beta[1])):
-        if b < 0:
-            warns.append(f"fitted {nm} = {b:.4g} is negative, which is unphysical: the data "
-                         "do not support the interface law as fitted (collinear design, "
-                         "model error or mispaired files)")
-        elif b > MU_WARN:
-            warns.append(f"fitted {nm} = {b:.4g} is above {MU_WARN:g}: implausible for a "
-                         "Coulomb coefficient; check the data pairing")
-    warns = [" ".join(w.split()) for w in warns]
+    lof = fitmod._lack_of_fit(pts.f, -e, codes, g, k) if replicates else None
+    method, fallback = _interface_method(ci, replicates, g, k, model)
+    iv = _interface_interval(method, x, pts.f, beta, codes, g, fallback)
+    identifiable, reason = _identifiability(kappa, kmax, iv.corr, beta, iv.half)
+    warns = _interface_warnings(identifiable, reason, beta)
     for w in warns:
         warnings.warn(w, IdentifiabilityWarning, stacklevel=2)
-    # pooled single-gamma comparison on the same points
-    xg = np.column_stack([n_used] + ([np.ones(m)] if affine else []))
-    bg, *_ = np.linalg.lstsq(xg, f_used, rcond=None)
-    pred_g = xg @ bg
-    rel = fitmod.relative_errors(pred, f_used)
-    ok = np.isfinite(rel)
-    mean_rel = float(np.mean(np.abs(rel[ok]))) if np.any(ok) else float("nan")
-    rms = (float(100.0 * np.sqrt(float(e @ e) / float(f_used @ f_used)))
-           if np.any(f_used) else float("nan"))
-    return InterfaceFit(
-        kind=model,
-        mu_tube=float(beta[0]), mu_wall=float(beta[1]), f0_n=float(beta[2]) if affine else 0.0,
-        mu_tube_ci=(float(lo[0]), float(hi[0])), mu_wall_ci=(float(lo[1]), float(hi[1])),
-        f0_ci_n=(float(lo[2]), float(hi[2])) if affine else None,
-        mu_tube_se=float(se[0]), mu_wall_se=float(se[1]),
-        f0_se_n=float(se[2]) if affine else None,
-        correlation=corr, condition_number=kappa, identifiable=identifiable,
-        identifiability_reason=reason, ci_method=method, ci_note=note, dof=float(dofs[0]),
-        n_clusters=g, lack_of_fit=lof, structure=names,
-        pressure_mpa=tuple(p_used.tolist()),
-        wire_pressure_integral_n=tuple(s_used.tolist()),
-        squeeze_force_n=tuple(n_used.tolist()), friction_n=tuple(f_used.tolist()),
-        predicted_friction_n=tuple(pred.tolist()), relative_error_pct=mean_rel,
-        max_relative_error_pct=fitmod._signed_max(rel), relative_rms_residual_pct=rms,
-        n_dropped=int(n_all - m), gamma_pooled=float(bg[0]),
-        gamma_predicted_friction_n=tuple(pred_g.tolist()), warnings=tuple(warns),
-        group=tuple(str(v).split("\x1f", 1)[1] for v in labels), condition_number_max=kmax,
-    )
+    return _interface_result(pts, model, x, beta, iv, kappa, kmax, identifiable, reason, warns,
+                             lof)
 
 
 @dataclass(frozen=True)

@@ -564,6 +564,278 @@ def _window_mean(y: NDArray[np.float64], t: NDArray[np.float64]) -> tuple[float,
             float(0.5 * (hi - lo)), n_eff)
 
 
+@dataclass(frozen=True)
+class _Log:
+    """A checked raw log: time (s), pressure (MPa), force (N), displacement (mm) or None, and
+    the sample rate ``fs`` (Hz, from the median time step)."""
+
+    t: NDArray[np.float64]
+    p: NDArray[np.float64]
+    f: NDArray[np.float64]
+    x: NDArray[np.float64] | None
+    fs: float
+
+
+def _checked_log(log: pd.DataFrame | Mapping[str, Any], s: ReduceSettings, pre: str) -> _Log:
+    """The log's columns as float arrays, checked (InputError naming the column or time)."""
+    cols = {}
+    for name in ("time_s", "pressure_mpa", "force_n"):
+        if name not in log:
+            raise InputError(f"{pre}log has no column {name!r} (needs time_s, pressure_mpa, "
+                             "force_n and optionally displacement_mm)")
+        cols[name] = np.asarray(log[name], dtype=float).ravel()
+    t, p, f = cols["time_s"], cols["pressure_mpa"], cols["force_n"]
+    x = np.asarray(log["displacement_mm"], dtype=float).ravel() \
+        if "displacement_mm" in log else None
+    n = t.size
+    if n < 3 * _MIN_WINDOW or any(a.size != n for a in (p, f)) or (x is not None
+                                                                   and x.size != n):
+        raise InputError(f"{pre}log needs >= {3 * _MIN_WINDOW} samples and equal-length "
+                         f"columns, got {n}")
+    for name, arr in (("time_s", t), ("pressure_mpa", p), ("force_n", f)) + (
+            (("displacement_mm", x),) if x is not None else ()):
+        if not np.all(np.isfinite(arr)):
+            k = int(np.flatnonzero(~np.isfinite(arr))[0])
+            raise InputError(f"{pre}{name} is not finite at row {k + 1} "
+                             f"(t = {t[k]:.3f} s)" if name != "time_s" else
+                             f"{pre}time_s is not finite at row {k + 1}")
+    dt = np.diff(t)
+    if np.any(dt <= 0):
+        k = int(np.argmax(dt <= 0))
+        raise InputError(f"{pre}time_s not increasing at {t[k]:.3f} s -> {t[k + 1]:.3f} s "
+                         f"(row {k + 2})")
+    fs = 1.0 / float(np.median(dt))
+    if fs * s.tare_s < 4.0:  # e.g. milliseconds read as seconds
+        raise InputError(f"{pre}time_s steps by {1.0 / fs:.4g} s (median; {fs:.4g} Hz): fewer "
+                         f"than 4 samples per tare window of {s.tare_s:g} s; is the time in "
+                         "ms? (name the column time_ms)")
+    _check_saturation(t, f, pre)
+    return _Log(t=t, p=p, f=f, x=x, fs=fs)
+
+
+def _segment(lg: _Log, s: ReduceSettings, pre: str
+             ) -> tuple[list[dict[str, Any]], list[tuple[int, int, int]], str]:
+    """Pressure plateaus, pulls (start, stop, direction) and how the pulls were found."""
+    from scipy.ndimage import median_filter
+
+    w = max(3, int(round(s.smooth_s * lg.fs)) | 1)
+    p_s = median_filter(lg.p, size=w, mode="nearest")
+    plateaus = _plateaus(lg.t, p_s, lg.fs, s, pre)
+    if lg.x is not None:
+        found = _pulls_from_displacement(lg.x, lg.fs, w, s, lg.t, pre)
+        detection = "displacement"
+    else:
+        found = _pulls_from_force(lg.f, lg.fs, s, lg.t, pre)
+        detection = "force"
+    if not found:
+        raise InputError(f"{pre}no pull found in {lg.t[0]:.2f}-{lg.t[-1]:.2f} s")
+    return plateaus, found, detection
+
+
+@dataclass(frozen=True)
+class _PullWindows:
+    """Where each pull's windows may lie: the rest samples (indices, ``tare_gap_s`` away from
+    every pull), the plateau number per sample (0: none), and the tare window's length, the
+    fewest rest samples of a tare and the breakaway moving-average length (samples)."""
+
+    rest_idx: NDArray[np.intp]
+    plateau_of: NDArray[np.int_]
+    n_tare: int
+    min_tare: int
+    n_static: int
+
+
+def _pull_windows(lg: _Log, s: ReduceSettings, plateaus: list[dict[str, Any]],
+                  found: list[tuple[int, int, int]]) -> _PullWindows:
+    """Rest samples, plateau per sample and the window lengths (samples) of all pulls."""
+    from scipy.ndimage import uniform_filter1d
+
+    n, fs = lg.t.size, lg.fs
+    in_pull = np.zeros(n, dtype=bool)
+    for a, b, _ in found:
+        in_pull[a:b] = True
+    gap = int(round(s.tare_gap_s * fs))
+    busy = uniform_filter1d(in_pull.astype(float), size=2 * gap + 1, mode="nearest") > 0 \
+        if gap else in_pull
+    rest = ~busy
+    n_tare = max(_MIN_WINDOW, int(round(s.tare_s * fs)))
+    # fewest rest samples for a tare: _MIN_WINDOW, or half a tare window at low rates (a 20 Hz
+    # log has 10 samples per 0.5 s window, and a 1 s rest less the two gaps leaves 8)
+    min_tare = min(_MIN_WINDOW, max(5, n_tare // 2))
+    n_static = max(1, int(round(s.static_window_s * fs)))
+    plateau_of = np.zeros(n, dtype=int)
+    for j, pl in enumerate(plateaus):
+        plateau_of[pl["a"]:pl["b"]] = j + 1
+    return _PullWindows(rest_idx=np.flatnonzero(rest), plateau_of=plateau_of, n_tare=n_tare,
+                        min_tare=min_tare, n_static=n_static)
+
+
+def _kinetic_window(lg: _Log, s: ReduceSettings, a: int, b: int) -> tuple[int, int]:
+    """Steady sliding window [ks, ke) of the pull [a, b): after the skipped travel (mm) or
+    time (s), before the end trim (s)."""
+    if lg.x is not None:
+        travel = np.abs(lg.x[a:b] - lg.x[a])
+        past = np.flatnonzero(travel >= s.skip_mm)
+        ks = a + int(past[0]) if past.size else b
+    else:
+        ks = a + int(round(s.skip_s * lg.fs))
+    ke = b - int(round(s.end_trim_s * lg.fs))
+    return ks, ke
+
+
+def _tare(lg: _Log, s: ReduceSettings, win: _PullWindows, a: int, b: int, t_mid: float
+          ) -> tuple[NDArray[np.float64], list[tuple[float, float, int]]] | None:
+    """Tare force (N) over the pull [a, b) from the rest windows before and after it, and its
+    variance terms (weight, N^2, samples) at ``t_mid`` (s); None without a rest window."""
+    t, f, fs = lg.t, lg.f, lg.fs
+    i_a, i_b = np.searchsorted(win.rest_idx, (a, b))
+    before = win.rest_idx[max(0, i_a - win.n_tare):i_a]
+    after = win.rest_idx[i_b:i_b + win.n_tare]
+    before = before[t[a] - t[before] <= s.tare_s + s.tare_gap_s + 2.0 / fs] \
+        if before.size else before
+    after = after[t[after] - t[b - 1] <= s.tare_s + s.tare_gap_s + 2.0 / fs] \
+        if after.size else after
+    sides = [_rest_mean(t[ix], f[ix]) for ix in (before, after) if ix.size >= win.min_tare]
+    if not sides:
+        return None
+    if len(sides) == 2:
+        (t0, f0, v0, n0), (t1, f1, v1, n1) = sides
+        tare = f0 + (f1 - f0) * (t[a:b] - t0) / (t1 - t0)
+        lam = (t_mid - t0) / (t1 - t0)
+        tare_terms = [((1.0 - lam) ** 2, v0, n0), (lam**2, v1, n1)]
+    else:
+        tare = np.full(b - a, sides[0][1])
+        tare_terms = [(1.0, sides[0][2], sides[0][3])]
+    return tare, tare_terms
+
+
+def _pull_row(lg: _Log, win: _PullWindows, pl: dict[str, Any], plateau: int, k_pull: int,
+              pull: tuple[int, int, int], window: tuple[int, int],
+              tared: tuple[NDArray[np.float64], list[tuple[float, float, int]]]
+              ) -> dict[str, Any]:
+    """One pull's statistics (N, MPa, s; signed forces ``kinetic_raw``/``static_raw``)."""
+    from scipy.ndimage import uniform_filter1d
+
+    t, p, f, x = lg.t, lg.p, lg.f, lg.x
+    (a, b, d), (ks, ke), (tare, tare_terms) = pull, window, tared
+    g = f[a:b] - tare
+    wk = slice(ks - a, ke - a)
+    mean, se, se_naive, slope, stick, n_eff = _window_mean(g[wk], t[ks:ke])
+    # The tare's error: the same sensor noise, so its autocorrelation time is the one
+    # measured over the (longer) steady window; a 0.5 s rest window alone would underrate it.
+    tau = (ke - ks) / n_eff
+    tare_var = sum(c * v * min(1.0, tau / m) for c, v, m in tare_terms)
+    pre_win = g[: max(ks - a, 1)]
+    smooth = uniform_filter1d(pre_win, size=min(win.n_static, pre_win.size), mode="nearest")
+    k_peak = int(np.argmax(d * smooth))
+    peak = float(smooth[k_peak])
+    pp = p[ks:ke]
+    tau_p = integrated_autocorr_time(pp - pp.mean())
+    return {
+        "pressure_mpa": float(pp.mean()), "static_raw": peak, "kinetic_raw": mean,
+        "direction": "forward" if d > 0 else "backward", "sign": d,
+        "branch": pl["branch"], "pull": k_pull, "plateau": plateau,
+        "setpoint": pl["setpoint"], "t_start_s": float(t[a]), "t_end_s": float(t[b - 1]),
+        "t_static_s": float(t[a + k_peak]), "t_kinetic_start_s": float(t[ks]),
+        "t_kinetic_end_s": float(t[ke - 1]),
+        "pressure_se_mpa": float(np.std(pp, ddof=1) * np.sqrt(tau_p / pp.size)),
+        "kinetic_se_n": float(np.sqrt(se**2 + tare_var)), "kinetic_naive_se_n": se_naive,
+        "force_kinetic_n": mean,
+        "tare_n": float(np.mean(tare)), "stick_slip_n": stick, "slope_n_per_s": slope,
+        "n_samples": int(ke - ks), "n_eff": n_eff,
+        "travel_mm": float(np.ptp(x[a:b])) if x is not None else float("nan"),
+    }
+
+
+def _reduce_pull(lg: _Log, s: ReduceSettings, win: _PullWindows,
+                 plateaus: list[dict[str, Any]], k_pull: int, pull: tuple[int, int, int]
+                 ) -> tuple[dict[str, Any] | None, str]:
+    """One pull's row, or None and the reason it is skipped."""
+    t, p = lg.t, lg.p
+    a, b, _ = pull
+    if a == 0:
+        return None, "the log starts during this pull (no breakaway and no rest before it)"
+    if t[b - 1] - t[a] < s.min_pull_s:
+        return None, (f"shorter than min_pull_s = {s.min_pull_s:g} s "
+                      f"({t[b - 1] - t[a]:.3f} s)")
+    ks, ke = _kinetic_window(lg, s, a, b)
+    if ke - ks < _MIN_WINDOW:
+        return None, ("steady sliding window too short (pull shorter than the skipped "
+                      "travel/time plus end trim)")
+    js = win.plateau_of[ks:ke]
+    if js[0] == 0 or np.any(js != js[0]):
+        return None, (f"pressure not steady during the pull "
+                      f"({p[ks:ke].min():.4g}-{p[ks:ke].max():.4g} MPa)")
+    tared = _tare(lg, s, win, a, b, 0.5 * (t[ks] + t[ke - 1]))
+    if tared is None:
+        return None, f"no rest window of {s.tare_s:g} s next to the pull for the tare"
+    plateau = int(js[0])
+    return _pull_row(lg, win, plateaus[plateau - 1], plateau, k_pull, pull, (ks, ke),
+                     tared), ""
+
+
+def _pooled_bias(rows: list[dict[str, Any]]) -> float:
+    """The force bias (N) pooled over the plateaus pulled in both directions (0 if none)."""
+    # Bias per plateau from the two directions (the curve's bias_n); each pull's friction
+    # magnitude uses the bias pooled over those plateaus: the per-plateau value carries the
+    # between-pull scatter, and a plateau's mean friction is (F_fwd - F_back) / 2 either way
+    # when its directions are balanced.
+    bias: dict[int, float] = {}
+    weight: dict[int, float] = {}
+    for j in {r["plateau"] for r in rows}:
+        fw = np.array([r["kinetic_raw"] for r in rows if r["plateau"] == j and r["sign"] > 0])
+        bw = np.array([r["kinetic_raw"] for r in rows if r["plateau"] == j and r["sign"] < 0])
+        if fw.size and bw.size:
+            bias[j] = 0.5 * (float(fw.mean()) + float(bw.mean()))
+            se2 = float(np.mean([r["kinetic_se_n"] ** 2 for r in rows if r["plateau"] == j]))
+            level = 0.5 * (float(fw.mean()) - float(bw.mean()))
+            weight[j] = 1.0 / ((1.0 / fw.size + 1.0 / bw.size) * (level**2 + se2) + 1e-300)
+    # Between-pull scatter grows with the friction, so the variance of a plateau's bias is taken
+    # as ~ friction^2 (1/n_f + 1/n_b) (+ the pulls' own noise): low-force plateaus pin the bias.
+    # (Weights from each plateau's own sample variance would rest on 2-5 pulls each and let one
+    # plateau with an accidentally small spread dominate.)
+    return (sum(weight[j] * bias[j] for j in weight) / sum(weight.values())) if weight \
+        else 0.0
+
+
+def _signed_pulls(rows: list[dict[str, Any]], pooled: float) -> list[dict[str, Any]]:
+    """The pull table: friction magnitudes d (force - ``pooled`` bias) in N, in column order."""
+    pulls = []
+    for r in rows:
+        d = r.pop("sign")
+        r["bias_n"] = pooled
+        r["kinetic_n"] = d * (r.pop("kinetic_raw") - pooled)
+        r["static_n"] = d * (r.pop("static_raw") - pooled)
+        pulls.append({c: r[c] for c in _PULL_COLUMNS})
+    return pulls
+
+
+def _drift_messages(pulls: list[dict[str, Any]], pre: str) -> list[str]:
+    """Warnings for pulls whose force drifts (N) by more than the allowed share of friction."""
+    out = []
+    for r in pulls:
+        drift = abs(r["slope_n_per_s"]) * (r["t_kinetic_end_s"] - r["t_kinetic_start_s"])
+        if r["kinetic_n"] > 0 and drift > D.REDUCE_DRIFT_WARN_PCT / 100.0 * r["kinetic_n"]:
+            out.append(
+                f"{pre}pull {r['pull']} at {r['pressure_mpa']:.3g} MPa: the force drifts by "
+                f"{drift:.3g} N ({100 * drift / r['kinetic_n']:.0f} % of its friction) over its "
+                "steady window; the friction is not steady (wear, heating, or a pressure leak)")
+    return out
+
+
+def _plateau_table(lg: _Log, plateaus: list[dict[str, Any]], pulls: list[dict[str, Any]]
+                   ) -> list[dict[str, Any]]:
+    """One row per plateau: set point, branch, mean pressure (MPa), times (s), pulls."""
+    t, p = lg.t, lg.p
+    plats = []
+    for j, pl in enumerate(plateaus, start=1):
+        plats.append({"plateau": j, "setpoint": pl["setpoint"], "branch": pl["branch"],
+                      "pressure_mpa": float(np.mean(p[pl["a"]:pl["b"]])),
+                      "t_start_s": float(t[pl["a"]]), "t_end_s": float(t[pl["b"] - 1]),
+                      "n_pulls": sum(1 for r in pulls if r["plateau"] == j)})
+    return plats
+
+
 def reduce_log(
     log: pd.DataFrame | Mapping[str, Any],
     settings: ReduceSettings | None = None,
@@ -608,200 +880,40 @@ def reduce_log(
     >>> red.curve["branch"], len(red.hysteresis)
     (['up', 'up', 'up', 'down', 'down'], 2)
     """
-    from scipy.ndimage import median_filter, uniform_filter1d
-
     s = settings or ReduceSettings()
     if not source and hasattr(log, "attrs"):
         source = str(getattr(log, "attrs", {}).get("source", ""))
     pre = f"{source}: " if source else ""
-    cols = {}
-    for name in ("time_s", "pressure_mpa", "force_n"):
-        if name not in log:
-            raise InputError(f"{pre}log has no column {name!r} (needs time_s, pressure_mpa, "
-                             "force_n and optionally displacement_mm)")
-        cols[name] = np.asarray(log[name], dtype=float).ravel()
-    t, p, f = cols["time_s"], cols["pressure_mpa"], cols["force_n"]
-    x = np.asarray(log["displacement_mm"], dtype=float).ravel() \
-        if "displacement_mm" in log else None
-    n = t.size
-    if n < 3 * _MIN_WINDOW or any(a.size != n for a in (p, f)) or (x is not None
-                                                                   and x.size != n):
-        raise InputError(f"{pre}log needs >= {3 * _MIN_WINDOW} samples and equal-length "
-                         f"columns, got {n}")
-    for name, arr in (("time_s", t), ("pressure_mpa", p), ("force_n", f)) + (
-            (("displacement_mm", x),) if x is not None else ()):
-        if not np.all(np.isfinite(arr)):
-            k = int(np.flatnonzero(~np.isfinite(arr))[0])
-            raise InputError(f"{pre}{name} is not finite at row {k + 1} "
-                             f"(t = {t[k]:.3f} s)" if name != "time_s" else
-                             f"{pre}time_s is not finite at row {k + 1}")
-    dt = np.diff(t)
-    if np.any(dt <= 0):
-        k = int(np.argmax(dt <= 0))
-        raise InputError(f"{pre}time_s not increasing at {t[k]:.3f} s -> {t[k + 1]:.3f} s "
-                         f"(row {k + 2})")
-    fs = 1.0 / float(np.median(dt))
-    if fs * s.tare_s < 4.0:  # e.g. milliseconds read as seconds
-        raise InputError(f"{pre}time_s steps by {1.0 / fs:.4g} s (median; {fs:.4g} Hz): fewer "
-                         f"than 4 samples per tare window of {s.tare_s:g} s; is the time in "
-                         "ms? (name the column time_ms)")
-    _check_saturation(t, f, pre)
-    w = max(3, int(round(s.smooth_s * fs)) | 1)
-    p_s = median_filter(p, size=w, mode="nearest")
-    plateaus = _plateaus(t, p_s, fs, s, pre)
-    if x is not None:
-        found = _pulls_from_displacement(x, fs, w, s, t, pre)
-        detection = "displacement"
-    else:
-        found = _pulls_from_force(f, fs, s, t, pre)
-        detection = "force"
-    if not found:
-        raise InputError(f"{pre}no pull found in {t[0]:.2f}-{t[-1]:.2f} s")
-    in_pull = np.zeros(n, dtype=bool)
-    for a, b, _ in found:
-        in_pull[a:b] = True
-    gap = int(round(s.tare_gap_s * fs))
-    busy = uniform_filter1d(in_pull.astype(float), size=2 * gap + 1, mode="nearest") > 0 \
-        if gap else in_pull
-    rest = ~busy
-    n_tare = max(_MIN_WINDOW, int(round(s.tare_s * fs)))
-    # fewest rest samples for a tare: _MIN_WINDOW, or half a tare window at low rates (a 20 Hz
-    # log has 10 samples per 0.5 s window, and a 1 s rest less the two gaps leaves 8)
-    min_tare = min(_MIN_WINDOW, max(5, n_tare // 2))
-    n_static = max(1, int(round(s.static_window_s * fs)))
+    lg = _checked_log(log, s, pre)
+    t = lg.t
+    plateaus, found, detection = _segment(lg, s, pre)
+    win = _pull_windows(lg, s, plateaus, found)
     rows: list[dict[str, Any]] = []
     skipped: list[dict[str, Any]] = []
-    plateau_of = np.zeros(n, dtype=int)
-    for j, pl in enumerate(plateaus):
-        plateau_of[pl["a"]:pl["b"]] = j + 1
-    rest_idx = np.flatnonzero(rest)
-    for k_pull, (a, b, d) in enumerate(found, start=1):
-        base = {"pull": k_pull, "t_start_s": float(t[a]), "t_end_s": float(t[b - 1])}
-        if a == 0:
-            skipped.append({**base, "reason": "the log starts during this pull (no breakaway "
-                            "and no rest before it)"})
-            continue
-        if t[b - 1] - t[a] < s.min_pull_s:
-            skipped.append({**base, "reason": f"shorter than min_pull_s = {s.min_pull_s:g} s "
-                            f"({t[b - 1] - t[a]:.3f} s)"})
-            continue
-        if x is not None:
-            travel = np.abs(x[a:b] - x[a])
-            past = np.flatnonzero(travel >= s.skip_mm)
-            ks = a + int(past[0]) if past.size else b
+    for k_pull, pull in enumerate(found, start=1):
+        row, reason = _reduce_pull(lg, s, win, plateaus, k_pull, pull)
+        if row is None:
+            a, b, _ = pull
+            skipped.append({"pull": k_pull, "t_start_s": float(t[a]),
+                            "t_end_s": float(t[b - 1]), "reason": reason})
         else:
-            ks = a + int(round(s.skip_s * fs))
-        ke = b - int(round(s.end_trim_s * fs))
-        if ke - ks < _MIN_WINDOW:
-            skipped.append({**base, "reason": "steady sliding window too short (pull shorter "
-                            "than the skipped travel/time plus end trim)"})
-            continue
-        js = plateau_of[ks:ke]
-        if js[0] == 0 or np.any(js != js[0]):
-            skipped.append({**base, "reason": f"pressure not steady during the pull "
-                            f"({p[ks:ke].min():.4g}-{p[ks:ke].max():.4g} MPa)"})
-            continue
-        i_a, i_b = np.searchsorted(rest_idx, (a, b))
-        before = rest_idx[max(0, i_a - n_tare):i_a]
-        after = rest_idx[i_b:i_b + n_tare]
-        before = before[t[a] - t[before] <= s.tare_s + s.tare_gap_s + 2.0 / fs] \
-            if before.size else before
-        after = after[t[after] - t[b - 1] <= s.tare_s + s.tare_gap_s + 2.0 / fs] \
-            if after.size else after
-        sides = [_rest_mean(t[ix], f[ix]) for ix in (before, after) if ix.size >= min_tare]
-        if not sides:
-            skipped.append({**base, "reason": f"no rest window of {s.tare_s:g} s next to the "
-                            "pull for the tare"})
-            continue
-        t_mid = 0.5 * (t[ks] + t[ke - 1])
-        if len(sides) == 2:
-            (t0, f0, v0, n0), (t1, f1, v1, n1) = sides
-            tare = f0 + (f1 - f0) * (t[a:b] - t0) / (t1 - t0)
-            lam = (t_mid - t0) / (t1 - t0)
-            tare_terms = [((1.0 - lam) ** 2, v0, n0), (lam**2, v1, n1)]
-        else:
-            tare = np.full(b - a, sides[0][1])
-            tare_terms = [(1.0, sides[0][2], sides[0][3])]
-        g = f[a:b] - tare
-        wk = slice(ks - a, ke - a)
-        mean, se, se_naive, slope, stick, n_eff = _window_mean(g[wk], t[ks:ke])
-        # The tare's error: the same sensor noise, so its autocorrelation time is the one
-        # measured over the (longer) steady window; a 0.5 s rest window alone would underrate it.
-        tau = (ke - ks) / n_eff
-        tare_var = sum(c * v * min(1.0, tau / m) for c, v, m in tare_terms)
-        pre_win = g[: max(ks - a, 1)]
-        smooth = uniform_filter1d(pre_win, size=min(n_static, pre_win.size), mode="nearest")
-        k_peak = int(np.argmax(d * smooth))
-        peak = float(smooth[k_peak])
-        pp = p[ks:ke]
-        tau_p = integrated_autocorr_time(pp - pp.mean())
-        pl = plateaus[int(js[0]) - 1]
-        rows.append({
-            "pressure_mpa": float(pp.mean()), "static_raw": peak, "kinetic_raw": mean,
-            "direction": "forward" if d > 0 else "backward", "sign": d,
-            "branch": pl["branch"], "pull": k_pull, "plateau": int(js[0]),
-            "setpoint": pl["setpoint"], "t_start_s": float(t[a]), "t_end_s": float(t[b - 1]),
-            "t_static_s": float(t[a + k_peak]), "t_kinetic_start_s": float(t[ks]),
-            "t_kinetic_end_s": float(t[ke - 1]),
-            "pressure_se_mpa": float(np.std(pp, ddof=1) * np.sqrt(tau_p / pp.size)),
-            "kinetic_se_n": float(np.sqrt(se**2 + tare_var)), "kinetic_naive_se_n": se_naive,
-            "force_kinetic_n": mean,
-            "tare_n": float(np.mean(tare)), "stick_slip_n": stick, "slope_n_per_s": slope,
-            "n_samples": int(ke - ks), "n_eff": n_eff,
-            "travel_mm": float(np.ptp(x[a:b])) if x is not None else float("nan"),
-        })
+            rows.append(row)
     if not rows:
         first = skipped[0]["reason"] if skipped else "none"
         raise InputError(f"{pre}no usable pull in {t[0]:.2f}-{t[-1]:.2f} s: {len(found)} found, "
                          f"all skipped (first: {first})")
-    # Bias per plateau from the two directions (the curve's bias_n); each pull's friction
-    # magnitude uses the bias pooled over those plateaus: the per-plateau value carries the
-    # between-pull scatter, and a plateau's mean friction is (F_fwd - F_back) / 2 either way
-    # when its directions are balanced.
-    bias: dict[int, float] = {}
-    weight: dict[int, float] = {}
-    for j in {r["plateau"] for r in rows}:
-        fw = np.array([r["kinetic_raw"] for r in rows if r["plateau"] == j and r["sign"] > 0])
-        bw = np.array([r["kinetic_raw"] for r in rows if r["plateau"] == j and r["sign"] < 0])
-        if fw.size and bw.size:
-            bias[j] = 0.5 * (float(fw.mean()) + float(bw.mean()))
-            se2 = float(np.mean([r["kinetic_se_n"] ** 2 for r in rows if r["plateau"] == j]))
-            level = 0.5 * (float(fw.mean()) - float(bw.mean()))
-            weight[j] = 1.0 / ((1.0 / fw.size + 1.0 / bw.size) * (level**2 + se2) + 1e-300)
-    # Between-pull scatter grows with the friction, so the variance of a plateau's bias is taken
-    # as ~ friction^2 (1/n_f + 1/n_b) (+ the pulls' own noise): low-force plateaus pin the bias.
-    # (Weights from each plateau's own sample variance would rest on 2-5 pulls each and let one
-    # plateau with an accidentally small spread dominate.)
-    pooled = (sum(weight[j] * bias[j] for j in weight) / sum(weight.values())) if weight \
-        else 0.0
-    pulls = []
-    for r in rows:
-        d = r.pop("sign")
-        r["bias_n"] = pooled
-        r["kinetic_n"] = d * (r.pop("kinetic_raw") - pooled)
-        r["static_n"] = d * (r.pop("static_raw") - pooled)
-        pulls.append({c: r[c] for c in _PULL_COLUMNS})
-    for r in pulls:
-        drift = abs(r["slope_n_per_s"]) * (r["t_kinetic_end_s"] - r["t_kinetic_start_s"])
-        if r["kinetic_n"] > 0 and drift > D.REDUCE_DRIFT_WARN_PCT / 100.0 * r["kinetic_n"]:
-            warn_implausible(
-                f"{pre}pull {r['pull']} at {r['pressure_mpa']:.3g} MPa: the force drifts by "
-                f"{drift:.3g} N ({100 * drift / r['kinetic_n']:.0f} % of its friction) over its "
-                "steady window; the friction is not steady (wear, heating, or a pressure leak)")
+    pulls = _signed_pulls(rows, _pooled_bias(rows))
+    for message in _drift_messages(pulls, pre):
+        warn_implausible(message)
     if skipped:
         warn_implausible(f"{pre}{len(skipped)} of {len(found)} pulls skipped (listed in "
                          f"'skipped'; first: {skipped[0]['reason']})")
-    plats = []
-    for j, pl in enumerate(plateaus, start=1):
-        plats.append({"plateau": j, "setpoint": pl["setpoint"], "branch": pl["branch"],
-                      "pressure_mpa": float(np.mean(p[pl["a"]:pl["b"]])),
-                      "t_start_s": float(t[pl["a"]]), "t_end_s": float(t[pl["b"] - 1]),
-                      "n_pulls": sum(1 for r in pulls if r["plateau"] == j)})
+    plats = _plateau_table(lg, plateaus, pulls)
     curve, hyst = friction_curve(pulls, s)
     return RigReduction(
         pulls=tuple(pulls), skipped=tuple(skipped), plateaus=tuple(plats), curve=curve,
         hysteresis=hyst, source=source, pull_detection=detection, settings=s,
-        time_s=t, pressure_mpa=p, force_n=f, displacement_mm=x,
+        time_s=t, pressure_mpa=lg.p, force_n=lg.f, displacement_mm=lg.x,
     )
 
 
