@@ -25,6 +25,7 @@ import functools
 import math
 import re
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -411,13 +412,56 @@ def read_stress_stretch(
     >>> df["stretch"].tolist(), df["stress_mpa"].tolist()
     ([1.0, 1.5, 2.0], [0.0, 0.5, 1.0])
     """
-    import numpy as np
-
     p = Path(path)
     name = p.name
     frame, units_found, stated = _read_grid(p)
-    headers = list(frame.columns)
-    # roles and kinds from the headers, then the explicit mapping
+    found = _header_roles(list(frame.columns), units_found)
+    if columns:
+        _map_columns(found, columns, name)
+    sk = _check_kind("stress_kind", stress_kind)
+    ek = _check_kind("strain_kind", strain_kind)
+    _check_stated_kinds(stated, sk, ek, name)
+    chosen, kinds, unused = _choose_columns(found.roles, sk, ek, stated)
+    gl, a, area_note = _specimen_sizes(stated, name, gauge_length_mm, area_mm2, width_mm,
+                                       thickness_mm)
+    out = tensile_stress_stretch(
+        frame, chosen, found.units, stress_kind=kinds.get("stress"),
+        strain_kind=kinds.get("strain"),
+        gauge_length_mm=_num(gl, "gauge_length_mm", name) if gl is not None else None,
+        area_mm2=_num(a, "area_mm2", name) if a is not None else None, source=name)
+    listing = out.attrs["columns"]
+    _list_other_columns(listing, unused, found)
+    if area_note and _uses(listing, "force"):
+        out.attrs["conversion"].insert(1, area_note)
+    lam = out["stretch"].to_numpy()
+    _check_monotonic(lam, listing, frame, name)
+    _warn_strain_unit(lam, listing, name)
+    out.attrs["gauge_length_mm"] = (float(_num(gl, "gauge_length_mm", name))
+                                    if gl is not None and _uses(listing, "extension") else None)
+    out.attrs["area_mm2"] = (float(_num(a, "area_mm2", name))
+                             if a is not None and _uses(listing, "force") else None)
+    return out
+
+
+# --- read_stress_stretch's steps -----------------------------------------------------------
+# roles and kinds from the headers and the mapping -> the column of each role -> the specimen
+# sizes -> the conversion (tensile_stress_stretch) -> the listing of the other columns ->
+# monotonicity and plausibility checks
+
+
+@dataclass
+class _HeaderRoles:
+    """What the headers say: per role its candidate columns ``(header, kind)``, each column's
+    unit as written (None: none given) and the columns of no role."""
+
+    headers: list[str]
+    roles: dict[str, list[tuple[str, str | None]]]
+    units: dict[str, str | None]
+    ignored: list[str]
+
+
+def _header_roles(headers: list[str], units_found: dict[str, str | None]) -> _HeaderRoles:
+    """Roles, kinds and units from the headers (a units row's unit where the header has none)."""
     roles: dict[str, list[tuple[str, str | None]]] = {}
     units: dict[str, str | None] = {}
     ignored: list[str] = []
@@ -429,49 +473,76 @@ def read_stress_stretch(
             roles.setdefault(role, []).append((h, kind))
         else:
             ignored.append(h)
-    if columns:
-        lower = {h.lower(): h for h in headers}
-        for role, want in columns.items():
-            if role not in TENSILE_ROLES:
-                raise InputError(f"columns: unknown role {role!r}; roles: "
-                                 f"{', '.join(TENSILE_ROLES)}", param="columns")
-            hdr = lower.get(str(want).strip().lower())
-            if hdr is None:
-                raise InputError(f"columns: {name} has no column {want!r} (for {role}); "
-                                 f"columns: {', '.join(headers)}", param="columns")
-            roles[role] = [(hdr, _role_of(_split_header(hdr)[0])[1])]
-            if hdr in ignored:
-                ignored.remove(hdr)
-    sk = _check_kind("stress_kind", stress_kind)
-    ek = _check_kind("strain_kind", strain_kind)
+    return _HeaderRoles(headers, roles, units, ignored)
+
+
+def _map_columns(found: _HeaderRoles, columns: Mapping[str, str], name: str) -> None:
+    """Apply the explicit role -> header mapping (case-insensitive headers) to ``found``."""
+    lower = {h.lower(): h for h in found.headers}
+    for role, want in columns.items():
+        if role not in TENSILE_ROLES:
+            raise InputError(f"columns: unknown role {role!r}; roles: "
+                             f"{', '.join(TENSILE_ROLES)}", param="columns")
+        hdr = lower.get(str(want).strip().lower())
+        if hdr is None:
+            raise InputError(f"columns: {name} has no column {want!r} (for {role}); "
+                             f"columns: {', '.join(found.headers)}", param="columns")
+        found.roles[role] = [(hdr, _role_of(_split_header(hdr)[0])[1])]
+        if hdr in found.ignored:
+            found.ignored.remove(hdr)
+
+
+def _check_stated_kinds(stated: dict[str, str], sk: str | None, ek: str | None,
+                        name: str) -> None:
+    """A ``# stress_kind:`` / ``# strain_kind:`` line not overridden must name a kind."""
     for key, where in (("stress_kind", sk), ("strain_kind", ek)):
         if where is None and key in stated:
             kind_line = stated[key].strip().lower()
             if kind_line not in _KINDS:
                 raise InputError(f"{name}: '# {key}:' line must be engineering or true, got "
                                  f"{stated[key]!r}")
+
+
+def _pick_kind(role: str, cands: list[tuple[str, str | None]], opt: str | None,
+               stated: dict[str, str]) -> tuple[str, str]:
+    """The stress or strain column and its kind: the argument's kind, else the one declared
+    by a lone column's header, else the ``# <role>_kind:`` line, else engineering."""
+    declared = {k for _, k in cands if k is not None}
+    want_kind = opt or (next(iter(declared)) if len(cands) == 1 and declared else None)
+    want_kind = want_kind or _check_kind(f"{role}_kind", stated.get(f"{role}_kind")) \
+        or "engineering"
+    pick = [c for c in cands if c[1] == want_kind] or [c for c in cands if c[1] is None]
+    if not pick:
+        col0, kind0 = cands[0]
+        raise InputError(f"{role}_kind {want_kind} contradicts column {col0!r} "
+                         f"({kind0} {role})", param=f"{role}_kind")
+    return pick[0][0], want_kind
+
+
+def _choose_columns(roles: dict[str, list[tuple[str, str | None]]], sk: str | None,
+                    ek: str | None, stated: dict[str, str],
+                    ) -> tuple[dict[str, str], dict[str, str | None],
+                               list[tuple[str, str, str | None]]]:
+    """The column of each role, the stress and strain kinds, and the candidates not used
+    ``(role, header, kind)``."""
     chosen: dict[str, str] = {}
     kinds: dict[str, str | None] = {"stress": sk, "strain": ek}
     unused: list[tuple[str, str, str | None]] = []
     for role, cands in roles.items():
         if role in ("stress", "strain"):
-            opt = sk if role == "stress" else ek
-            declared = {k for _, k in cands if k is not None}
-            want_kind = opt or (next(iter(declared)) if len(cands) == 1 and declared
-                                else None)
-            want_kind = want_kind or _check_kind(f"{role}_kind", stated.get(f"{role}_kind")) \
-                or "engineering"
-            pick = [c for c in cands if c[1] == want_kind] or [c for c in cands if c[1] is None]
-            if not pick:
-                col0, kind0 = cands[0]
-                raise InputError(f"{role}_kind {want_kind} contradicts column {col0!r} "
-                                 f"({kind0} {role})", param=f"{role}_kind")
-            chosen[role] = pick[0][0]
-            kinds[role] = want_kind
-            unused += [(role, h, k) for h, k in cands if h != pick[0][0]]
+            chosen[role], kinds[role] = _pick_kind(role, cands, sk if role == "stress" else ek,
+                                                   stated)
+            unused += [(role, h, k) for h, k in cands if h != chosen[role]]
         else:
             chosen[role] = cands[0][0]
             unused += [(role, h, None) for h, _ in cands[1:]]
+    return chosen, kinds, unused
+
+
+def _specimen_sizes(stated: dict[str, str], name: str, gauge_length_mm: Any, area_mm2: Any,
+                    width_mm: Any, thickness_mm: Any) -> tuple[Any, Any, str | None]:
+    """Gauge length (mm) and area (mm^2), from the arguments else the header lines (text,
+    checked later), and a conversion line when the area is width x thickness."""
     gl = gauge_length_mm if gauge_length_mm is not None else stated.get("gauge_length_mm")
     w = width_mm if width_mm is not None else stated.get("width_mm")
     t = thickness_mm if thickness_mm is not None else stated.get("thickness_mm")
@@ -493,22 +564,35 @@ def read_stress_stretch(
         area_note = f"area {a:g} mm^2 = {wv:g} mm x {tv:g} mm"
     if a is None and "area_mm2" in stated:
         a = stated["area_mm2"]
-    out = tensile_stress_stretch(
-        frame, chosen, units, stress_kind=kinds.get("stress"), strain_kind=kinds.get("strain"),
-        gauge_length_mm=_num(gl, "gauge_length_mm", name) if gl is not None else None,
-        area_mm2=_num(a, "area_mm2", name) if a is not None else None, source=name)
-    listing = out.attrs["columns"]
+    return gl, a, area_note
+
+
+def _list_other_columns(listing: list[dict[str, Any]], unused: list[tuple[str, str, str | None]],
+                        found: _HeaderRoles) -> None:
+    """Add to the listing the candidates not used and the columns of no role (time, cycle,
+    ...): listed, not used."""
     for role, col_u, kind_u in unused:
-        listing.append({"role": role, "column": col_u, "unit": units.get(col_u) or "-",
+        listing.append({"role": role, "column": col_u, "unit": found.units.get(col_u) or "-",
                         "factor": None, "kind": kind_u, "used": False})
     mapped = {c["column"] for c in listing}
-    for col_i in ignored:  # columns of no role (time, cycle, ...): listed, not used
+    for col_i in found.ignored:
         if col_i not in mapped:
-            listing.append({"role": None, "column": col_i, "unit": units.get(col_i) or "-",
-                            "factor": None, "kind": None, "used": False})
-    if area_note and any(c["role"] == "force" and c["used"] for c in listing):
-        out.attrs["conversion"].insert(1, area_note)
-    lam = out["stretch"].to_numpy()
+            listing.append({"role": None, "column": col_i,
+                            "unit": found.units.get(col_i) or "-", "factor": None,
+                            "kind": None, "used": False})
+
+
+def _uses(listing: list[dict[str, Any]], role: str) -> bool:
+    """Whether a column of this role was used in the conversion."""
+    return any(c["used"] and c["role"] == role for c in listing)
+
+
+def _check_monotonic(lam: Any, listing: list[dict[str, Any]], frame: pd.DataFrame,
+                     name: str) -> None:
+    """One loading curve: the stretch (unitless) strictly rising or falling, else an
+    InputError naming the data row and the source column."""
+    import numpy as np
+
     xcol = next(c["column"] for c in listing if c["used"] and c["role"] in
                 ("stretch", "strain", "extension"))
     step = np.diff(lam)
@@ -518,19 +602,19 @@ def read_stress_stretch(
         raise InputError(f"{name}: data row {i + 1}, column {xcol!r} is not monotonic "
                          f"({frame[xcol].iloc[i - 1]:g} then {frame[xcol].iloc[i]:g}): give "
                          "one loading curve per file")
+
+
+def _warn_strain_unit(lam: Any, listing: list[dict[str, Any]], name: str) -> None:
+    """Warn when a strain column without a unit, read as a ratio, reaches a stretch over 31
+    (unitless): likely a strain in %."""
+    import numpy as np
+
     strain_col = next((c for c in listing if c["used"] and c["role"] == "strain"), None)
     if strain_col is not None and strain_col["unit"].startswith("ratio (assumed") \
             and float(np.max(lam)) > 31.0:
         warn_implausible(f"{name}: column {strain_col['column']!r} (no unit) is read as a ratio "
                          f"and reaches stretch {float(np.max(lam)):.3g}: is it in %? Write "
                          "'Strain (%)' or strain_pct")
-    out.attrs["gauge_length_mm"] = (float(_num(gl, "gauge_length_mm", name))
-                                    if gl is not None and any(c["used"] and c["role"] ==
-                                                              "extension" for c in listing)
-                                    else None)
-    out.attrs["area_mm2"] = (float(_num(a, "area_mm2", name)) if a is not None and any(
-        c["used"] and c["role"] == "force" for c in listing) else None)
-    return out
 
 
 def _num(value: Any, key: str, name: str) -> float:

@@ -32,6 +32,7 @@ import warnings
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from exofric import defaults as D
 from exofric._lsq import correlation, lsq_covariance, standard_errors
 from exofric.errors import InputError, warn_implausible
 from exofric.material._hyperelastic import (
@@ -794,7 +795,7 @@ def fit_material(
     stress_kind: str | dict[str, str] = "engineering",
     residuals: str = "absolute",
     d: float | None = None,
-    poisson: float = 0.498,
+    poisson: float = D.POISSON,
     allow_unstable: bool = False,
     terms: int | None = None,
     constrain: bool = True,
@@ -868,37 +869,96 @@ def fit_material(
     >>> round(fit.model.params[0], 6), fit.stability.stable, fit.constrained
     (0.2, True, False)
     """
-    import numpy as np
-    from scipy.optimize import least_squares
-
     from exofric import defaults
 
     name = _resolve_model(model, terms)
-    if residuals not in RESIDUALS:
-        raise InputError(f"residuals must be one of {', '.join(RESIDUALS)}, got {residuals!r}",
-                         param="residuals")
+    kinds, report_range = _check_options(residuals, stress_kind, stability_range, n_starts)
+    data = _fit_data(name, {"uniaxial": uniaxial, "biaxial": biaxial, "planar": planar},
+                     kinds, residuals)
+    margin = float(defaults.FIT_STABILITY_MARGIN_REL)
+    setup = _setup(name, data, residuals, margin)
+    runs = _unconstrained_fits(setup, n_starts)
+    x = runs.results[0][1]
+    constrained = False
+    if constrain and not allow_unstable and not _admissible(setup.prob, x):
+        x = _constrained_fit(setup, runs, margin)
+        constrained = True
+    x = _canonical_order(name, x)
+    notes: list[str] = []
+    active = _active_constraints(setup, x, constrained)
+    if active:
+        constrained = True
+        notes.append("constrained fit (" + "; ".join(active) + "): standard errors are "
+                     "indicative only")
+    cost, se, corr, notes_corr = _uncertainty(setup.prob, x)
+    notes += notes_corr
+    fitted = _fitted_model(name, x, d, poisson)
+    mode_fits = _mode_fits(fitted, data, kinds)
+    stab, notes_data = _data_stability(fitted, setup.prob, allow_unstable)
+    report, notes_report = _stability_report(fitted, setup.prob, stab, report_range)
+    notes += notes_data + notes_report
+    for note in notes:
+        warn_implausible(note)
+    return MaterialFit(fitted, tuple(float(v) for v in se), corr, mode_fits, stab, residuals,
+                       cost, tuple(notes), constrained=constrained,
+                       active_constraints=tuple(active), stability_report=report,
+                       multistart=_multistart_summary(runs.start_costs, setup.n_pts, residuals),
+                       margin_rel=margin)
+
+
+# --- fit_material's steps ------------------------------------------------------------------
+# checks and data -> setup -> unconstrained multi-start -> constrained fit (when needed) ->
+# active constraints -> uncertainty -> fitted model and per-mode fits -> stability -> result
+
+
+def _stress_kinds(stress_kind: Any) -> dict[str, str]:
+    """The stress kind (engineering/true) per mode, checked."""
     kinds = (dict(stress_kind) if isinstance(stress_kind, dict)
              else dict.fromkeys(MODES, stress_kind))
     for k, v in kinds.items():
         if k not in MODES or v not in STRESS_KINDS:
             raise InputError(f"stress_kind must be one of {', '.join(STRESS_KINDS)} (per mode: "
                              f"{', '.join(MODES)}), got {k}={v!r}", param="stress_kind")
-    report_range = None
-    if stability_range is not None:
-        try:
-            lo_r, hi_r = (float(v) for v in stability_range)
-        except (TypeError, ValueError):
-            raise InputError("stability_range must be two stretches lo,hi (unitless), got "
-                             f"{stability_range!r}", param="stability_range") from None
-        if not (np.isfinite(lo_r) and np.isfinite(hi_r) and 0.0 < lo_r < hi_r <= 1e3):
-            raise InputError("stability_range must be two stretches 0 < lo < hi <= 1000 "
-                             f"(unitless), got {lo_r:g},{hi_r:g}", param="stability_range")
-        report_range = (lo_r, hi_r)
+    return kinds
+
+
+def _report_range(stability_range: Any) -> tuple[float, float] | None:
+    """The stability report's stretch range (unitless, ``0 < lo < hi <= 1000``), or None."""
+    import numpy as np
+
+    if stability_range is None:
+        return None
+    try:
+        lo_r, hi_r = (float(v) for v in stability_range)
+    except (TypeError, ValueError):
+        raise InputError("stability_range must be two stretches lo,hi (unitless), got "
+                         f"{stability_range!r}", param="stability_range") from None
+    if not (np.isfinite(lo_r) and np.isfinite(hi_r) and 0.0 < lo_r < hi_r <= 1e3):
+        raise InputError("stability_range must be two stretches 0 < lo < hi <= 1000 "
+                         f"(unitless), got {lo_r:g},{hi_r:g}", param="stability_range")
+    return lo_r, hi_r
+
+
+def _check_options(residuals: str, stress_kind: Any, stability_range: Any,
+                   n_starts: Any) -> tuple[dict[str, str], tuple[float, float] | None]:
+    """The options checked: stress kind per mode and the report's stretch range (unitless)."""
+    if residuals not in RESIDUALS:
+        raise InputError(f"residuals must be one of {', '.join(RESIDUALS)}, got {residuals!r}",
+                         param="residuals")
+    kinds = _stress_kinds(stress_kind)
+    report_range = _report_range(stability_range)
     if n_starts is not None and (isinstance(n_starts, bool) or not isinstance(n_starts, int)
                                  or not 1 <= n_starts <= 200):
         raise InputError(f"n_starts must be an integer in 1-200, got {n_starts!r}",
                          param="n_starts")
-    given = {"uniaxial": uniaxial, "biaxial": biaxial, "planar": planar}
+    return kinds, report_range
+
+
+def _fit_data(name: str, given: dict[str, Any], kinds: dict[str, str],
+              residuals: str) -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]:
+    """Per mode given, stretch (unitless) and nominal stress (MPa), checked for this fit."""
+    import numpy as np
+
     data = {m: _mode_data(m, v, kinds.get(m, "engineering"))
             for m, v in given.items() if v is not None}
     if not data:
@@ -916,130 +976,207 @@ def fit_material(
                 raise InputError(f"residuals 'relative' divides by the stress, but {m} has 0 at "
                                  f"index {zero[0]}: use 'absolute' or drop the point",
                                  param="residuals")
+    return data
+
+
+@dataclass(frozen=True)
+class _Setup:
+    """What travels through one fit: the problem, a shear-modulus estimate ``g0`` (MPa) and the
+    parameter bounds ``lo``/``hi`` (MPa or unitless, as the parameters)."""
+
+    name: str
+    prob: _Problem
+    g0: float
+    lo: NDArray[np.float64]
+    hi: NDArray[np.float64]
+
+    @property
+    def n_pts(self) -> int:
+        """Data points of all modes."""
+        return int(self.prob.target.size)
+
+
+def _setup(name: str, data: dict[str, tuple[Any, Any]], residuals: str,
+           margin: float) -> _Setup:
+    """The fit's setup: residual scale (1 or the stress, MPa), problem, g0 (MPa), bounds."""
+    import numpy as np
+
     p_all = np.concatenate([p for _, p in data.values()])
     scale = p_all if residuals == "relative" else np.ones_like(p_all)
-    margin = float(defaults.FIT_STABILITY_MARGIN_REL)
     prob = _Problem(name, data, scale, margin)
-    modes = prob.modes
     g0 = _g0(data)
     lo_b, hi_b = (np.asarray(b, dtype=float) for b in _bounds(name, prob.secant))
-    constrained_fit = constrain and not allow_unstable
+    return _Setup(name, prob, g0, lo_b, hi_b)
 
-    # --- unconstrained (bounded) least squares from every start ------------------------
-    # Ogden: each start first runs on the exponents alone (variable projection: mu by linear
-    # least squares), the best few are then polished on all parameters
+
+@dataclass(frozen=True)
+class _Runs:
+    """The unconstrained local fits: ``(cost, x)`` lowest cost first, the Ogden exponent
+    scan's (empty for the other models) and the cost of every start run (MPa^2 or unitless)."""
+
+    results: list[tuple[float, Any]]
+    scanned: list[tuple[float, Any]]
+    start_costs: list[float]
+
+
+def _polish(setup: _Setup, x0: Any) -> tuple[float, Any] | None:
+    """Bounded least squares on all parameters from ``x0``: ``(cost, x)``, or None."""
+    import numpy as np
+    from scipy.optimize import least_squares
+
+    lo_b, hi_b, prob = setup.lo, setup.hi, setup.prob
     inner_lo = lo_b + 1e-12 * np.abs(np.nan_to_num(lo_b, posinf=0.0, neginf=0.0))
     inner_hi = hi_b - 1e-12 * np.abs(np.nan_to_num(hi_b, posinf=0.0, neginf=0.0))
+    x0 = np.clip(x0, inner_lo, inner_hi)
+    with np.errstate(all="ignore"):
+        res = least_squares(prob.resid, x0, jac=prob.jac, bounds=(lo_b, hi_b), method="trf",
+                            x_scale="jac", xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=300)
+    if np.all(np.isfinite(res.x)) and np.isfinite(res.cost):
+        return float(res.cost), res.x
+    return None
 
-    def polish(x0: Any) -> tuple[float, Any] | None:
-        x0 = np.clip(x0, inner_lo, inner_hi)
-        with np.errstate(all="ignore"):
-            res = least_squares(prob.resid, x0, jac=prob.jac, bounds=(lo_b, hi_b), method="trf",
-                                x_scale="jac", xtol=1e-12, ftol=1e-12, gtol=1e-12,
-                                max_nfev=300)
-        if np.all(np.isfinite(res.x)) and np.isfinite(res.cost):
-            return float(res.cost), res.x
-        return None
 
-    results: list[tuple[float, Any]] = []
+def _exponent_scan(setup: _Setup, starts: list[Any]) -> list[tuple[float, Any]]:
+    """Ogden: each start run on the exponents alone (variable projection: mu by linear least
+    squares); ``(cost, x)`` of every converged run, lowest cost first."""
+    import numpy as np
+    from scipy.optimize import least_squares
+
+    prob = setup.prob
+    n_par = prob.n_par
+    n_t = n_par // 2
+    a_lo, a_hi = np.full(n_t, -_ALPHA_MAX), np.full(n_t, _ALPHA_MAX)
+
+    def vp_r(a: Any) -> Any:
+        return prob.vp_rj(a)[0]
+
+    def vp_j(a: Any) -> Any:
+        return prob.vp_rj(a)[1]
+
     scanned: list[tuple[float, Any]] = []
-    starts = _starts(prob, g0, n_starts)
-    if name.startswith("ogden"):
-        n_t = n_par // 2
-        a_lo, a_hi = np.full(n_t, -_ALPHA_MAX), np.full(n_t, _ALPHA_MAX)
+    for x0 in starts:
+        a0 = np.clip(x0[1::2], a_lo + 1e-9, a_hi - 1e-9)
+        with np.errstate(all="ignore"):
+            res = least_squares(vp_r, a0, jac=vp_j, bounds=(a_lo, a_hi), method="trf",
+                                xtol=1e-9, ftol=1e-9, gtol=1e-9, max_nfev=300)
+        if np.all(np.isfinite(res.x)) and np.isfinite(res.cost):
+            x_full = np.empty(n_par)
+            x_full[1::2] = res.x
+            x_full[0::2] = prob.vp_mu(res.x)
+            scanned.append((float(res.cost), x_full))
+    scanned.sort(key=lambda r: r[0])
+    return scanned
 
-        def vp_r(a: Any) -> Any:
-            return prob.vp_rj(a)[0]
 
-        def vp_j(a: Any) -> Any:
-            return prob.vp_rj(a)[1]
+def _unconstrained_fits(setup: _Setup, n_starts: int | None) -> _Runs:
+    """The bounded least-squares fits from every start (Ogden: the exponent scan, its best few
+    polished on all parameters); an InputError when none converged."""
+    import numpy as np
 
-        for x0 in starts:
-            a0 = np.clip(x0[1::2], a_lo + 1e-9, a_hi - 1e-9)
-            with np.errstate(all="ignore"):
-                res = least_squares(vp_r, a0, jac=vp_j, bounds=(a_lo, a_hi), method="trf",
-                                    xtol=1e-9, ftol=1e-9, gtol=1e-9, max_nfev=300)
-            if np.all(np.isfinite(res.x)) and np.isfinite(res.cost):
-                x_full = np.empty(n_par)
-                x_full[1::2] = res.x
-                x_full[0::2] = prob.vp_mu(res.x)
-                scanned.append((float(res.cost), x_full))
-        scanned.sort(key=lambda r: r[0])
+    starts = _starts(setup.prob, setup.g0, n_starts)
+    scanned: list[tuple[float, Any]] = []
+    results: list[tuple[float, Any]] = []
+    if setup.name.startswith("ogden"):
+        scanned = _exponent_scan(setup, starts)
         # a scanned minimum is a local minimum of the full problem too (mu is optimal for its
         # exponents) when its mu lie inside the bounds; the best few are polished as well
-        results = [(c, xr) for c, xr in scanned if np.all(xr >= lo_b) and np.all(xr <= hi_b)]
-        for _, x_full in scanned[:3]:
-            found = polish(x_full)
-            if found is not None:
-                results.append(found)
-        n_run = len(scanned)
+        results = [(c, xr) for c, xr in scanned
+                   if np.all(xr >= setup.lo) and np.all(xr <= setup.hi)]
+        results += [f for f in (_polish(setup, xr) for _, xr in scanned[:3]) if f is not None]
         start_costs = [c for c, _ in scanned]
     else:
-        for x0 in starts:
-            found = polish(x0)
-            if found is not None:
-                results.append(found)
-        n_run = len(results)
+        results = [f for f in (_polish(setup, x0) for x0 in starts) if f is not None]
         start_costs = [c for c, _ in results]
     if not results:
-        raise InputError(f"the {name} fit did not converge from any start; try another model",
-                         param="model")
-    start_rms = np.sqrt(2.0 * np.array(sorted(start_costs)) / n_pts)
+        raise InputError(f"the {setup.name} fit did not converge from any start; try another "
+                         "model", param="model")
     results.sort(key=lambda r: r[0])
-    cost, x = results[0]
-    constrained = False
-    if constrained_fit and not _admissible(prob, x):
-        ok = [(c, xr) for c, xr in results[:8] if _admissible(prob, xr)]
-        xs = np.array([g0 if n.endswith("_mpa") else 1.0 for n in HYPERELASTIC_MODELS[name]])
-        x0s = [_feasible_start(name, g0)] + [xr for _, xr in results[:3]]
-        if name.startswith("ogden"):  # the exponent scan's next-best minimum too
-            x0s += [xr for _, xr in scanned[3:4]]
-        found = _solve_constrained(prob, x0s, lo_b, hi_b, xs)
-        if ok and (found is None or ok[0][0] <= found[1]):
-            found = (ok[0][1], ok[0][0])
-        if found is None:
-            raise InputError(f"model: no admissible {name} fit found (shear modulus > 0 and "
-                             f"dP/dl > 0 over the data's range + {margin:.0%}); use another "
-                             "model or allow_unstable", param="model")
-        x, cost = found
-        constrained = True
-    if name.startswith("ogden"):  # the terms in a canonical order: exponent descending
-        order = np.argsort(-x[1::2], kind="stable")
-        x = np.concatenate([x[2 * i:2 * i + 2] for i in order])
-    notes: list[str] = []
+    return _Runs(results, scanned, start_costs)
+
+
+def _constrained_fit(setup: _Setup, runs: _Runs, margin: float) -> Any:
+    """The admissible optimum (SLSQP from several starts, or an admissible unconstrained run
+    if lower); an InputError when there is none."""
+    import numpy as np
+
+    name, prob, results = setup.name, setup.prob, runs.results
+    ok = [(c, xr) for c, xr in results[:8] if _admissible(prob, xr)]
+    xs = np.array([setup.g0 if n.endswith("_mpa") else 1.0 for n in HYPERELASTIC_MODELS[name]])
+    x0s = [_feasible_start(name, setup.g0)] + [xr for _, xr in results[:3]]
+    if name.startswith("ogden"):  # the exponent scan's next-best minimum too
+        x0s += [xr for _, xr in runs.scanned[3:4]]
+    found = _solve_constrained(prob, x0s, setup.lo, setup.hi, xs)
+    if ok and (found is None or ok[0][0] <= found[1]):
+        found = (ok[0][1], ok[0][0])
+    if found is None:
+        raise InputError(f"model: no admissible {name} fit found (shear modulus > 0 and "
+                         f"dP/dl > 0 over the data's range + {margin:.0%}); use another "
+                         "model or allow_unstable", param="model")
+    return found[0]
+
+
+def _canonical_order(name: str, x: Any) -> Any:
+    """Ogden terms in a canonical order, exponent descending; other models unchanged."""
+    import numpy as np
+
+    if not name.startswith("ogden"):
+        return x
+    order = np.argsort(-x[1::2], kind="stable")
+    return np.concatenate([x[2 * i:2 * i + 2] for i in order])
+
+
+def _floors_hit(prob: _Problem, x: Any) -> list[str]:
+    """In words, the stability constraints at their floor at x (per measured mode)."""
+    import numpy as np
+
     active: list[str] = []
-    if constrained:
-        c, _ = prob.cons(x)
-        off = 0
-        for m in modes:
-            grid = prob.grid[m]
-            cm = c[off:off + grid.size]
-            off += grid.size
-            hit = np.flatnonzero(cm <= 1e-6)
-            if hit.size:
-                at_one = np.abs(grid[hit] - 1.0) < 1e-12
-                if at_one.any():
-                    active.append(f"{m} small-strain modulus at its floor (the data pull the "
-                                  "shear modulus to <= 0)")
-                    hit = hit[~at_one]
-            if hit.size:
-                active.append(f"{m} dP/dl at its floor at stretch "
-                              + ", ".join(f"{v:.3g}" for v in grid[hit][:3])
-                              + (" ..." if hit.size > 3 else ""))
+    c, _ = prob.cons(x)
+    off = 0
+    for m in prob.modes:
+        grid = prob.grid[m]
+        cm = c[off:off + grid.size]
+        off += grid.size
+        hit = np.flatnonzero(cm <= 1e-6)
+        if hit.size:
+            at_one = np.abs(grid[hit] - 1.0) < 1e-12
+            if at_one.any():
+                active.append(f"{m} small-strain modulus at its floor (the data pull the "
+                              "shear modulus to <= 0)")
+                hit = hit[~at_one]
+        if hit.size:
+            active.append(f"{m} dP/dl at its floor at stretch "
+                          + ", ".join(f"{v:.3g}" for v in grid[hit][:3])
+                          + (" ..." if hit.size > 3 else ""))
+    return active
+
+
+def _bounds_hit(setup: _Setup, x: Any) -> list[str]:
+    """In words, the parameters at a bound at x."""
+    import numpy as np
+
+    lo_b, hi_b = setup.lo, setup.hi
     near_lo = np.isfinite(lo_b) & (np.abs(x - lo_b) <= 1e-9 * np.maximum(1, np.abs(lo_b)))
     near_hi = np.isfinite(hi_b) & (np.abs(x - hi_b) <= 1e-9 * np.maximum(1, np.abs(hi_b)))
-    pnames = HYPERELASTIC_MODELS[name]
-    for i in np.flatnonzero(near_lo | near_hi):
-        bound = lo_b[i] if near_lo[i] else hi_b[i]
-        active.append(f"{pnames[i]} at its bound {bound:g}")
-    if active:
-        constrained = True
-        notes.append("constrained fit (" + "; ".join(active) + "): standard errors are "
-                     "indicative only")
-    # --- uncertainty ----------------------------------------------------------------------
+    pnames = HYPERELASTIC_MODELS[setup.name]
+    return [f"{pnames[i]} at its bound {lo_b[i] if near_lo[i] else hi_b[i]:g}"
+            for i in np.flatnonzero(near_lo | near_hi)]
+
+
+def _active_constraints(setup: _Setup, x: Any, constrained: bool) -> list[str]:
+    """In words, the constraints (after a constrained fit) and the bounds active at x."""
+    active = _floors_hit(setup.prob, x) if constrained else []
+    return active + _bounds_hit(setup, x)
+
+
+def _uncertainty(prob: _Problem, x: Any) -> tuple[float, Any, Any, list[str]]:
+    """Cost (half the SSR: MPa^2 or unitless), standard errors and correlation matrix of the
+    parameters at x, and a note when they are strongly correlated."""
+    import numpy as np
+
     r_opt, jac = prob.rj(x)
     cost = 0.5 * float(r_opt @ r_opt)
-    dof = n_pts - n_par
+    n_par = prob.n_par
+    dof = int(prob.target.size) - n_par
     if dof > 0:
         cov = lsq_covariance(jac, 2.0 * cost / dof)
         se, corr = standard_errors(cov), correlation(cov)
@@ -1047,53 +1184,80 @@ def fit_material(
         se = np.full(n_par, np.nan)
         corr = np.full((n_par, n_par), np.nan)
         np.fill_diagonal(corr, 1.0)
+    notes: list[str] = []
     off_diag = np.abs(corr[~np.eye(n_par, dtype=bool)])
     if off_diag.size and np.nanmax(off_diag) > 0.99:
         notes.append(f"parameters strongly correlated (|r| = {np.nanmax(off_diag):.3f}): the data "
                      "do not pin each one down; add another test mode or a simpler model")
+    return cost, se, corr, notes
+
+
+def _fitted_model(name: str, x: Any, d: float | None, poisson: float) -> HyperelasticModel:
+    """The fitted parameters as a checked model (d in 1/MPa); an InputError if invalid."""
     try:
-        fitted = material_model(name, x, d=d, poisson=poisson)
+        return material_model(name, x, d=d, poisson=poisson)
     except InputError as exc:
         raise InputError(f"the {name} fit gives an invalid material ({exc}); try another "
                          "model", param="model") from None
+
+
+def _mode_fits(fitted: HyperelasticModel, data: dict[str, tuple[Any, Any]],
+               kinds: dict[str, str]) -> dict[str, ModeFit]:
+    """Per mode: data, fitted nominal stress (MPa), R^2 and RMS (MPa)."""
+    import numpy as np
+
     mode_fits = {}
-    for m in modes:
-        lam, p = data[m]
+    for m, (lam, p) in data.items():
         f = np.asarray(fitted._stress(m, lam, "engineering"), dtype=float)
         ss_res = float(np.sum((f - p) ** 2))
         ss_tot = float(np.sum((p - p.mean()) ** 2))
         r2 = 1.0 - ss_res / ss_tot if p.size > 1 and ss_tot > 0 else float("nan")
         mode_fits[m] = ModeFit(m, lam, p, f, r2, float(np.sqrt(ss_res / p.size)),
                                kinds.get(m, "engineering"))
-    # --- stability: measured modes over their data (refused), report per mode (warned) --
+    return mode_fits
+
+
+def _data_stability(fitted: HyperelasticModel, prob: _Problem,
+                    allow_unstable: bool) -> tuple[StabilityCheck, list[str]]:
+    """Drucker check of the measured modes over their data's stretch ranges: an InputError
+    when unstable, unless allowed (then a note)."""
     first: dict[str, float | None] = dict.fromkeys(MODES)
-    for m in modes:
+    for m in prob.modes:
         chk = fitted.stability(*prob.data_range[m], modes=(m,))
         first[m] = chk.unstable_from[m]
     d_lo = min(r[0] for r in prob.data_range.values())
     d_hi = max(r[1] for r in prob.data_range.values())
     stab = StabilityCheck(all(v is None for v in first.values()), d_lo, d_hi, first, 401,
-                          tuple(modes))
-    if not stab.stable:
-        where = ", ".join(f"{k} from stretch {v:.3g}" for k, v in first.items() if v is not None)
-        msg = (f"the {name} fit is Drucker-unstable (dP/dl <= 0) inside the data's stretch "
-               f"range: {where}")
-        if not allow_unstable:
-            raise InputError(f"model: {msg}; use another model, the constrained fit or "
-                             "allow_unstable", param="model")
-        notes.append(msg)
+                          tuple(prob.modes))
+    if stab.stable:
+        return stab, []
+    where = ", ".join(f"{k} from stretch {v:.3g}" for k, v in first.items() if v is not None)
+    msg = (f"the {prob.name} fit is Drucker-unstable (dP/dl <= 0) inside the data's stretch "
+           f"range: {where}")
+    if not allow_unstable:
+        raise InputError(f"model: {msg}; use another model, the constrained fit or "
+                         "allow_unstable", param="model")
+    return stab, [msg]
+
+
+def _stability_report(fitted: HyperelasticModel, prob: _Problem, stab: StabilityCheck,
+                      report_range: tuple[float, float] | None,
+                      ) -> tuple[dict[str, ModeStability], list[str]]:
+    """Per path (all three), stable or not over the report range (unitless), and notes for
+    instabilities not already refused or noted."""
     all_lo = min(r[0] for r in prob.range.values())
     all_hi = max(r[1] for r in prob.range.values())
     report: dict[str, ModeStability] = {}
+    notes: list[str] = []
     for m in MODES:
         lo_s, hi_s = report_range or prob.range.get(m, (all_lo, all_hi))
         chk = fitted.stability(lo_s, hi_s, modes=(m,))
-        ms = ModeStability(m, m in data, lo_s, hi_s, chk.unstable_from[m] is None,
+        ms = ModeStability(m, m in prob.data, lo_s, hi_s, chk.unstable_from[m] is None,
                            chk.unstable_from[m])
         report[m] = ms
-        if ms.stable or (m in data and first[m] is not None):
+        if ms.stable or (m in prob.data and stab.unstable_from[m] is not None):
             continue
-        if m in data:
+        if m in prob.data:
             notes.append(f"{m}: Drucker-unstable from stretch {ms.unstable_from:.3g}, outside "
                          f"the data ({prob.data_range[m][1]:.3g}): do not extrapolate there")
         else:
@@ -1101,17 +1265,20 @@ def fit_material(
                          f"{ms.unstable_from:.3g} within {lo_s:.3g}-{hi_s:.3g}; the fit predicts "
                          f"{m} deformation only where it is stable: test that mode, or set "
                          "stability_range to the stretches your part reaches")
-    for note in notes:
-        warn_implausible(note)
+    return report, notes
+
+
+def _multistart_summary(start_costs: list[float], n_pts: int, residuals: str) -> dict[str, Any]:
+    """How the starts did: their number, RMS (MPa, or unitless for relative residuals) of the
+    best, median and worst, and how many came within 1 % of the best."""
+    import numpy as np
+
+    start_rms = np.sqrt(2.0 * np.array(sorted(start_costs)) / n_pts)
     unit = "mpa" if residuals == "absolute" else "rel"
-    multistart = {"n_starts": n_run, f"rms_min_{unit}": float(start_rms[0]),
-                  f"rms_median_{unit}": float(np.median(start_rms)),
-                  f"rms_max_{unit}": float(start_rms[-1]),
-                  "n_within_1pct": int(np.sum(start_rms <= start_rms[0] * 1.01))}
-    return MaterialFit(fitted, tuple(float(v) for v in se), corr, mode_fits, stab, residuals,
-                       float(cost), tuple(notes), constrained=constrained,
-                       active_constraints=tuple(active), stability_report=report,
-                       multistart=multistart, margin_rel=margin)
+    return {"n_starts": len(start_costs), f"rms_min_{unit}": float(start_rms[0]),
+            f"rms_median_{unit}": float(np.median(start_rms)),
+            f"rms_max_{unit}": float(start_rms[-1]),
+            "n_within_1pct": int(np.sum(start_rms <= start_rms[0] * 1.01))}
 
 
 def _unchecked(name: str, x: NDArray[np.float64]) -> HyperelasticModel:
