@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import contextlib
 import json
-import math
 import os
 import tomllib
 import uuid
@@ -91,35 +90,44 @@ def read_table(
     >>> df["outer_diameter_mm"].tolist()
     [8.53, 8.78, 9.14, 9.44]
     """
-    from exofric.io._table import locate_columns
-
-    grid, picks = locate_columns(path, list(required), list(optional), columns=columns,
-                                 text_columns=text_columns, text=True, comment=True)
-    name = grid.source
+    import numpy as np
     import pandas as pd  # lazy: reading TOML/JSON or writing files must not load pandas
 
-    df = pd.DataFrame({c: pd.Series(grid.column(pk.index)).reset_index(drop=True)
-                       for c, pk in picks.items()})
+    from exofric.io._table import locate_columns
+
+    df, picks, grid = _fast_numeric(path, required, optional, columns, text_columns,
+                                    nonnegative)
+    if df is None:   # text columns, or a cell to name: read as text, check cell by cell
+        grid, picks = locate_columns(path, list(required), list(optional), columns=columns,
+                                     text_columns=text_columns, text=True, comment=True)
+        df = pd.DataFrame({c: pd.Series(grid.column(pk.index)).reset_index(drop=True)
+                           for c, pk in picks.items()})
+    name = grid.source
     keep = list(df.columns)
     numeric = [c for c in keep if c not in text_columns]
     checks = numeric if nonnegative is None else [c for c in nonnegative if c in numeric]
     for col in numeric:
+        if df[col].dtype.kind == "f":   # the fast path checked it already
+            continue
         raw = df[col].astype(str).str.strip()
-        vals = pd.to_numeric(raw, errors="coerce")
-        for i, (r, v) in enumerate(zip(raw, vals, strict=True)):
+        vals = pd.to_numeric(raw, errors="coerce").to_numpy(dtype=float)
+        # vectorised checks (10^6-row tables); the first bad row is named as before
+        bad_nan = np.isnan(vals)
+        bad_inf = ~bad_nan & ~np.isfinite(vals)
+        bad_neg = (vals < 0) if col in checks else np.zeros(vals.size, bool)
+        bad = bad_nan | bad_inf | bad_neg
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            r = str(raw.iloc[i])
             row = f"data row {i + 1}"
-            if r == "" or r.lower() == "nan" or (isinstance(v, float) and math.isnan(v)):
-                what = (
-                    "empty"
-                    if r == ""
-                    else ("NaN" if r.lower() == "nan" else f"not a number: {r!r}")
-                )
+            if bad_nan[i]:
+                what = ("empty" if r == "" else
+                        ("NaN" if r.lower() == "nan" else f"not a number: {r!r}"))
                 raise InputError(f"{name}: {row}, column {col!r} is {what}")
-            if not math.isfinite(float(v)):
+            if bad_inf[i]:
                 raise InputError(f"{name}: {row}, column {col!r} must be finite, got {r}")
-            if col in checks and v < 0:
-                raise InputError(f"{name}: {row}, column {col!r} must be >= 0, got {r}")
-        df[col] = vals.astype(float) * picks[col].factor
+            raise InputError(f"{name}: {row}, column {col!r} must be >= 0, got {r}")
+        df[col] = vals * picks[col].factor
     for col in text_columns:
         if col in df.columns:
             df[col] = df[col].astype(str).str.strip()
@@ -142,6 +150,35 @@ def read_table(
                      "columns": {c: pk.header for c, pk in picks.items()},
                      "metadata": list(grid.metadata), "format": grid.fmt})
     return df
+
+
+def _fast_numeric(path: str | Path, required: Sequence[str], optional: Sequence[str],
+                  columns: Mapping[str, str] | None, text_columns: Sequence[str],
+                  nonnegative: Sequence[str] | None) -> tuple[Any, Any, Any]:
+    """(DataFrame, picks, grid) when every column read is numeric, finite and within the
+    checks (a 10^6-row table in a C parse), else (None, ...) and the caller reads it as text to
+    name the offending cell; converted to the unit of each column's name."""
+    import numpy as np
+    import pandas as pd
+
+    from exofric.io._table import locate_columns
+
+    grid, picks = locate_columns(path, list(required), list(optional), columns=columns,
+                                 text_columns=text_columns, comment=True)
+    if any(c in picks for c in text_columns):
+        return None, picks, grid
+    out = {}
+    for c, pk in picks.items():
+        vals = np.asarray(grid.column(pk.index))
+        if vals.dtype.kind not in "fiu":
+            return None, picks, grid
+        vals = vals.astype(float)
+        if not np.all(np.isfinite(vals)):
+            return None, picks, grid
+        if (nonnegative is None or c in nonnegative) and np.any(vals < 0):
+            return None, picks, grid
+        out[c] = vals * pk.factor
+    return pd.DataFrame(out), picks, grid
 
 
 @contextlib.contextmanager

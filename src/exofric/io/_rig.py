@@ -248,10 +248,15 @@ def read_friction_table(path: str | Path, columns: Mapping[str, str] | None = No
             row = int(np.flatnonzero(k != np.round(k))[0]) + 1
             raise InputError(f"{name}: data row {row}, column 'plateau' must be an integer, "
                              f"got {k[row - 1]:g}")
-        lab = [f"plateau {int(v)}" for v in k]
-        df["group"] = [f"{t}|{g}" if t else g for t, g in zip(df["test"], lab, strict=True)]
+        import pandas as pd
+
+        lab = "plateau " + pd.Series(k.astype(np.int64), index=df.index).astype(str)
+        df["group"] = (df["test"] + "|").where(df["test"] != "", "") + lab
     else:
-        df["group"] = prefix + [f"{v:g}" for v in df["pressure_mpa"].to_numpy(float)]
+        # the pressures' distinct values formatted once each (10^6-row tables)
+        pv = df["pressure_mpa"].to_numpy(float)
+        uniq, inv = np.unique(pv, return_inverse=True)
+        df["group"] = prefix + np.array([f"{v:g}" for v in uniq], dtype=object)[inv]
     df = df[["pressure_mpa", "friction_n", "test", "group", "branch"]]
     _named(df, path)
     df.attrs["synthetic"] = any("SYNTHETIC" in ln.upper() for ln in comments)

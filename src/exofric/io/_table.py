@@ -30,7 +30,7 @@ import io as _io
 import math
 import re
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -679,15 +679,43 @@ def tdms_grids(p: Path, name: str) -> list[Grid]:
 def read_grids(path: str | Path, *, text: bool = False, comment: bool = False,
                strict: bool = False) -> list[Grid]:
     """The grid(s) of a file by its suffix (TDMS: one per group; others: one); another suffix is
-    read as text (an error when ``strict``)."""
+    read as text (an error when ``strict``).
+
+    The last two files read are kept (keyed by path, size and modification time): a reader
+    that looks at the header first and then at the columns parses a file once.
+    """
     p = Path(path)
+    try:
+        st = p.stat()
+    except OSError:
+        return _read_grids(p, text=text, comment=comment, strict=strict)
+    cached = _read_grids_cached(str(p.resolve()), st.st_size, st.st_mtime_ns, st.st_ino,
+                                text, comment, strict)
+    # each caller gets its own copies of the columns: the kept grid is never changed
+    return [replace(g, column=functools.partial(_copied, g.column)) for g in cached]
+
+
+def _copied(column: Callable[[int], Any], i: int) -> Any:
+    """Column ``i`` of a kept grid, copied."""
+    values = column(i)
+    return values.copy() if hasattr(values, "copy") else values
+
+
+@functools.lru_cache(maxsize=2)
+def _read_grids_cached(path: str, size: int, mtime_ns: int, inode: int, text: bool,
+                       comment: bool, strict: bool) -> tuple[Grid, ...]:
+    """:func:`read_grids` of one version of a file (the key changes when the file does)."""
+    return tuple(_read_grids(Path(path), text=text, comment=comment, strict=strict))
+
+
+def _read_grids(p: Path, *, text: bool, comment: bool, strict: bool) -> list[Grid]:
     name = p.name
     suffix = p.suffix.lower()
     if suffix not in TABLE_SUFFIXES and strict:
         raise InputError(f"{name}: unsupported table type {p.suffix or '(no suffix)'!r} "
                          f"(supported: {', '.join(TABLE_SUFFIXES)})")
     if not p.is_file():
-        raise InputError(f"{path}: file not found")
+        raise InputError(f"{p}: file not found")
     if suffix == ".tdms":
         return tdms_grids(p, name)
     if suffix in (".parquet", ".pq"):
