@@ -13,8 +13,9 @@ from exofric.cli._common import parse_floats
 if TYPE_CHECKING:
     from exofric.material import HyperelasticModel, MooneyRivlin
 
-__all__ = ["C01_OPTION", "C10_OPTION", "D_OPTION", "MODEL_HELP", "MODEL_OPTION", "PARAMS_HELP",
-           "PARAMS_OPTION", "SHORE_OPTION", "material_from_options"]
+__all__ = ["C01_OPTION", "C10_OPTION", "D_OPTION", "HOLE_OPTION", "MODEL_HELP", "MODEL_OPTION",
+           "PARAMS_HELP", "PARAMS_OPTION", "SHORE_OPTION", "TUBE_ID_OPTION", "TUBE_OD_OPTION",
+           "WIRE_OPTION", "material_from_options"]
 
 MODEL_HELP = ("Hyperelastic model instead of the Shore route: neo-hookean, mooney-rivlin, yeoh "
               "or ogden (ogden1-3; constants from --params; --d optional). Not with "
@@ -78,3 +79,9 @@ C01_OPTION: Any = typer.Option(None, help="Override C01 (MPa).")
 D_OPTION: Any = typer.Option(None, help="Override d (1/MPa).")
 MODEL_OPTION: Any = typer.Option(None, "--model", help=MODEL_HELP)
 PARAMS_OPTION: Any = typer.Option(None, "--params", help=PARAMS_HELP)
+
+# The structure option group (mm): the hole, the tube and the wire of a structure.
+HOLE_OPTION: Any = typer.Option(..., help="Hole diameter D (mm).")
+TUBE_OD_OPTION: Any = typer.Option(..., help="Tube outer diameter d1 (mm).")
+TUBE_ID_OPTION: Any = typer.Option(..., help="Tube inner diameter (mm).")
+WIRE_OPTION: Any = typer.Option(..., help="Wire diameter d2 (mm).")

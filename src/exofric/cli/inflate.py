@@ -23,6 +23,8 @@ from exofric.cli._options import (
     MODEL_OPTION,
     PARAMS_OPTION,
     SHORE_OPTION,
+    TUBE_ID_OPTION,
+    TUBE_OD_OPTION,
     material_from_options,
 )
 
@@ -32,8 +34,8 @@ def register(app: typer.Typer) -> None:
 
     @app.command("inflate")
     def inflate_cmd(
-        tube_od: float = typer.Option(..., help="Tube outer diameter d1 (mm)."),
-        tube_id: float = typer.Option(..., help="Tube inner diameter (mm)."),
+        tube_od: float = TUBE_OD_OPTION,
+        tube_id: float = TUBE_ID_OPTION,
         shore: float = SHORE_OPTION,
         pressures: str = typer.Option(
             "0.1,0.2,0.3,0.4,0.5,0.6", help="Comma-separated increasing pressures (MPa)."

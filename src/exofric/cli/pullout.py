@@ -12,9 +12,13 @@ from exofric.cli._options import (
     C01_OPTION,
     C10_OPTION,
     D_OPTION,
+    HOLE_OPTION,
     MODEL_OPTION,
     PARAMS_OPTION,
     SHORE_OPTION,
+    TUBE_ID_OPTION,
+    TUBE_OD_OPTION,
+    WIRE_OPTION,
     material_from_options,
 )
 
@@ -27,10 +31,10 @@ def register(app: typer.Typer) -> None:
 
     @app.command("pullout")
     def pullout_cmd(
-        hole: float = typer.Option(..., help="Hole diameter D (mm)."),
-        tube_od: float = typer.Option(..., help="Tube outer diameter d1 (mm)."),
-        tube_id: float = typer.Option(..., help="Tube inner diameter (mm)."),
-        wire: float = typer.Option(..., help="Wire diameter d2 (mm)."),
+        hole: float = HOLE_OPTION,
+        tube_od: float = TUBE_OD_OPTION,
+        tube_id: float = TUBE_ID_OPTION,
+        wire: float = WIRE_OPTION,
         length: float = typer.Option(116.0, help="Tube length L (mm)."),
         pressure: float = typer.Option(..., help="Tube pressure P (MPa)."),
         mu_wire: float = typer.Option(..., "--mu-wire", help="Kinetic Coulomb coefficient "
@@ -95,10 +99,10 @@ def register(app: typer.Typer) -> None:
 
     @app.command("stiffness")
     def stiffness_cmd(
-        hole: float = typer.Option(..., help="Hole diameter D (mm)."),
-        tube_od: float = typer.Option(..., help="Tube outer diameter d1 (mm)."),
-        tube_id: float = typer.Option(..., help="Tube inner diameter (mm)."),
-        wire: float = typer.Option(..., help="Wire diameter d2 (mm)."),
+        hole: float = HOLE_OPTION,
+        tube_od: float = TUBE_OD_OPTION,
+        tube_id: float = TUBE_ID_OPTION,
+        wire: float = WIRE_OPTION,
         length: float = typer.Option(116.0, help="Tube length L (mm)."),
         pressures: str = typer.Option("0.1,0.2,0.3,0.4,0.5,0.6", help="Pressures (MPa)."),
         radius: float = typer.Option(..., help="Pulley radius / lever arm R (m)."),

@@ -23,9 +23,13 @@ from exofric.cli._options import (
     C01_OPTION,
     C10_OPTION,
     D_OPTION,
+    HOLE_OPTION,
     MODEL_OPTION,
     PARAMS_OPTION,
     SHORE_OPTION,
+    TUBE_ID_OPTION,
+    TUBE_OD_OPTION,
+    WIRE_OPTION,
     material_from_options,
 )
 
@@ -54,10 +58,10 @@ def register(app: typer.Typer) -> None:
 
     @app.command("squeeze")
     def squeeze_cmd(
-        hole: float = typer.Option(..., help="Hole diameter D (mm)."),
-        tube_od: float = typer.Option(..., help="Tube outer diameter d1 (mm)."),
-        tube_id: float = typer.Option(..., help="Tube inner diameter (mm)."),
-        wire: float = typer.Option(..., help="Wire diameter d2 (mm)."),
+        hole: float = HOLE_OPTION,
+        tube_od: float = TUBE_OD_OPTION,
+        tube_id: float = TUBE_ID_OPTION,
+        wire: float = WIRE_OPTION,
         shore: float = SHORE_OPTION,
         c10: float = C10_OPTION,
         c01: float = C01_OPTION,
