@@ -166,3 +166,20 @@ def test_pd_without_the_model_says_why_it_ends_at_zero_friction(cli) -> None:
     d = r.json()
     assert d["final_friction_n"] < 0.5
     assert any("below contact onset" in n for n in d["notes"])
+
+
+def test_identify_reads_other_headers_through_columns(cli, tmp_path):
+    """`control identify --columns` (issue 31: every command that reads a file maps headers):
+    a step logged as t (s) and P1 (kPa), planted as 400 kPa x (1 - exp(-(t - 0.1)/0.4)): the
+    fit returns the planted lag 0.4 s, dead time 0.1 s and a 0.4 MPa step (1 kPa = 1e-3 MPa),
+    to 1e-3 relative (the sampling is 0.01 s; the identification fits the exact ZOH form)."""
+    t = np.arange(0.0, 5.0, 0.01)
+    p = np.where(t > 0.1, 400.0 * (1.0 - np.exp(-(t - 0.1) / 0.4)), 0.0)
+    f = tmp_path / "step.csv"
+    f.write_text("t,P1\n" + "".join(f"{a:.3f},{b:.6f}\n" for a, b in zip(t, p, strict=True)))
+    r = cli(["control", "identify", str(f), "--columns", "time_s=t,pressure_kpa=P1", "--json"])
+    assert r.code == 0, r.err
+    d = json.loads(r.out)["plant"]
+    assert d["time_constant_s"] == pytest.approx(0.4, rel=1e-3)
+    assert d["delay_s"] == pytest.approx(0.1, rel=1e-3)
+    assert d["step_mpa"] == pytest.approx(0.4, rel=1e-3)

@@ -47,6 +47,9 @@ def register(app: typer.Typer) -> None:
         data: Path = typer.Option(
             None, help="Measured test (CSV: displacement_mm,force_n): computed at its "
             "displacements, compared and plotted."),
+        columns: str = typer.Option(
+            None, "--columns", help="Map --data's headers: displacement_mm=Ext,force_n=Load "
+            "(units in the keys, e.g. force_kn); headers such as 'Load (N)' need none."),
         n_radial: int = typer.Option(None, help="Mesh: elements through the wall."),
         n_circ: int = typer.Option(None, help="Mesh: elements around the quarter ring."),
         plot: Path = typer.Option(None, help="Write a PNG of force vs pin displacement."),
@@ -81,9 +84,11 @@ def register(app: typer.Typer) -> None:
         measured = None
         md = mf = np.empty(0)
         if data is not None:
-            from exofric.io import read_ring_test
+            from exofric.io import parse_column_map, read_ring_test
 
-            md, mf = read_ring_test(data)
+            mapping = (parse_column_map(columns, columns=("displacement_mm", "force_n"))
+                       if columns else None)
+            md, mf = read_ring_test(data, mapping)
             measured = (md.tolist(), mf.tolist())
             disp = md[md > 0.0] if np.any(md > 0.0) else md
         else:

@@ -95,11 +95,13 @@ def _structure_map(structure: str, gamma: float) -> Any:
     return CurveFrictionMap(pres, force, gamma)
 
 
-def _identify_csv(path: str) -> Any:
+def _identify_csv(path: str, columns: str | None = None) -> Any:
     from exofric.control import identify_step
-    from exofric.io import read_step_response
+    from exofric.io import parse_column_map, read_step_response
 
-    df = read_step_response(path)
+    mapping = (parse_column_map(columns, columns=("time_s", "pressure_mpa", "command_mpa"))
+               if columns else None)
+    df = read_step_response(path, mapping)
     cmd = df["command_mpa"].to_numpy() if "command_mpa" in df.columns else None
     return identify_step(df["time_s"].to_numpy(), df["pressure_mpa"].to_numpy(), cmd)
 

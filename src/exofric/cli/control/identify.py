@@ -51,7 +51,11 @@ def register(ctl: typer.Typer) -> None:
                                                 "separated (two different values identify C "
                                                 "and the volume together)."),
         target_friction: float = TARGET, structure: str = STRUCTURE,
-        gamma: float | None = GAMMA, tau_c: float | None = TAU_C, as_json: bool = JSON_OPTION,
+        gamma: float | None = GAMMA, tau_c: float | None = TAU_C,
+        columns: str | None = typer.Option(
+            None, "--columns", help="Map the step CSV's headers: time_s=t,pressure_kpa=P1"
+            "[,command_mpa=U] (units in the keys); 'Time (s)'-style headers need none."),
+        as_json: bool = JSON_OPTION,
     ) -> None:
         """Identify the pressure supply: lag + dead time from a step (CSV), or the valve's
         sonic conductance and the volume from charge/discharge logs (--charge)."""
@@ -67,7 +71,7 @@ def register(ctl: typer.Typer) -> None:
         if csv is None:
             raise InputError("control identify needs a step-response CSV or --charge LOG",
                              param="csv")
-        ident = _identify_csv(csv)
+        ident = _identify_csv(csv, columns)
         fmap = _structure_map(structure, paper.scalar("gamma") if gamma is None else gamma)
         slope = local_slope(fmap, fmap.inverse(target_friction)) * ident.gain
         gains = {k: rule_gains(k, slope, ident.time_constant_s, ident.delay_s,
