@@ -253,10 +253,10 @@ def test_verify_cli_on_damaged_folder_and_without_dask(folder):
     bad.write_bytes(bad.read_bytes()[:50])
     gone = ok_files(folder)[1]
     gone.unlink()
-    code = ("import sys\nfrom exofric.cli import run\n"
+    code = ("import sys\nfrom exofric.cli import exit_process, run\n"
             f"rc = run(['sweep', '--verify', {str(folder)!r}, '--json'])\n"
             "print('dask-imported' if {'dask', 'distributed'} & set(sys.modules) else 'no-dask',"
-            " file=sys.stderr)\nsys.exit(rc)\n")
+            " file=sys.stderr)\nexit_process(rc)\n")   # as the console script ends
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           timeout=120)
     assert proc.returncode == 1

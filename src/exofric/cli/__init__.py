@@ -219,4 +219,22 @@ def _is_fe(args: list[str]) -> bool:
 
 def main() -> None:
     """Console entry point."""
-    raise SystemExit(run())
+    exit_process(run())
+
+
+def exit_process(code: int) -> None:
+    """End the process with ``code``, past pyarrow's intermittent abort at interpreter exit.
+
+    pyarrow's native thread pools can abort the process while Python finalizes ("terminate
+    called without an active exception", exit -6 after the command's work and output are done;
+    apache/arrow#34314). When pyarrow was loaded, the outputs are flushed and the process ends
+    without finalization; otherwise it exits normally.
+    """
+    if "pyarrow" in sys.modules:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(code)
+    raise SystemExit(code)
