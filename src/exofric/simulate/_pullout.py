@@ -822,8 +822,7 @@ def pullout(
     >>> bool(r.static_force_n > r.sliding_force_n)
     True
     """
-    mw, _, mww = _check_pull(mu_wire, mu_wall, mu_wire_wall, ends)
-    ms = _check_static(mu_static, mw, mww)
+    mw, _, mww, ms = check_pullout_friction(mu_wire, mu_wall, mu_wire_wall, ends, mu_static)
     ea = check_positive("cable_ea_n", cable_ea_n, "N")
     L = structure.length_mm
     dmax = float(displacement_mm)
