@@ -24,6 +24,7 @@ The simulations are deterministic: the numbers do not depend on the machine; the
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import sys
 import time
@@ -31,6 +32,7 @@ from typing import Any
 
 from exofric.control import (
     PlantParams,
+    StrategyOptions,
     StrategyTable,
     compare_strategies,
     identify_step,
@@ -59,9 +61,14 @@ def _print(title: str, table: StrategyTable, cpu_s: float) -> None:
         print(f"{line}   {_paper(row)}", file=sys.stderr)
 
 
+_OPTION_NAMES = {f.name for f in dataclasses.fields(StrategyOptions)}
+
+
 def _timed(**kw: Any) -> tuple[StrategyTable, float]:
+    """compare_strategies with its options given flat (they go into StrategyOptions), timed."""
+    opts = StrategyOptions(**{k: kw.pop(k) for k in list(kw) if k in _OPTION_NAMES})
     t0 = time.process_time()
-    t = compare_strategies(**kw)
+    t = compare_strategies(**kw, options=opts)
     return t, time.process_time() - t0
 
 

@@ -21,6 +21,7 @@ from exofric.control import (
     PlantParams,
     PressurePlant,
     ScheduledController,
+    StrategyOptions,
     compare_strategies,
     friction_inverse,
     setpoint_profile,
@@ -126,8 +127,9 @@ def test_scheduled_pi_settles_where_fixed_pi_is_slow_or_oscillates():
     # PI tuned tight (SIMC tau_c = theta) at 54 N: fixed gains crawl at 2 N and exceed the
     # gain margin (pi) at 333 N; scheduled gains keep the loop of the tuning point.
     t = compare_strategies(PlantParams(), lambda p: 2000.0 * p**3, targets_n=(54.0, 2.0, 333.0),
-                           controllers=("pi",), feedforwards=("none",), tune_target_n=54.0,
-                           tau_c_s=0.2, duration_s=20.0)
+                           options=StrategyOptions(controllers=("pi",), feedforwards=("none",),
+                                                   tune_target_n=54.0, tau_c_s=0.2,
+                                                   duration_s=20.0))
     mid = t.get("up 54 N", "pi", "none", False)
     for target in (2.0, 333.0):
         fixed = t.get(f"up {target:g} N", "pi", "none", False)
@@ -230,11 +232,11 @@ def test_simulate_accepts_plant_objects():
 def test_compare_strategies_bad_input():
     s = ControlSetup.default()
     with pytest.raises(InputError, match="feedforward"):
-        compare_strategies(s.plant, s.model_map, feedforwards=("magic",))
+        compare_strategies(s.plant, s.model_map, options=StrategyOptions(feedforwards=("magic",)))
     with pytest.raises(InputError, match="controller"):
-        compare_strategies(s.plant, s.model_map, controllers=("p",))
+        compare_strategies(s.plant, s.model_map, options=StrategyOptions(controllers=("p",)))
     with pytest.raises(InputError, match="onset"):
-        compare_strategies(s.plant, lambda p: 0.0, tune_target_n=10.0)
+        compare_strategies(s.plant, lambda p: 0.0, options=StrategyOptions(tune_target_n=10.0))
     with pytest.raises(InputError, match="schedule_on"):
         ScheduledController(GAINS, s.model_map, slope_ref_n_per_mpa=1.0,
                             schedule_on="pressure")  # type: ignore[arg-type]

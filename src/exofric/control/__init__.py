@@ -60,6 +60,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         HysteresisInverse,
         HystereticFrictionMap,
         ScheduledController,
+        StrategyOptions,
         StrategyRow,
         StrategyTable,
         compare_strategies,

@@ -56,6 +56,7 @@ __all__ = [
     "ScheduledController",
     "HystereticFrictionMap",
     "HysteresisInverse",
+    "StrategyOptions",
     "StrategyRow",
     "StrategyTable",
     "compare_strategies",
@@ -703,8 +704,9 @@ class StrategyTable:
     Examples
     --------
     >>> from exofric.control import PlantParams
+    >>> opts = StrategyOptions(controllers=("pi",), duration_s=3.0)
     >>> t = compare_strategies(PlantParams(), lambda p: 400.0 * p, targets_n=(40.0,),
-    ...                        controllers=("pi",), duration_s=3.0)
+    ...                        options=opts)
     >>> len(t.rows), t.rows[0].feedforward
     (4, 'none')
     """
@@ -740,8 +742,9 @@ class StrategyTable:
         Examples
         --------
         >>> from exofric.control import PlantParams
+        >>> opts = StrategyOptions(controllers=("pi",), duration_s=3.0)
         >>> t = compare_strategies(PlantParams(), lambda p: 400.0 * p, targets_n=(40.0,),
-        ...                        controllers=("pi",), duration_s=3.0)
+        ...                        options=opts)
         >>> t.get("up 40 N", "pi", "model", False).target_n
         40.0
         """
@@ -769,8 +772,9 @@ class StrategyTable:
         Examples
         --------
         >>> from exofric.control import PlantParams
+        >>> opts = StrategyOptions(controllers=("pi",), duration_s=3.0)
         >>> t = compare_strategies(PlantParams(), lambda p: 400.0 * p, targets_n=(40.0,),
-        ...                        controllers=("pi",), duration_s=3.0)
+        ...                        options=opts)
         >>> list(t.to_frame().columns[:3])
         ['scenario', 'start_n', 'target_n']
         """
@@ -788,8 +792,9 @@ class StrategyTable:
         Examples
         --------
         >>> from exofric.control import PlantParams
+        >>> opts = StrategyOptions(controllers=("pi",), duration_s=3.0)
         >>> t = compare_strategies(PlantParams(), lambda p: 400.0 * p, targets_n=(40.0,),
-        ...                        controllers=("pi",), duration_s=3.0)
+        ...                        options=opts)
         >>> t.format().splitlines()[0].split()[:3]
         ['scenario', 'ctrl', 'ff']
         """
@@ -809,6 +814,72 @@ def _label(start: float, target: float) -> str:
         f"{'down' if target < start else 'up'} {start:g}->{target:g} N")
 
 
+@dataclass(frozen=True)
+class StrategyOptions:
+    """Which loops :func:`compare_strategies` builds, how it tunes them, how it judges a step.
+
+    Defaults: PD, PI and PID; every relevant feedforward; fixed and scheduled gains, tuned by
+    the IMC/SIMC rule at the paper's 54.4 N target; the 2-DOF feedforward; 10 ms steps over
+    15 s per step, settled within 2 %.
+
+    Parameters
+    ----------
+    controllers : sequence of str
+        Among ``'pd'``, ``'pi'``, ``'pid'``.
+    feedforwards : sequence of str or None
+        Among ``'none'``, ``'model'``, ``'hysteresis'``; default all that are relevant
+        (``'hysteresis'`` only when ``hysteresis_mpa`` > 0).
+    schedules : sequence of bool
+        False for fixed gains, True for scheduled.
+    tune_target_n : float
+        Target friction in N at which the fixed gains are tuned.
+    tau_c_s : float or None
+        Closed-loop time constant of the rule in s (default lag + dead time).
+    ff_mode : {'2dof', 'static'}
+        How the feedforward is combined with the feedback.
+    schedule_on : {'target', 'measured'}
+        Operating point of the scheduling.
+    floor_n_per_mpa : float or None
+        Slope floor of the scheduling in N/MPa (default 0.1 x the reference slope).
+    dt, duration_s : float
+        Sample time and horizon per step in s.
+    band : float
+        Settling band, fraction of the step (0.02 = 2 %).
+
+    Examples
+    --------
+    >>> StrategyOptions(controllers=("pi",)).schedules
+    (False, True)
+    >>> StrategyOptions(controllers=("p",))
+    Traceback (most recent call last):
+    ...
+    exofric.errors.InputError: controller must be one of pd, pi, pid, got 'p'
+    """
+
+    controllers: Sequence[str] = CONTROLLERS
+    feedforwards: Sequence[str] | None = None
+    schedules: Sequence[bool] = (False, True)
+    tune_target_n: float = 54.4
+    tau_c_s: float | None = None
+    ff_mode: Literal["2dof", "static"] = "2dof"
+    schedule_on: ScheduleOn = "target"
+    floor_n_per_mpa: float | None = None
+    dt: float = 0.01
+    duration_s: float = 15.0
+    band: float = 0.02
+
+    def __post_init__(self) -> None:
+        check_range("tune_target_n", self.tune_target_n, 0.0, 1e6, lo_open=True, unit="N")
+        for ff_name in self.feedforwards or ():
+            if ff_name not in FEEDFORWARDS:
+                raise InputError(f"feedforward must be one of {', '.join(FEEDFORWARDS)}, "
+                                 f"got {ff_name!r}")
+        for k in self.controllers:
+            if k.lower() not in CONTROLLERS:
+                raise InputError(f"controller must be one of {', '.join(CONTROLLERS)}, "
+                                 f"got {k!r}")
+
+
 def compare_strategies(
     plant: PlantParams,
     model_map: FrictionFn,
@@ -819,24 +890,14 @@ def compare_strategies(
     hysteresis_mpa: float = 0.0,
     plant_factory: Callable[[], PlantLike] | None = None,
     plant_label: str | None = None,
-    controllers: Sequence[str] = CONTROLLERS,
-    feedforwards: Sequence[str] | None = None,
-    schedules: Sequence[bool] = (False, True),
-    tune_target_n: float = 54.4,
-    tau_c_s: float | None = None,
-    ff_mode: Literal["2dof", "static"] = "2dof",
-    schedule_on: ScheduleOn = "target",
-    floor_n_per_mpa: float | None = None,
-    dt: float = 0.01,
-    duration_s: float = 15.0,
-    band: float = 0.02,
+    options: StrategyOptions | None = None,
 ) -> StrategyTable:
     """Simulate {controllers} x {feedforwards} x {fixed, scheduled} on each scenario.
 
     Gains come from the IMC/SIMC rule (:func:`~exofric.control.rule_gains`) for the loop
-    linearised at ``tune_target_n`` (slope of ``model_map`` there x plant gain, the plant's lag
-    and dead time), and are the same for every feedforward, as in the paper's Fig 12. The
-    scheduled variant scales them by slope_ref / max(dF/dP, floor) of the model map
+    linearised at ``options.tune_target_n`` (slope of ``model_map`` there x plant gain, the
+    plant's lag and dead time), and are the same for every feedforward, as in the paper's
+    Fig 12. The scheduled variant scales them by slope_ref / max(dF/dP, floor) of the model map
     (:class:`ScheduledController`). Feedforwards: ``'model'`` inverts the model map over
     [0, p_max] (:func:`friction_inverse`), ``'hysteresis'`` uses
     :meth:`HysteresisInverse.from_play` with ``hysteresis_mpa`` (both 2-DOF with the plant's
@@ -865,27 +926,10 @@ def compare_strategies(
         ``plant``.
     plant_label : str or None
         Description of the plant for the table.
-    controllers : sequence of str
-        Among ``'pd'``, ``'pi'``, ``'pid'``.
-    feedforwards : sequence of str or None
-        Among ``'none'``, ``'model'``, ``'hysteresis'``; default all that are relevant
-        (``'hysteresis'`` only when ``hysteresis_mpa`` > 0).
-    schedules : sequence of bool
-        False for fixed gains, True for scheduled.
-    tune_target_n : float
-        Target friction in N at which the fixed gains are tuned.
-    tau_c_s : float or None
-        Closed-loop time constant of the rule in s (default lag + dead time).
-    ff_mode : {'2dof', 'static'}
-        How the feedforward is combined with the feedback.
-    schedule_on : {'target', 'measured'}
-        Operating point of the scheduling.
-    floor_n_per_mpa : float or None
-        Slope floor of the scheduling in N/MPa (default 0.1 x the reference slope).
-    dt, duration_s : float
-        Sample time and horizon per step in s.
-    band : float
-        Settling band, fraction of the step (0.02 = 2 %).
+    options : StrategyOptions or None
+        Which loops are built, how they are tuned and how the steps are judged (controllers,
+        feedforwards, schedules, tuning target and rule, 2-DOF or static feedforward, time
+        step, horizon, settling band); default :class:`StrategyOptions` ().
 
     Returns
     -------
@@ -894,94 +938,107 @@ def compare_strategies(
     Examples
     --------
     >>> from exofric.control import PlantParams
-    >>> t = compare_strategies(PlantParams(), lambda p: 400.0 * p, targets_n=(40.0,),
-    ...                        controllers=("pi",), duration_s=8.0)
+    >>> opts = StrategyOptions(controllers=("pi",), duration_s=8.0)
+    >>> t = compare_strategies(PlantParams(), lambda p: 400.0 * p, targets_n=(40.0,), options=opts)
     >>> r = t.get("up 40 N", "pi", "model", False)
     >>> r.settling_time_s is not None and abs(r.steady_state_error_n) < 0.8
     True
     """
+    o = StrategyOptions() if options is None else options
     check_range("hysteresis_mpa", hysteresis_mpa, 0.0, 1.0, unit="MPa")
-    check_range("tune_target_n", tune_target_n, 0.0, 1e6, lo_open=True, unit="N")
-    if feedforwards is None:
-        feedforwards = FEEDFORWARDS if hysteresis_mpa > 0.0 else FEEDFORWARDS[:2]
-    for ff_name in feedforwards:
-        if ff_name not in FEEDFORWARDS:
-            raise InputError(f"feedforward must be one of {', '.join(FEEDFORWARDS)}, "
-                             f"got {ff_name!r}")
-    kinds = [k.lower() for k in controllers]
-    for k in kinds:
-        if k not in CONTROLLERS:
-            raise InputError(f"controller must be one of {', '.join(CONTROLLERS)}, got {k!r}")
+    feedforwards = (tuple(o.feedforwards) if o.feedforwards is not None
+                    else FEEDFORWARDS if hysteresis_mpa > 0.0 else FEEDFORWARDS[:2])
     pmax = plant.p_max_mpa
-    p_tune = friction_inverse(model_map, tune_target_n, p_max_mpa=pmax)
+    p_tune = friction_inverse(model_map, o.tune_target_n, p_max_mpa=pmax)
     slope_map = local_slope(model_map, p_tune)          # dF/dP, N/MPa
     slope_ref = slope_map * plant.gain                  # dF/du of the loop, N/MPa (command)
     if slope_ref <= 0.0:
-        raise InputError(f"tune_target_n {tune_target_n:g} N is below the map's contact onset "
-                         "(dF/dP = 0 there): tune where the map rises")
-    true_fn = model_map if true_map is None else true_map
+        raise InputError(f"tune_target_n {o.tune_target_n:g} N is below the map's contact "
+                         "onset (dF/dP = 0 there): tune where the map rises")
     scenarios = [(0.0, float(t)) for t in targets_n] + [(float(a), float(b)) for a, b in steps_n]
     if not scenarios:
         raise InputError("compare_strategies needs at least one target or step")
-
-    def model_inverse(f: float) -> float:
-        return friction_inverse(model_map, f, p_max_mpa=pmax)
-
-    rows: list[StrategyRow] = []
-    for start, target in scenarios:
-        if start == target:
-            raise InputError(f"step from {start:g} N to {target:g} N: no change")
-        if start == 0.0:
-            sp: float | Callable[[Any], Any] = target
-            horizon, t_step = duration_s, 0.0
-        else:
-            def sp(t: Any, a: float = start, b: float = target) -> Any:
-                return np.where(t < duration_s, a, b)
-            horizon, t_step = 2.0 * duration_s, duration_s
-        for kind in kinds:
-            tuning = rule_gains(kind, slope_ref, plant.time_constant_s, plant.delay_s,
-                                tau_c_s=tau_c_s)
-            for ff_name in feedforwards:
-                for sched in schedules:
-                    ff: ModelFeedforward | None = None
-                    if ff_name != "none":
-                        if ff_name == "model":
-                            inv: Callable[[float], float] = model_inverse
-                            fwd: FrictionFn = model_map
-                        else:
-                            inv = HysteresisInverse.from_play(model_map, hysteresis_mpa,
-                                                              p_max_mpa=pmax)
-                            fwd = HystereticFrictionMap.from_play(model_map, hysteresis_mpa)
-                        ff = (ModelFeedforward(inv, gain=plant.gain, p_max_mpa=pmax)
-                              if ff_mode == "static" else
-                              ModelFeedforward(inv, fwd, time_constant_s=plant.time_constant_s,
-                                               delay_s=plant.delay_s, gain=plant.gain,
-                                               p_max_mpa=pmax))
-                    opts: dict[str, Any] = {"u_max": pmax, "feedforward": ff}
-                    ctrl: Controller
-                    if sched:
-                        ctrl = ScheduledController(
-                            tuning.gains, model_map, slope_ref_n_per_mpa=slope_map,
-                            floor_n_per_mpa=floor_n_per_mpa,
-                            schedule_on=schedule_on,
-                            operating_pressure=model_inverse, **opts)
-                    else:
-                        ctrl = Controller(tuning.gains, **opts)
-                    fn: FrictionFn = (HystereticFrictionMap.from_play(true_fn, hysteresis_mpa)
-                                      if hysteresis_mpa > 0.0 else true_fn)
-                    pl: PlantParams | PlantLike = (plant if plant_factory is None
-                                                   else plant_factory())
-                    sim = simulate(ctrl, pl, fn, sp, duration_s=horizon, dt=dt)
-                    sel = sim.time_s >= t_step - 1e-12
-                    t_seg = sim.time_s[sel] - t_step
-                    y_seg = sim.friction_n[sel]
-                    met = step_metrics(t_seg, y_seg, target, band=band)
-                    factor = ctrl.gain_factor if isinstance(ctrl, ScheduledController) else 1.0
-                    rows.append(StrategyRow(
-                        _label(start, target), start, target, kind, ff_name, bool(sched),
-                        float(factor), met.settling_time_s, met.overshoot_pct,
-                        met.steady_state_error_n))
+    true_fn = model_map if true_map is None else true_map
+    run = _StrategyRun(plant, model_map, slope_map, slope_ref, o, hysteresis_mpa,
+                       HystereticFrictionMap.from_play(true_fn, hysteresis_mpa)
+                       if hysteresis_mpa > 0.0 else true_fn, plant_factory)
+    rows = [run.row(start, target, kind.lower(), ff_name, bool(sched))
+            for start, target in scenarios for kind in o.controllers
+            for ff_name in feedforwards for sched in o.schedules]
     label = plant_label or (f"FOPDT tau {plant.time_constant_s:g} s, delay {plant.delay_s:g} s"
                             if plant_factory is None else "plant object")
-    return StrategyTable(tuple(rows), label, float(tune_target_n), float(slope_ref),
-                         float(hysteresis_mpa), float(band), float(dt), float(duration_s))
+    return StrategyTable(tuple(rows), label, float(o.tune_target_n), float(slope_ref),
+                         float(hysteresis_mpa), float(o.band), float(o.dt), float(o.duration_s))
+
+
+@dataclass(frozen=True)
+class _StrategyRun:
+    """One compare_strategies call: builds, simulates and measures each loop (one row)."""
+
+    plant: PlantParams
+    model_map: FrictionFn
+    slope_map: float
+    slope_ref: float
+    o: StrategyOptions
+    hysteresis_mpa: float
+    true_fn: FrictionFn
+    plant_factory: Callable[[], PlantLike] | None
+
+    def model_inverse(self, f: float) -> float:
+        return friction_inverse(self.model_map, f, p_max_mpa=self.plant.p_max_mpa)
+
+    def feedforward(self, ff_name: str) -> ModelFeedforward | None:
+        """The feedforward ``ff_name`` (None for ``'none'``), static or 2-DOF."""
+        if ff_name == "none":
+            return None
+        pl, pmax = self.plant, self.plant.p_max_mpa
+        if ff_name == "model":
+            inv: Callable[[float], float] = self.model_inverse
+            fwd: FrictionFn = self.model_map
+        else:
+            inv = HysteresisInverse.from_play(self.model_map, self.hysteresis_mpa,
+                                              p_max_mpa=pmax)
+            fwd = HystereticFrictionMap.from_play(self.model_map, self.hysteresis_mpa)
+        if self.o.ff_mode == "static":
+            return ModelFeedforward(inv, gain=pl.gain, p_max_mpa=pmax)
+        return ModelFeedforward(inv, fwd, time_constant_s=pl.time_constant_s,
+                                delay_s=pl.delay_s, gain=pl.gain, p_max_mpa=pmax)
+
+    def controller(self, kind: str, ff_name: str, sched: bool) -> Controller:
+        """The loop: rule gains at the tuning point, fixed or scheduled, with its feedforward."""
+        pl = self.plant
+        tuning = rule_gains(kind, self.slope_ref, pl.time_constant_s, pl.delay_s,
+                            tau_c_s=self.o.tau_c_s)
+        opts: dict[str, Any] = {"u_max": pl.p_max_mpa, "feedforward": self.feedforward(ff_name)}
+        if not sched:
+            return Controller(tuning.gains, **opts)
+        return ScheduledController(tuning.gains, self.model_map,
+                                   slope_ref_n_per_mpa=self.slope_map,
+                                   floor_n_per_mpa=self.o.floor_n_per_mpa,
+                                   schedule_on=self.o.schedule_on,
+                                   operating_pressure=self.model_inverse, **opts)
+
+    def row(self, start: float, target: float, kind: str, ff_name: str,
+            sched: bool) -> StrategyRow:
+        """Simulate one loop on one step and measure it (a row of the table)."""
+        if start == target:
+            raise InputError(f"step from {start:g} N to {target:g} N: no change")
+        dur = self.o.duration_s
+        if start == 0.0:
+            sp: float | Callable[[Any], Any] = target
+            horizon, t_step = dur, 0.0
+        else:
+            def sp(t: Any, a: float = start, b: float = target) -> Any:
+                return np.where(t < dur, a, b)
+            horizon, t_step = 2.0 * dur, dur
+        ctrl = self.controller(kind, ff_name, sched)
+        pl: PlantParams | PlantLike = (self.plant if self.plant_factory is None
+                                       else self.plant_factory())
+        sim = simulate(ctrl, pl, self.true_fn, sp, duration_s=horizon, dt=self.o.dt)
+        sel = sim.time_s >= t_step - 1e-12
+        met = step_metrics(sim.time_s[sel] - t_step, sim.friction_n[sel], target,
+                           band=self.o.band)
+        factor = ctrl.gain_factor if isinstance(ctrl, ScheduledController) else 1.0
+        return StrategyRow(_label(start, target), start, target, kind, ff_name, sched,
+                           float(factor), met.settling_time_s, met.overshoot_pct,
+                           met.steady_state_error_n)

@@ -68,6 +68,30 @@ _DCOF4 = DCOF.reshape(4, 4)
 _I4F = np.eye(4)
 
 
+def _piola(shape: tuple[int, ...], f: np.ndarray, c: np.ndarray, W: np.ndarray,
+           Ws: np.ndarray, WJ: np.ndarray,
+           second: tuple[np.ndarray | None, np.ndarray, np.ndarray] | None
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """W, P and A of a plane-strain energy ``W(s, J)`` from its derivatives (one owner).
+
+    ``P = 2 W_s F + W_J cof F`` and ``A = 4 W_ss F x F + 2 W_sJ (F x cof + cof x F) +
+    W_JJ cof x cof + 2 W_s I + W_J Dcof``; ``second = (W_ss or None when it is zero, W_sJ,
+    W_JJ)``, None for the stress only. ``f``, ``c``: F and cof F flattened (n, 4).
+    """
+    P = 2.0 * Ws[:, None] * f + WJ[:, None] * c
+    if second is None:
+        return W.reshape(shape), P.reshape(*shape, 2, 2), None
+    Wss, WsJ, WJJ = second
+    fc = f[:, :, None] * c[:, None, :]
+    A = (2.0 * WsJ[:, None, None] * (fc + fc.transpose(0, 2, 1))
+         + WJJ[:, None, None] * (c[:, :, None] * c[:, None, :])
+         + 2.0 * Ws[:, None, None] * _I4F
+         + WJ[:, None, None] * _DCOF4)
+    if Wss is not None:
+        A = 4.0 * Wss[:, None, None] * (f[:, :, None] * f[:, None, :]) + A
+    return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
+
+
 def mooney_rivlin_plane_strain(
     F: np.ndarray, c10: float, c01: float, tangent: bool = True
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
@@ -107,18 +131,12 @@ def mooney_rivlin_plane_strain(
     iJ = 1.0 / J
     WJ = (-2.0 / 3.0 * c10 * j23 * iJ * (s + 1.0) - 4.0 / 3.0 * c01 * j43 * iJ * s
           + 2.0 / 3.0 * c01 * jm13)
-    P = 2.0 * Ws[:, None] * f + WJ[:, None] * c
     if not tangent:
-        return W.reshape(shape), P.reshape(*shape, 2, 2), None
+        return _piola(shape, f, c, W, Ws, WJ, None)
     WsJ = (-2.0 / 3.0 * c10 * j23 - 4.0 / 3.0 * c01 * j43) * iJ
     WJJ = (10.0 / 9.0 * c10 * j23 * (s + 1.0) + 28.0 / 9.0 * c01 * j43 * s) * iJ * iJ \
         - 2.0 / 9.0 * c01 * j43
-    fc = f[:, :, None] * c[:, None, :]
-    A = (2.0 * WsJ[:, None, None] * (fc + fc.transpose(0, 2, 1))
-         + WJJ[:, None, None] * (c[:, :, None] * c[:, None, :])
-         + 2.0 * Ws[:, None, None] * _I4F
-         + WJ[:, None, None] * _DCOF4)
-    return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
+    return _piola(shape, f, c, W, Ws, WJ, (None, WsJ, WJJ))
 
 
 def yeoh_plane_strain(
@@ -170,21 +188,14 @@ def yeoh_plane_strain(
     # operation order as in mooney_rivlin_plane_strain: C20 = C30 = 0 is bit-identical to it
     Ws = W1 * j23
     WJ = -2.0 / 3.0 * W1 * j23 * iJ * (s + 1.0)
-    P = 2.0 * Ws[:, None] * f + WJ[:, None] * c
     if not tangent:
-        return W.reshape(shape), P.reshape(*shape, 2, 2), None
+        return _piola(shape, f, c, W, Ws, WJ, None)
     W2 = 2.0 * c20 + 6.0 * c30 * x
     xJ = -2.0 / 3.0 * j23 * iJ * (s + 1.0)
     Wss = W2 * j23 * j23
     WsJ = W2 * j23 * xJ - 2.0 / 3.0 * W1 * j23 * iJ
     WJJ = W2 * xJ * xJ + 10.0 / 9.0 * W1 * j23 * (s + 1.0) * iJ * iJ
-    fc = f[:, :, None] * c[:, None, :]
-    A = (4.0 * Wss[:, None, None] * (f[:, :, None] * f[:, None, :])
-         + 2.0 * WsJ[:, None, None] * (fc + fc.transpose(0, 2, 1))
-         + WJJ[:, None, None] * (c[:, :, None] * c[:, None, :])
-         + 2.0 * Ws[:, None, None] * _I4F
-         + WJ[:, None, None] * _DCOF4)
-    return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
+    return _piola(shape, f, c, W, Ws, WJ, (Wss, WsJ, WJJ))
 
 
 def _chebyshev_t(nu: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -280,16 +291,7 @@ def ogden_plane_strain(
             WJJ += A0 * (j1 * iJ * (2.0 * e1 * (e1 - 1.0) * h - 4.0 * (e1 - 1.0) * c * h1
                                     + 2.0 * c * c * h2)
                          + e2 * (e2 - 1.0) * j2 * iJ)
-    P = 2.0 * Ws[:, None] * f + WJ[:, None] * cf
-    if not tangent:
-        return W.reshape(shape), P.reshape(*shape, 2, 2), None
-    fc = f[:, :, None] * cf[:, None, :]
-    A = (4.0 * Wss[:, None, None] * (f[:, :, None] * f[:, None, :])
-         + 2.0 * WsJ[:, None, None] * (fc + fc.transpose(0, 2, 1))
-         + WJJ[:, None, None] * (cf[:, :, None] * cf[:, None, :])
-         + 2.0 * Ws[:, None, None] * _I4F
-         + WJ[:, None, None] * _DCOF4)
-    return W.reshape(shape), P.reshape(*shape, 2, 2), A.reshape(*shape, 2, 2, 2, 2)
+    return _piola(shape, f, cf, W, Ws, WJ, (Wss, WsJ, WJJ) if tangent else None)
 
 
 def _poly(coefs: tuple[float, ...], exps: tuple[tuple[float, float, float], ...],

@@ -225,6 +225,16 @@ class Grid:
     sha256: str = ""
 
 
+def _read_decoded(p: Path, name: str) -> tuple[bytes, bytes, str]:
+    """The file's bytes, as UTF-8 and the encoding found (see :func:`_decode`)."""
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise InputError(f"{name}: cannot read ({exc.strerror or exc.__class__.__name__})"
+                         ) from None
+    return (raw, *_decode(raw, name))
+
+
 def _decode(raw: bytes, name: str) -> tuple[bytes, str]:
     """File bytes -> UTF-8 bytes and the encoding found (BOM, UTF-16 without BOM, Latin-1)."""
     if raw.startswith(b"\xef\xbb\xbf"):
@@ -400,12 +410,7 @@ def _frame_from_text(data: bytes, sep: str | None, decimal: str, n_cols: int, na
 
 def _text_grid(p: Path, name: str, *, text: bool = False, comment: bool = False) -> Grid:
     """A CSV/TSV/``;``/whitespace table with an optional preamble and units row."""
-    try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise InputError(f"{name}: cannot read ({exc.strerror or exc.__class__.__name__})"
-                         ) from None
-    data, enc = _decode(raw, name)
+    raw, data, enc = _read_decoded(p, name)
     if b"\r" in data:  # Windows (or old Mac) line ends
         data = data.replace(b"\r\n", b"\n").replace(b"\r", b"\n")
     # the first lines (at most 64 kB, 300 content lines) decide the layout
@@ -478,12 +483,7 @@ def _text_grid(p: Path, name: str, *, text: bool = False, comment: bool = False)
 
 def _lvm_grid(p: Path, name: str, *, text: bool = False) -> Grid:
     """LabVIEW measurement file (NI's LVM text format), one segment."""
-    try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise InputError(f"{name}: cannot read ({exc.strerror or exc.__class__.__name__})"
-                         ) from None
-    data, enc = _decode(raw, name)
+    raw, data, enc = _read_decoded(p, name)
     lines = data.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n").split("\n")
     ends = [k for k, ln in enumerate(lines) if ln.strip().startswith("***End_of_Header***")]
     if not lines or not lines[0].startswith("LabVIEW Measurement") or len(ends) < 2:
