@@ -98,6 +98,9 @@ class Structure:
         # Every size is a finite number in [SIZE_MIN_MM, SIZE_MAX_MM] (defaults.py says why:
         # a worn friction structure is between 10 um and 1 m; 1e300 mm would reach the solver
         # and fail there). Stored as float; strings ("10") are refused like any non-number.
+        # Normalised at construction, where a frozen dataclass sets its fields (through
+        # object.__setattr__, as its generated __init__ does): sizes stored as float whatever
+        # number type is given (ints, NumPy scalars: JSON-ready, one repr).
         for attr, what in (("hole_mm", "hole diameter D"), ("tube_od_mm", "tube outer diameter d1"),
                            ("tube_id_mm", "tube inner diameter"), ("wire_mm", "wire diameter d2"),
                            ("length_mm", "tube length L")):

@@ -142,6 +142,9 @@ class RingTest:
         if np.any(d < 0.0):
             raise InputError(f"ring: displacement_mm must be >= 0 mm, got {d[d < 0][0]:g}",
                              param="ring")
+        # Normalised at construction, where a frozen dataclass sets its fields (through
+        # object.__setattr__, as its generated __init__ does): the curve stored as float arrays and
+        # the sizes as float, whatever is given.
         object.__setattr__(self, "displacement_mm", d)
         object.__setattr__(self, "force_n", f)
         object.__setattr__(self, "ring_width_mm",
@@ -489,6 +492,9 @@ class MaterialCalibration:
         Wall time (s), the profile's included.
     notes : tuple of str
         Warnings of the fit (bounds, instability allowed, non-identifiability).
+    _problem : object or None
+        Internal: the forward models, kept by :func:`calibrate_material` for
+        :meth:`profile` (None for a result built otherwise; not compared or shown).
 
     Examples
     --------
@@ -518,6 +524,7 @@ class MaterialCalibration:
     n_model_evaluations: int = 0
     elapsed_s: float = 0.0
     notes: tuple[str, ...] = field(default=())
+    _problem: _Problem | None = field(default=None, repr=False, compare=False)
 
     @property
     def tube_id_stderr_mm(self) -> float | None:
@@ -567,7 +574,7 @@ class MaterialCalibration:
         -------
         MisfitProfile
         """
-        prob = getattr(self, "_problem", None)
+        prob = self._problem
         if prob is None:
             raise InputError("profile needs a result of calibrate_material (its forward models "
                              "are not kept otherwise)", param="profile")
@@ -780,12 +787,13 @@ class _Problem:
 
     def _predict(self, x: np.ndarray) -> dict[str, np.ndarray]:
         out: dict[str, np.ndarray] = {}
-        unchecked = _unchecked(self.name, x[: self.n_model])
+        trial = tuple(float(v) for v in x[: self.n_model])   # any values: no model checks
         for m, (lam, _) in self.tensile.items():
             with np.errstate(all="ignore"):
-                out[m] = unchecked.stress_mpa(m, lam, "engineering")
+                out[m] = HyperelasticModel.trial_stress_mpa(self.name, trial, m, lam)
         if self.prior is not None:
-            out["shore-prior"] = np.array([unchecked.shear_modulus_mpa])
+            out["shore-prior"] = np.array([HyperelasticModel.trial_shear_modulus_mpa(self.name,
+                                                                                      trial)])
         if self.inflation is None and self.ring is None:
             return out
         self.calls += 1
@@ -949,14 +957,6 @@ def _model_name(model: str) -> str:
                          f"{model!r}", param="model")
     return name
 
-
-def _unchecked(name: str, x: np.ndarray) -> HyperelasticModel:
-    """A model without the input checks (inside the optimiser, where x may be anything)."""
-    m = object.__new__(HyperelasticModel)
-    object.__setattr__(m, "name", name)
-    object.__setattr__(m, "params", tuple(float(v) for v in x))
-    object.__setattr__(m, "d_per_mpa", 1.0)
-    return m
 
 
 def _mode_data(mode: str, data: Any, kind: str) -> tuple[np.ndarray, np.ndarray]:
@@ -1393,11 +1393,11 @@ def _optimise(prob: _Problem, start: _Start, fe: bool, max_nfev: int) -> _Optimu
 def _shear_modulus_stderr(name: str, x: np.ndarray, n_model: int, cov: np.ndarray) -> float:
     """Standard error (MPa) of mu from the covariance of all p fitted parameters."""
     grad_mu = np.zeros(x.size)  # mu is linear in the parameters of every model
-    mu_at = _unchecked(name, x[:n_model]).shear_modulus_mpa
+    mu_at = HyperelasticModel.trial_shear_modulus_mpa(name, x[:n_model])
     for k in range(n_model):
         e = np.zeros(n_model)
         e[k] = 1.0
-        grad_mu[k] = _unchecked(name, x[:n_model] + e).shear_modulus_mpa - mu_at
+        grad_mu[k] = HyperelasticModel.trial_shear_modulus_mpa(name, x[:n_model] + e) - mu_at
     return math.sqrt(max(float(grad_mu @ cov @ grad_mu), 0.0))
 
 
@@ -1695,8 +1695,7 @@ def calibrate_material(
         shear_modulus_stderr_mpa=unc.shear_modulus_stderr_mpa, datasets=datasets,
         identifiability=ident, stability=stab, cost=opt.cost, stderr_from=stderr_from,
         ends=ends, converged=opt.converged, n_model_evaluations=prob.calls,
-        elapsed_s=time.perf_counter() - t0, notes=tuple(notes))
-    object.__setattr__(result, "_problem", prob)
+        elapsed_s=time.perf_counter() - t0, notes=tuple(notes), _problem=prob)
     for note in notes:
         if not note.startswith("not identifiable"):  # that one is the identifiability report's
             warn_implausible(note)

@@ -146,6 +146,9 @@ class InflationData:
             if pg.size < 2:
                 raise InputError(f"{name}: needs at least 2 data rows{where}, got {pg.size}")
             _check_growth(name, where, pg, d[key == g])
+        # Normalised at construction, where a frozen dataclass sets its fields (through
+        # object.__setattr__, as its generated __init__ does): the rows stored sorted (by shore,
+        # then pressure) as float arrays, whatever is given.
         object.__setattr__(self, "pressure_mpa", p)
         object.__setattr__(self, "outer_diameter_mm", d)
         object.__setattr__(self, "shore", None if s is None else key)

@@ -10,7 +10,9 @@ static friction map F = g(P) (Eq 11). Here:
   inputs, fractional delays included), usable as a virtual rig.
 * :class:`CubicFrictionMap` / :class:`CurveFrictionMap` -- F(P) in N for P in MPa from the
   Eq 9 cubic or from an FE squeeze curve, physically clipped to F >= 0 and defined on
-  0..any pressure, with their inverses P(F) for the model feedforward.
+  0..any pressure, with their inverses P(F) for the model feedforward;
+  :meth:`CurveFrictionMap.from_law` builds the map of any
+  :class:`~exofric.friction.FrictionLaw` (gamma, interfaces, ...) on FE curves.
 
 Units: pressure and pressure command in MPa, friction in N, time in s.
 
@@ -27,6 +29,7 @@ import math
 from collections import deque
 from collections.abc import Callable, Mapping
 from dataclasses import asdict, dataclass, fields
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -35,8 +38,10 @@ from numpy.typing import ArrayLike, NDArray
 from exofric.errors import InputError, check_finite, check_positive, check_range
 from exofric.friction import (
     CubicFit,
+    FrictionLaw,
     FrictionModel,
     SqueezeCurve,
+    law_columns,
     pressure_for_friction,
 )
 
@@ -389,17 +394,25 @@ class CurveFrictionMap:
     def __post_init__(self) -> None:
         check_positive("gamma (equivalent coefficient)", self.gamma)
         check_positive("friction map scale", self.scale)
-        curve = SqueezeCurve(self.pressure_mpa, self.squeeze_force_n)
-        object.__setattr__(self, "_curve", curve)
-        object.__setattr__(self, "_slope", float(curve.slope(curve.pressure_range_mpa[1])))
+        _ = self._curve            # validate the nodes now: InputError at construction
+
+    @cached_property
+    def _curve(self) -> SqueezeCurve:
+        """The nodes as a :class:`~exofric.friction.SqueezeCurve` (its PCHIP and inverse)."""
+        return SqueezeCurve(self.pressure_mpa, self.squeeze_force_n)
+
+    @cached_property
+    def _slope(self) -> float:
+        """dN/dP at the last node (N/MPa): the slope of the linear extension above it."""
+        return float(self._curve.slope(self._curve.pressure_range_mpa[1]))
 
     def __call__(self, pressure_mpa: Any) -> Any:
         """Friction in N at pressure(s) in MPa (float in, float out; array in, array out)."""
-        curve: SqueezeCurve = self._curve  # type: ignore[attr-defined]
+        curve = self._curve
         x, scalar = _as_array(pressure_mpa)
         lo, hi = curve.pressure_range_mpa
         inside = curve(np.clip(x, lo, hi))
-        n = inside + np.maximum(x - hi, 0.0) * self._slope  # type: ignore[attr-defined]
+        n = inside + np.maximum(x - hi, 0.0) * self._slope
         if lo > 0.0:
             n = np.where(x < lo, curve.squeeze_force_n[0] * np.clip(x, 0.0, None) / lo, n)
         f = self.scale * self.gamma * np.maximum(n, 0.0)
@@ -424,8 +437,49 @@ class CurveFrictionMap:
         >>> round(g.inverse(20.0), 12)
         0.3
         """
-        curve: SqueezeCurve = self._curve  # type: ignore[attr-defined]
-        return curve.pressure_for_friction(friction_n, FrictionModel(self.gamma * self.scale))
+        return self._curve.pressure_for_friction(friction_n, FrictionModel(self.gamma * self.scale))
+
+    @classmethod
+    def from_law(cls, law: FrictionLaw, curves: Any, scale: float = 1.0) -> CurveFrictionMap:
+        """The map of any friction law on a structure's FE curves: F(P) = scale x law(P).
+
+        The law's friction at the curves' nodes (N) becomes the tabulated curve, with
+        ``gamma`` = 1 (``squeeze_force_n`` of the map then holds F, in N): its PCHIP between
+        the nodes, the extensions outside them and the exact inverse are this class's.
+
+        Parameters
+        ----------
+        law : FrictionLaw
+            The law (:class:`~exofric.friction.FrictionModel`,
+            :class:`~exofric.friction.InterfaceFrictionModel` or any other).
+        curves : object or mapping
+            ``pressure_mpa`` (MPa) and the law's inputs (N) at the nodes, e.g. a
+            :class:`~exofric.friction.SqueezeCurve` or
+            :class:`~exofric.friction.InterfaceCurves`.
+        scale : float
+            Multiplies the map (true plant: 1 + mismatch).
+
+        Returns
+        -------
+        CurveFrictionMap
+
+        Raises
+        ------
+        InputError
+            A curve the law needs is missing, or the friction at the nodes is not a valid
+            curve (negative, or falling with pressure).
+
+        Examples
+        --------
+        >>> from exofric.friction import FrictionModel, SqueezeCurve
+        >>> g = CurveFrictionMap.from_law(FrictionModel(0.5), SqueezeCurve((0.2, 0.4, 0.6),
+        ...                                                                (20.0, 120.0, 280.0)))
+        >>> round(g(0.4), 6), round(g.inverse(60.0), 6)
+        (60.0, 0.4)
+        """
+        cols = law_columns(law, curves)
+        friction = np.asarray(law.friction_of(cols), dtype=float)
+        return cls(tuple(cols["pressure_mpa"].tolist()), tuple(friction.tolist()), 1.0, scale)
 
     def scaled(self, factor: float) -> CurveFrictionMap:
         """The same map multiplied by ``factor``.

@@ -44,6 +44,7 @@ import math
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field, fields, replace
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -315,6 +316,9 @@ class PneumaticParams:
                 i = int(np.flatnonzero(np.diff(v) < 0.0)[0])
                 raise InputError(f"tube_table_volume_mm3 must not decrease with pressure, got "
                                  f"{v[i]:g} then {v[i + 1]:g} mm^3", param="tube_table_volume_mm3")
+            # Normalised at construction, where a frozen dataclass sets its fields (through
+            # object.__setattr__, as its generated __init__ does): the table stored as tuples of
+            # float (hashable, comparable) whatever sequence is given.
             object.__setattr__(self, "tube_table_pressure_mpa", tuple(float(x) for x in p))
             object.__setattr__(self, "tube_table_volume_mm3", tuple(float(x) for x in v))
         vmin = self.line_volume_mm3 + (min(self.tube_table_volume_mm3) if tv
@@ -322,8 +326,11 @@ class PneumaticParams:
         if vmin <= 0.0:
             raise InputError("line_volume_mm3 + tube volume must be > 0 mm^3, got 0",
                              param="line_volume_mm3")
-        object.__setattr__(self, "_table", _HermiteTable.build(self.tube_table_pressure_mpa,
-                                                               self.tube_table_volume_mm3))
+
+    @cached_property
+    def _table(self) -> _HermiteTable | None:
+        """The tube volume table's interpolant (None without a table; built on first use)."""
+        return _HermiteTable.build(self.tube_table_pressure_mpa, self.tube_table_volume_mm3)
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any]) -> PneumaticParams:
@@ -392,7 +399,7 @@ class PneumaticParams:
         ...                 tube_table_volume_mm3=(2000.0, 2400.0)).tube_volume_at_mm3(0.1)
         2200.0
         """
-        tab: _HermiteTable | None = getattr(self, "_table")  # noqa: B009 (set in __post_init__)
+        tab = self._table
         return self.tube_volume_mm3 if tab is None else tab.value(float(pressure_mpa))[0]
 
     def total_volume_mm3(self, pressure_mpa: float) -> float:
@@ -511,7 +518,7 @@ class PneumaticPlant:
         self._kvent = _flow_factor(pr.vent.c_dm3_per_s_bar, t)
         self._gain = pr.polytropic_n * R_AIR_J_PER_KG_K * t * 1e3   # MPa mm^3 / kg
         self._psup = pr.supply_mpa + pr.atmosphere_mpa
-        self._table: _HermiteTable | None = getattr(pr, "_table")  # noqa: B009
+        self._table = pr._table
         self._omega = None if pr.bandwidth_hz is None else 2.0 * math.pi * pr.bandwidth_hz
 
     # -- model ---------------------------------------------------------------------------

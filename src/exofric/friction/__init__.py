@@ -21,9 +21,15 @@ torque in Nm, arm radius in m.
   N(P)), :class:`InterfaceTest`, :func:`fit_interfaces` -> :class:`InterfaceFit` (both
   coefficients with CIs, their correlation and an identifiability verdict);
   :func:`simulate_interface_rig` -> :class:`InterfaceRigRun` (the virtual rig planting it).
+* :class:`FrictionLaw` -- what a friction law is to its consumers (a ``typing.Protocol``:
+  ``name``, ``inputs``, ``f0_n``, ``friction_of(columns)``, ``to_dict()``); both laws above
+  are one, and :func:`predict`, :func:`simulate_law_rig` and
+  :meth:`exofric.control.CurveFrictionMap.from_law` take any; :func:`law_columns` reads the
+  columns a law needs off curves.
 * :func:`torque` -- T = F R, optionally through a capstan wrap over the knee arc
   (exp(+-mu_arc theta), by the direction of motion), and a requirement check (knee 0-40 Nm).
 * :func:`simulate_rig` -- the virtual friction rig (synthetic, labelled as such);
+  :func:`simulate_law_rig` -- the same rig planting any :class:`FrictionLaw` on FE curves;
   :func:`simulate_raw_log` -- the same rig writing raw time-series logs with planted truths.
 * :func:`reduce_log` -> :class:`RigReduction` -- a raw rig log (time, pressure, force,
   displacement) segmented into plateaus and pulls: static and kinetic friction per pull with
@@ -64,6 +70,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         fit_interfaces,
         simulate_interface_rig,
     )
+    from exofric.friction._law import FrictionLaw, law_columns
     from exofric.friction._model import CubicFit, FrictionModel, pressure_for_friction
     from exofric.friction._predict import (
         ApplicabilityWarning,
@@ -85,7 +92,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         pool_pulls,
         reduce_log,
     )
-    from exofric.friction._rig import RigConfig, RigRun, simulate_rig
+    from exofric.friction._rig import RigConfig, RigRun, simulate_law_rig, simulate_rig
     from exofric.friction._stats import AnovaResult, anova_vs_base, one_way_anova
     from exofric.friction._stiffness import JointStiffness, joint_stiffness
     from exofric.friction._torque import TorqueCheck, capstan_factor, torque

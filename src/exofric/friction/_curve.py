@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -108,6 +109,9 @@ class SqueezeCurve:
                             x_unit="MPa", y_unit="N", x_min=0.0, y_min=0.0,
                             where="squeeze curve")
         _check_rise(p, n)
+        # Normalised at construction, where a frozen dataclass sets its fields (through
+        # object.__setattr__, as its generated __init__ does): the nodes stored as tuples of float
+        # (hashable, comparable) whatever arrays are given.
         object.__setattr__(self, "pressure_mpa", tuple(p.tolist()))
         object.__setattr__(self, "squeeze_force_n", tuple(n.tolist()))
 
@@ -184,15 +188,12 @@ class SqueezeCurve:
 
     # -- interpolation -----------------------------------------------------------------------
 
-    def _interp(self) -> Any:
-        cached = self.__dict__.get("_pchip")
-        if cached is None:
-            from scipy.interpolate import PchipInterpolator
+    @cached_property
+    def _pchip(self) -> Any:
+        """The PCHIP of N on P (built on first use, kept: a derived value, not a field)."""
+        from scipy.interpolate import PchipInterpolator
 
-            cached = PchipInterpolator(np.array(self.pressure_mpa),
-                                       np.array(self.squeeze_force_n))
-            object.__setattr__(self, "_pchip", cached)
-        return cached
+        return PchipInterpolator(np.array(self.pressure_mpa), np.array(self.squeeze_force_n))
 
     def _points(self, pressure_mpa: Any, edge_tol_mpa: float) -> tuple[NDArray[np.float64], bool]:
         x = np.asarray(pressure_mpa, dtype=float)
@@ -225,7 +226,7 @@ class SqueezeCurve:
         array([10., 20.])
         """
         x, scalar = self._points(pressure_mpa, edge_tol_mpa)
-        y = self._interp()(x)
+        y = self._pchip(x)
         return float(y) if scalar else np.asarray(y, dtype=float)
 
     def slope(self, pressure_mpa: Any, *, edge_tol_mpa: float = 0.0) -> Any:
@@ -244,7 +245,7 @@ class SqueezeCurve:
         100.0
         """
         x, scalar = self._points(pressure_mpa, edge_tol_mpa)
-        y = self._interp().derivative()(x)
+        y = self._pchip.derivative()(x)
         return float(y) if scalar else np.asarray(y, dtype=float)
 
     def pressure(self, squeeze_force_n: float) -> float:
@@ -296,7 +297,7 @@ class SqueezeCurve:
             # monotonically: it reaches v only at its end (no bracket needed, none of its
             # round-off)
             return float(pp[i])
-        f = self._interp()
+        f = self._pchip
         a, b = float(pp[i - 1]), float(pp[i])
         # the piece is monotone from nn[i-1] < v to nn[i] > v: one root; round-off of the
         # polynomial at the nodes cannot flip the bracket's signs by more than an ulp

@@ -69,6 +69,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
@@ -163,6 +164,9 @@ class InterfaceFrictionModel:
     f0_n: float = 0.0
 
     def __post_init__(self) -> None:
+        # Normalised at construction, where a frozen dataclass sets its fields (through
+        # object.__setattr__, as its generated __init__ does): stored as float whatever number
+        # type is given (JSON-ready, one repr).
         object.__setattr__(self, "mu_tube", check_friction("mu_tube", self.mu_tube))
         object.__setattr__(self, "mu_wall", check_friction("mu_wall", self.mu_wall))
         object.__setattr__(self, "f0_n", check_finite("f0_n (friction offset, N)", self.f0_n))
@@ -224,6 +228,44 @@ class InterfaceFrictionModel:
             g = np.where(n > 0, self.mu_tube * s / np.where(n > 0, n, 1.0) + self.mu_wall,
                          np.nan)
         return float(g) if g.ndim == 0 else g
+
+    # -- the FrictionLaw protocol -----------------------------------------------------------
+
+    @property
+    def name(self) -> str:
+        """``"interfaces"``: the law's label (:class:`~exofric.friction.FrictionLaw`)."""
+        return "interfaces"
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        """The FE curves it reads: ``wire_pressure_integral_n`` (S_wire, N) and
+        ``squeeze_force_n`` (N_wall, N)."""
+        return ("wire_pressure_integral_n", "squeeze_force_n")
+
+    def friction_of(self, columns: Mapping[str, Any]) -> NDArray[np.float64]:
+        """Friction in N per pressure from S_wire and N: mu_tube S + mu_wall N + F0.
+
+        Parameters
+        ----------
+        columns : mapping
+            ``wire_pressure_integral_n`` (S_wire, N) and ``squeeze_force_n`` (N), one per
+            pressure (other keys are not read).
+
+        Returns
+        -------
+        numpy.ndarray
+            F in N.
+
+        Examples
+        --------
+        >>> InterfaceFrictionModel(0.5, 0.2).friction_of(
+        ...     {"wire_pressure_integral_n": [110.0], "squeeze_force_n": [100.0]})
+        array([75.])
+        """
+        return np.asarray(self.friction_n(np.asarray(columns["wire_pressure_integral_n"],
+                                                     dtype=float),
+                                          np.asarray(columns["squeeze_force_n"], dtype=float)),
+                          dtype=float)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: ``law``, ``mu_tube``, ``mu_wall`` (unitless), ``f0_n`` (N)."""
@@ -298,11 +340,13 @@ class InterfaceCurves:
                     f"force {n[k]:g} N at {p[k]:g} MPa; the arc integral of a contact pressure "
                     "is at least its resultant (swapped columns, or per-mm values not "
                     "multiplied by the length?)")
+        # The constructor of a frozen value type sets each field once, normalised (tuples of
+        # float: hashable, comparable), whatever arrays it is given; object.__setattr__ is how
+        # a frozen dataclass initialises a field (its generated __init__ does the same).
         object.__setattr__(self, "pressure_mpa", tuple(p.tolist()))
         object.__setattr__(self, "wire_pressure_integral_n", tuple(s.tolist()))
         object.__setattr__(self, "squeeze_force_n", tuple(n.tolist()))
         object.__setattr__(self, "name", str(name))
-        object.__setattr__(self, "_n_curve", curve)
 
     @classmethod
     def from_squeeze(cls, result: Any, name: str | None = None) -> InterfaceCurves:
@@ -398,8 +442,6 @@ class InterfaceCurves:
         >>> [round(float(v[0]), 6) for v in c.at([0.4])[:2]]
         [143.0, 130.0]
         """
-        from scipy.interpolate import PchipInterpolator
-
         p = np.asarray(pressure_mpa, dtype=float).ravel()
         tol = check_range("edge_tol_mpa", edge_tol_mpa, 0.0, 0.1, unit="MPa")
         lo, hi = self.pressure_range_mpa
@@ -407,12 +449,17 @@ class InterfaceCurves:
         s = np.full(p.shape, np.nan)
         n = np.full(p.shape, np.nan)
         if np.any(inside):
-            pchip = PchipInterpolator(np.asarray(self.pressure_mpa),
-                                      np.asarray(self.wire_pressure_integral_n))
-            s[inside] = pchip(p[inside])
-            curve: SqueezeCurve = self.__dict__["_n_curve"]
-            n[inside] = curve(p[inside], edge_tol_mpa=tol)
+            s[inside], n[inside] = self._pchip(p[inside]).T
         return s, n, inside
+
+    @cached_property
+    def _pchip(self) -> Any:
+        """PCHIP of the columns (S_wire, N) on P, each independently (built on first use)."""
+        from scipy.interpolate import PchipInterpolator
+
+        return PchipInterpolator(np.asarray(self.pressure_mpa),
+                                 np.column_stack([self.wire_pressure_integral_n,
+                                                  self.squeeze_force_n]))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready nodes (MPa, N) and the wrap ratio S/N (unitless)."""
@@ -465,6 +512,7 @@ class InterfaceTest:
         p, f = check_series("pressure_mpa", self.pressure_mpa, "friction_n", self.friction_n,
                             x_unit="MPa", y_unit="N", increasing=False, min_points=1,
                             x_min=0.0, where=where)
+        # Normalised at construction (see InterfaceCurves): tuples of float, labels a tuple.
         object.__setattr__(self, "pressure_mpa", tuple(p.tolist()))
         object.__setattr__(self, "friction_n", tuple(f.tolist()))
         g = () if self.groups is None else tuple(np.asarray(self.groups, dtype=object).tolist())
@@ -1220,14 +1268,9 @@ def simulate_interface_rig(
     >>> len(r.friction_n), abs(r.friction_n[2] / 180.0 - 1) < 0.01
     (6, True)
     """
-    from exofric.friction._rig import simulate_rig
+    from exofric.friction._rig import simulate_law_rig
 
     law = InterfaceFrictionModel(mu_tube, mu_wall)
-    p = np.asarray(curves.pressure_mpa)
-    fcurve = law.friction_n(np.asarray(curves.wire_pressure_integral_n),
-                            np.asarray(curves.squeeze_force_n))
-    if pressures_mpa is None:
-        pressures_mpa = p[np.asarray(curves.squeeze_force_n) > 0]
-    run = simulate_rig(p, fcurve, 1.0, pressures_mpa, config=config, seed=seed,
-                       repeats=repeats)
+    run = simulate_law_rig(law, curves, pressures_mpa, config=config, seed=seed,
+                           repeats=repeats)
     return InterfaceRigRun(curves, law.mu_tube, law.mu_wall, run)

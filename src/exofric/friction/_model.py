@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, overload
 
@@ -84,6 +84,39 @@ class FrictionModel:
             return float((float(friction_n) - self.f0_n) / self.gamma)
         return (np.asarray(friction_n, dtype=float) - self.f0_n) / self.gamma
 
+    # -- the FrictionLaw protocol -----------------------------------------------------------
+
+    @property
+    def name(self) -> str:
+        """``"gamma"``: the law's label (:class:`~exofric.friction.FrictionLaw`)."""
+        return "gamma"
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        """The FE curve it reads: ``("squeeze_force_n",)``, N in N."""
+        return ("squeeze_force_n",)
+
+    def friction_of(self, columns: Mapping[str, Any]) -> NDArray[np.float64]:
+        """Friction in N per pressure from the squeezing force: gamma N + F0.
+
+        Parameters
+        ----------
+        columns : mapping
+            ``squeeze_force_n``: N in N per pressure (other keys are not read).
+
+        Returns
+        -------
+        numpy.ndarray
+            F in N.
+
+        Examples
+        --------
+        >>> FrictionModel(0.5, f0_n=2.0).friction_of({"squeeze_force_n": [0.0, 100.0]})
+        array([ 2., 52.])
+        """
+        return np.asarray(self.friction(np.asarray(columns["squeeze_force_n"], dtype=float)),
+                          dtype=float)
+
     def to_dict(self) -> dict[str, float]:
         """JSON-ready dict: ``gamma`` (unitless), ``f0_n`` (N)."""
         return {"gamma": float(self.gamma), "f0_n": float(self.f0_n)}
@@ -124,6 +157,9 @@ class CubicFit:
             raise InputError(f"cubic coefficients must be 4 numbers (c3, c2, c1, c0), got {n}")
         coef = tuple(check_finite(f"cubic coefficient c{3 - i}", c)
                      for i, c in enumerate(self.coefficients))
+        # Normalised at construction, where a frozen dataclass sets its fields (through
+        # object.__setattr__, as its generated __init__ does): the coefficients stored as a tuple
+        # of float (hashable) whatever sequence is given.
         object.__setattr__(self, "coefficients", coef)
         lo = check_finite("p_min_mpa", self.p_min_mpa)
         hi = check_finite("p_max_mpa", self.p_max_mpa)

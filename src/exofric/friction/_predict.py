@@ -27,9 +27,11 @@ with d1, ID_i = ID_base d1_i / d1_base (the same wall-to-diameter ratio), and L 
 Two laws. ``gamma`` (a float or :class:`FrictionModel`) is the paper's F = gamma N + F0;
 an :class:`~exofric.friction.InterfaceFrictionModel` is the interface-resolved law
 F = mu_tube S_wire + mu_wall N + F0 (issue 15), which needs each squeeze result's
-``wire_pressure_integral_n_per_mm`` (S_wire = that x L). ``compare`` evaluates the other law
-beside it: each :class:`Prediction` then lists both (:class:`LawPrediction`) with their
-errors against the measured curve, side by side.
+``wire_pressure_integral_n_per_mm`` (S_wire = that x L). Any other
+:class:`~exofric.friction.FrictionLaw` plugs in the same way: predict gives it the columns it
+names in ``inputs``. ``compare`` evaluates a law of another name beside the first: each
+:class:`Prediction` then lists both (:class:`LawPrediction`) with their errors against the
+measured curve, side by side.
 """
 
 from __future__ import annotations
@@ -45,7 +47,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from exofric.errors import InputError, check_positive, check_pressures, check_series
 from exofric.friction._fit import relative_errors
-from exofric.friction._interfaces import WIRE_KEY, InterfaceFrictionModel
+from exofric.friction._interfaces import WIRE_KEY
+from exofric.friction._law import FrictionLaw, curve_column
 from exofric.friction._model import FrictionModel
 from exofric.friction._stats import AnovaResult, anova_vs_base
 from exofric.friction._torque import TorqueCheck, torque
@@ -370,11 +373,17 @@ class MeasuredCurve:
         return cls(tuple(p[o].tolist()), tuple(f[o].tolist()))
 
 
-AnyLaw = FrictionModel | InterfaceFrictionModel
+#: Any friction law (kept name; the laws' protocol is :class:`~exofric.friction.FrictionLaw`).
+AnyLaw = FrictionLaw
 
 
-def _law_name(model: AnyLaw) -> str:
-    return "interfaces" if isinstance(model, InterfaceFrictionModel) else "gamma"
+def _law_name(model: FrictionLaw) -> str:
+    return model.name
+
+
+def _law_params(model: FrictionLaw) -> dict[str, Any]:
+    """The law's coefficients (its ``to_dict()`` without the ``law`` label)."""
+    return {k: v for k, v in model.to_dict().items() if k != "law"}
 
 
 @dataclass(frozen=True)
@@ -383,9 +392,10 @@ class LawPrediction:
 
     Attributes
     ----------
-    law : {"gamma", "interfaces"}
-        Which law: F = gamma N + F0, or F = mu_tube S_wire + mu_wall N + F0.
-    model : FrictionModel or InterfaceFrictionModel
+    law : str
+        Which law (its ``name``): ``"gamma"`` for F = gamma N + F0, ``"interfaces"`` for
+        F = mu_tube S_wire + mu_wall N + F0, or another :class:`FrictionLaw`'s.
+    model : FrictionLaw
         Its coefficients (unitless) and F0 (N).
     predicted_friction_n : tuple of float
         Friction in N at the prediction's pressures.
@@ -422,7 +432,7 @@ class LawPrediction:
         """JSON-ready dict: law, coefficients (unitless), F (N), errors (%)."""
         return {
             "law": self.law,
-            **{k: v for k, v in self.model.to_dict().items() if k != "law"},
+            **_law_params(self.model),
             "predicted_friction_n": list(self.predicted_friction_n),
             "relative_error_pct": list(self.relative_error_pct),
             "max_relative_error_pct": self.max_relative_error_pct,
@@ -440,8 +450,9 @@ class Prediction:
     ----------
     structure : Structure
         The structure (sizes in mm).
-    model : FrictionModel or InterfaceFrictionModel
-        The law used: gamma (unitless), or mu_tube and mu_wall (unitless); and F0 (N).
+    model : FrictionLaw
+        The law used: gamma (unitless), or mu_tube and mu_wall (unitless), or another
+        :class:`FrictionLaw`; and F0 (N).
     pressure_mpa : tuple of float
         Pressures of the predicted curve in MPa (the requested ones plus any measured ones).
     squeeze_force_n : tuple of float
@@ -491,7 +502,7 @@ class Prediction:
 
     @property
     def law(self) -> str:
-        """The law used: ``"gamma"`` or ``"interfaces"``."""
+        """The law used (its name): ``"gamma"``, ``"interfaces"`` or another law's."""
         return _law_name(self.model)
 
     @property
@@ -503,11 +514,11 @@ class Prediction:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: curves (MPa, N), errors (%), deviation (%), torque (Nm)."""
-        interfaces = isinstance(self.model, InterfaceFrictionModel)
+        params = _law_params(self.model)
         d: dict[str, Any] = {
             "name": self.structure.name,
             "structure": self.structure.to_dict(),
-            "gamma": None if interfaces else self.model.gamma,   # type: ignore[union-attr]
+            "gamma": params.pop("gamma", None),
             "f0_n": self.model.f0_n,
             "pressure_mpa": list(self.pressure_mpa),
             "squeeze_force_n": list(self.squeeze_force_n),
@@ -522,9 +533,8 @@ class Prediction:
             "meets_torque_requirement": self.torque.meets_max,
             "law": self.law,
         }
-        if isinstance(self.model, InterfaceFrictionModel):
-            d["mu_tube"] = self.model.mu_tube
-            d["mu_wall"] = self.model.mu_wall
+        params.pop("f0_n", None)
+        d.update(params)                   # the law's other coefficients (mu_tube, mu_wall)
         if self.wire_pressure_integral_n:
             d["wire_pressure_integral_n"] = list(self.wire_pressure_integral_n)
         if self.measured is not None:
@@ -631,15 +641,16 @@ class PredictionSet:
         """
         first = self.predictions[0] if self.predictions else None
         model = None if first is None else first.model
+        params = {} if model is None else _law_params(model)
         d: dict[str, Any] = {
-            "gamma": model.gamma if isinstance(model, FrictionModel) else None,
+            "gamma": params.pop("gamma", None),
             "base": self.base.to_dict(),
             "structures": [p.to_dict() for p in self.predictions],
             "anova": [a.to_dict() for a in self.anova],
             "law": "gamma" if model is None else _law_name(model),
         }
-        if isinstance(model, InterfaceFrictionModel):
-            d["mu_tube"], d["mu_wall"] = model.mu_tube, model.mu_wall
+        params.pop("f0_n", None)
+        d.update(params)                   # the law's other coefficients (mu_tube, mu_wall)
         if first is not None and len(first.laws) > 1:
             summary: dict[str, Any] = {}
             for i, lp in enumerate(first.laws):
@@ -647,7 +658,7 @@ class PredictionSet:
                                     for p in self.predictions] + [np.empty(0)])
                 e = e[np.isfinite(e)]
                 summary[lp.law] = {
-                    **{k: v for k, v in lp.model.to_dict().items() if k != "law"},
+                    **_law_params(lp.model),
                     "n_measured": int(e.size),
                     "mean_abs_relative_error_pct": float(np.mean(np.abs(e))) if e.size
                     else None,
@@ -722,7 +733,11 @@ def _same_geometry(a: Structure, b: Structure) -> bool:
 
 
 def _wire_integral(res: Any, structure: Structure) -> NDArray[np.float64]:
-    """S_wire (N) per pressure of a squeeze result, or InputError naming the missing key."""
+    """S_wire (N) per pressure of a squeeze result, or InputError naming the missing key.
+
+    The result gives it per mm of tube (``wire_pressure_integral_n_per_mm``, N/mm): times its
+    ``length_mm`` (default the structure's).
+    """
     per_mm = getattr(res, WIRE_KEY, None)
     if per_mm is None and isinstance(res, Mapping):
         per_mm = res.get(WIRE_KEY)
@@ -735,24 +750,48 @@ def _wire_integral(res: Any, structure: Structure) -> NDArray[np.float64]:
     return np.asarray(per_mm, dtype=float).ravel() * float(length)
 
 
-def _as_law(name: str, value: Any) -> AnyLaw:
-    if isinstance(value, (FrictionModel, InterfaceFrictionModel)):
+def _as_law(name: str, value: Any) -> FrictionLaw:
+    if isinstance(value, FrictionLaw):
         return value
     try:
         g = float(value)
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be a gamma (number), a FrictionModel or an "
-                         f"InterfaceFrictionModel, got {type(value).__name__}",
-                         param=name) from None
+        raise InputError(f"{name} must be a gamma (number), a FrictionModel, an "
+                         f"InterfaceFrictionModel or another FrictionLaw, got "
+                         f"{type(value).__name__}", param=name) from None
     return FrictionModel(g)
 
 
-def _law_friction(model: AnyLaw, s: NDArray[np.float64] | None,
-                  n: NDArray[np.float64]) -> NDArray[np.float64]:
-    if isinstance(model, InterfaceFrictionModel):
-        assert s is not None
-        return np.asarray(model.friction_n(s, n), dtype=float)
-    return np.asarray(model.friction(n), dtype=float)
+#: The columns predict gives a law besides the pressure: N from the squeeze, S_wire from its
+#: per-mm tube-wire integral (any other input is read off the squeeze result by its name).
+_SQUEEZE_COLUMN = "squeeze_force_n"
+_WIRE_COLUMN = "wire_pressure_integral_n"
+
+
+def _law_inputs(res: Any, s: Structure, p: NDArray[np.float64], n: NDArray[np.float64],
+                laws: Sequence[FrictionLaw]) -> dict[str, NDArray[np.float64]]:
+    """The columns (MPa, N) the laws read, from one squeeze result at pressures ``p``.
+
+    S_wire is taken whenever the result has it (it is reported), else only when a law needs
+    it (InputError naming the missing key); any other input by its name on the result.
+    """
+    cols = {"pressure_mpa": p, _SQUEEZE_COLUMN: n}
+    needed = {k for law in laws for k in law.inputs} - set(cols)
+    maybe = getattr(res, WIRE_KEY, None)
+    if _WIRE_COLUMN in needed or (maybe is not None and np.size(maybe) == p.size):
+        cols[_WIRE_COLUMN] = _wire_integral(res, s)
+        if cols[_WIRE_COLUMN].shape != p.shape:
+            raise InputError(f"{s.name}: squeeze returned {cols[_WIRE_COLUMN].size} {WIRE_KEY} "
+                             f"values for {p.size} pressures")
+    for key in sorted(needed - set(cols)):
+        law = next(law.name for law in laws if key in law.inputs)
+        cols[key] = curve_column(res, key, law, size=p.size, where=s.name)
+    return cols
+
+
+def _law_friction(model: FrictionLaw, cols: Mapping[str, NDArray[np.float64]]
+                  ) -> NDArray[np.float64]:
+    return np.asarray(model.friction_of(cols), dtype=float)
 
 
 def _errors_at(f: NDArray[np.float64], at: NDArray[np.intp] | None,
@@ -765,7 +804,7 @@ def _errors_at(f: NDArray[np.float64], at: NDArray[np.intp] | None,
 
 def predict(
     structures: Sequence[Structure],
-    gamma: float | FrictionModel | InterfaceFrictionModel,
+    gamma: float | FrictionLaw,
     material: Any,
     pressures_mpa: ArrayLike,
     *,
@@ -776,7 +815,7 @@ def predict(
     arm_radius_m: float = 0.10,
     required_torque_nm: tuple[float, float] = (0.0, 40.0),
     alpha: float = 0.05,
-    compare: float | FrictionModel | InterfaceFrictionModel | None = None,
+    compare: float | FrictionLaw | None = None,
 ) -> PredictionSet:
     """Predict F = gamma N(P) + F0 for each structure and compare with measured curves.
 
@@ -787,10 +826,12 @@ def predict(
     ----------
     structures : sequence of Structure
         Structures (mm); names must be unique (they key ``measured``).
-    gamma : float or FrictionModel or InterfaceFrictionModel
+    gamma : float or FrictionLaw
         The law used: an equivalent coefficient (unitless), a full gamma model with offset F0
-        (N), or the interface law (mu_tube, mu_wall unitless; F0 in N), which needs the
-        squeeze results' ``wire_pressure_integral_n_per_mm``.
+        (N), the interface law (mu_tube, mu_wall unitless; F0 in N), which needs the
+        squeeze results' ``wire_pressure_integral_n_per_mm``, or any other
+        :class:`~exofric.friction.FrictionLaw` (its other inputs are read off the squeeze
+        results by name).
     material : MooneyRivlin
         Tube material passed to the squeeze simulation.
     pressures_mpa : array_like
@@ -812,9 +853,10 @@ def predict(
         Lever arm (m) and required torque range (Nm) for the torque check at max pressure.
     alpha : float
         ANOVA significance level.
-    compare : float or FrictionModel or InterfaceFrictionModel, optional
-        A second law evaluated beside the first (e.g. the interface law beside gamma): each
-        prediction's ``laws`` then holds both, with their errors against the measured curve.
+    compare : float or FrictionLaw, optional
+        A second law (of another name) evaluated beside the first (e.g. the interface law
+        beside gamma): each prediction's ``laws`` then holds both, with their errors against
+        the measured curve.
 
     Returns
     -------
@@ -854,7 +896,7 @@ def predict(
     if other is not None and _law_name(other) == _law_name(model):
         raise InputError(f"compare must be the other law than {_law_name(model)!r} (got the "
                          "same law twice)", param="compare")
-    needs_s = any(isinstance(m, InterfaceFrictionModel) for m in (model, other))
+    laws_used = (model,) if other is None else (model, other)
     grid = check_pressures("pressures_mpa", np.asarray(pressures_mpa, dtype=float).ravel())
     if not structures:
         raise InputError("predict needs at least one structure")
@@ -885,15 +927,9 @@ def predict(
         if p_out.shape != p_eval.shape or n_out.shape != p_eval.shape:
             raise InputError(f"{s.name}: squeeze returned {n_out.size} forces for "
                              f"{p_eval.size} pressures")
-        s_out = _wire_integral(res, s) if needs_s else None
-        if s_out is not None and s_out.shape != p_eval.shape:
-            raise InputError(f"{s.name}: squeeze returned {s_out.size} {WIRE_KEY} values for "
-                             f"{p_eval.size} pressures")
-        if s_out is None:
-            maybe = getattr(res, WIRE_KEY, None)
-            if maybe is not None and np.size(maybe) == p_eval.size:
-                s_out = _wire_integral(res, s)
-        f_out = _law_friction(model, s_out, n_out)
+        cols = _law_inputs(res, s, p_out, n_out, laws_used)
+        s_out = cols.get(_WIRE_COLUMN)
+        f_out = _law_friction(model, cols)
         dev = deviation(s, base, threshold_pct)
         if not dev.in_validated_region:
             warnings.warn(
@@ -905,7 +941,7 @@ def predict(
         rel = _errors_at(f_out, at, meas)
         laws = [LawPrediction(_law_name(model), model, tuple(f_out.tolist()), rel)]
         if other is not None:
-            f_other = _law_friction(other, s_out, n_out)
+            f_other = _law_friction(other, cols)
             laws.append(LawPrediction(_law_name(other), other, tuple(f_other.tolist()),
                                       _errors_at(f_other, at, meas)))
         onset = getattr(res, "contact_onset_pressure_mpa", None)

@@ -50,8 +50,9 @@ from exofric.errors import (
     check_series,
 )
 from exofric.friction._fit import match_squeeze
+from exofric.friction._law import FrictionLaw, curve_column, law_columns
 
-__all__ = ["RigConfig", "RigRun", "simulate_rig"]
+__all__ = ["RigConfig", "RigRun", "simulate_law_rig", "simulate_rig"]
 
 
 @dataclass(frozen=True)
@@ -348,3 +349,63 @@ def simulate_rig(
         raw_force_n=f_meas.ravel(),
         displacement_mm=np.broadcast_to(x, (k, m)).ravel().copy(),
     )
+
+
+def simulate_law_rig(
+    law: FrictionLaw,
+    curves: Any,
+    pressures_mpa: ArrayLike | None = None,
+    *,
+    config: RigConfig | None = None,
+    seed: int = 0,
+    repeats: int = 1,
+) -> RigRun:
+    """The virtual rig (:func:`simulate_rig`) planting any friction law on FE curves.
+
+    The planted friction curve is the law's F (N) at the curves' nodes (plus the rig's
+    ``drag_n``), interpolated by PCHIP between them; noise, lag, taring and reduction are
+    :func:`simulate_rig`'s. The run's ``gamma_true`` is 1: the curve already is the friction.
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The planted law (:class:`~exofric.friction.FrictionModel`,
+        :class:`~exofric.friction.InterfaceFrictionModel` or any other).
+    curves : object or mapping
+        ``pressure_mpa`` (MPa, strictly increasing), ``squeeze_force_n`` (N) and the law's
+        other inputs (N) at the nodes, e.g. a :class:`~exofric.friction.SqueezeCurve` or
+        :class:`~exofric.friction.InterfaceCurves`.
+    pressures_mpa : array_like, optional
+        Set points (MPa, strictly increasing, inside the curves); default the nodes where the
+        squeezing force is > 0.
+    config : RigConfig, optional
+        Rig, logger and sensor settings.
+    seed : int
+        RNG seed (deterministic output).
+    repeats : int
+        Repeated tests (1-100).
+
+    Returns
+    -------
+    RigRun
+
+    Raises
+    ------
+    InputError
+        A curve the law needs is missing, or as :func:`simulate_rig`.
+
+    Examples
+    --------
+    >>> from exofric.friction import FrictionModel, SqueezeCurve
+    >>> run = simulate_law_rig(FrictionModel(0.7), SqueezeCurve([0.2, 0.4, 0.6],
+    ...                        [80.0, 160.0, 240.0]), config=RigConfig(noise_pct=0.0,
+    ...                        pressure_tau_s=0.0))
+    >>> [round(f, 6) for f in run.friction_n]
+    [56.0, 112.0, 168.0]
+    """
+    cols = law_columns(law, curves)
+    if pressures_mpa is None:
+        n = curve_column(curves, "squeeze_force_n", law.name, size=cols["pressure_mpa"].size)
+        pressures_mpa = cols["pressure_mpa"][n > 0]
+    return simulate_rig(cols["pressure_mpa"], law.friction_of(cols), 1.0, pressures_mpa,
+                        config=config, seed=seed, repeats=repeats)

@@ -1279,12 +1279,3 @@ def _multistart_summary(start_costs: list[float], n_pts: int, residuals: str) ->
             f"rms_median_{unit}": float(np.median(start_rms)),
             f"rms_max_{unit}": float(start_rms[-1]),
             "n_within_1pct": int(np.sum(start_rms <= start_rms[0] * 1.01))}
-
-
-def _unchecked(name: str, x: NDArray[np.float64]) -> HyperelasticModel:
-    """A model without the input checks (inside the optimiser, where x may be anything)."""
-    m = object.__new__(HyperelasticModel)
-    object.__setattr__(m, "name", name)
-    object.__setattr__(m, "params", tuple(float(v) for v in x))
-    object.__setattr__(m, "d_per_mpa", 1.0)
-    return m

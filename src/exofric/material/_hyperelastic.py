@@ -26,6 +26,7 @@ Units: stresses and moduli in MPa, d in 1/MPa, stretches and Ogden exponents uni
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -86,6 +87,36 @@ def _shear_modulus(name: str, p: tuple[float, ...]) -> float:
         return float(sum(p[0::2]))
     return 2.0 * p[0]
 
+
+def _principal_t(name: str, p: Sequence[float] | NDArray[np.float64], l1: Any, l2: Any,
+                 l3: Any) -> tuple[Any, Any, Any]:
+    """``t_i = l_i dW_iso/dl_i`` at ``J = 1`` (MPa); complex-safe for the complex step."""
+    if name.startswith("ogden"):
+        out = []
+        for li in (l1, l2, l3):
+            out.append(sum(2.0 * m / a * li ** a for m, a in zip(p[0::2], p[1::2],
+                                                                strict=True)))
+        return out[0], out[1], out[2]
+    i1 = l1 * l1 + l2 * l2 + l3 * l3
+    c01 = 0.0
+    if name == "yeoh":
+        w1 = p[0] + 2.0 * p[1] * (i1 - 3.0) + 3.0 * p[2] * (i1 - 3.0) ** 2
+    else:
+        w1 = p[0]
+        if name == "mooney-rivlin":
+            c01 = p[1]
+    t1, t2, t3 = (2.0 * li * li * (w1 + c01 * (i1 - li * li)) for li in (l1, l2, l3))
+    return t1, t2, t3
+
+
+
+def _isochoric_stress(name: str, params: Sequence[float] | NDArray[np.float64], mode: str,
+                      lam: Any, kind: str) -> Any:
+    """Stress (MPa) along a homogeneous incompressible path, no checks (complex-safe)."""
+    l1, l2, l3 = _mode_stretches(mode, lam)
+    t1, t2, t3 = _principal_t(name, params, l1, l2, l3)
+    sigma = t1 - (t2 if mode == "uniaxial" else t3)
+    return sigma if kind == "true" else sigma / lam
 
 def _check_mode(mode: str) -> str:
     if not isinstance(mode, str) or mode not in MODES:
@@ -226,16 +257,19 @@ class HyperelasticModel:
             check_range(n, v, -1e4, 1e4, unit="MPa" if n.endswith("_mpa") else "")
         if self.name.startswith("ogden") and any(v == 0.0 for v in vals[1::2]):
             raise InputError("alpha: an Ogden exponent must be nonzero, got 0", param="params")
-        object.__setattr__(self, "params", vals)
-        mu = self.shear_modulus_mpa
+        mu = _shear_modulus(self.name, vals)
         if not mu > 0.0:
             raise InputError(f"params: the shear modulus of {self.name} must be > 0 MPa, got "
                              f"{mu:g}", param="params")
         if isinstance(self.d_per_mpa, (str, bytes, bool)) or self.d_per_mpa is None:
             raise InputError(f"d must be a number in 1/MPa, got {self.d_per_mpa!r}", param="d")
-        if self.d_per_mpa == 0.0:  # the default: the paper's Poisson ratio (Eq 6)
-            object.__setattr__(self, "d_per_mpa", 2.0 * (1.0 - 2.0 * _POISSON) / mu)
-        d = check_range("d", self.d_per_mpa, 1e-12, 1e4, unit="1/MPa")
+        # 0 (the default) selects the paper's Poisson ratio (Eq 6)
+        d = check_range("d", 2.0 * (1.0 - 2.0 * _POISSON) / mu if self.d_per_mpa == 0.0
+                        else self.d_per_mpa, 1e-12, 1e4, unit="1/MPa")
+        # A value type: its constructor stores the normalised parameters (a tuple of float,
+        # hashable; the default d resolved) whatever sequence it is given, and a frozen
+        # dataclass sets a field only through object.__setattr__ (as its generated __init__).
+        object.__setattr__(self, "params", vals)
         object.__setattr__(self, "d_per_mpa", d)
         nu = self.poisson
         if nu <= 0.0:
@@ -305,31 +339,69 @@ class HyperelasticModel:
 
     # --- energy and stresses ---------------------------------------------------------------
 
-    def _t(self, l1: Any, l2: Any, l3: Any) -> tuple[Any, Any, Any]:
-        """``t_i = l_i dW_iso/dl_i`` at ``J = 1`` (MPa); complex-safe for the complex step."""
-        p = self.params
-        if self.name.startswith("ogden"):
-            out = []
-            for li in (l1, l2, l3):
-                out.append(sum(2.0 * m / a * li ** a for m, a in zip(p[0::2], p[1::2],
-                                                                    strict=True)))
-            return out[0], out[1], out[2]
-        i1 = l1 * l1 + l2 * l2 + l3 * l3
-        c01 = 0.0
-        if self.name == "yeoh":
-            w1 = p[0] + 2.0 * p[1] * (i1 - 3.0) + 3.0 * p[2] * (i1 - 3.0) ** 2
-        else:
-            w1 = p[0]
-            if self.name == "mooney-rivlin":
-                c01 = p[1]
-        t1, t2, t3 = (2.0 * li * li * (w1 + c01 * (i1 - li * li)) for li in (l1, l2, l3))
-        return t1, t2, t3
-
     def _stress(self, mode: str, lam: Any, kind: str) -> Any:
-        l1, l2, l3 = _mode_stretches(mode, lam)
-        t1, t2, t3 = self._t(l1, l2, l3)
-        sigma = t1 - (t2 if mode == "uniaxial" else t3)
-        return sigma if kind == "true" else sigma / lam
+        return _isochoric_stress(self.name, self.params, mode, lam, kind)
+
+    @staticmethod
+    def trial_stress_mpa(name: str, params: Sequence[float] | NDArray[np.float64], mode: str,
+                         stretch: ArrayLike, kind: str = "engineering") -> NDArray[np.float64]:
+        """:meth:`stress_mpa` of model ``name`` with ``params``, the parameters unchecked.
+
+        For an optimiser's trial points, which need not make a valid material (a negative
+        modulus): no model is built, nothing is checked (the stretches included: > 0 as for
+        :meth:`stress_mpa`) and no warning is given.
+
+        Parameters
+        ----------
+        name : str
+            A key of :data:`HYPERELASTIC_MODELS`.
+        params : sequence of float
+            The parameters in the order of its names (MPa or unitless).
+        mode : {'uniaxial', 'biaxial', 'planar'}
+            The path.
+        stretch : array_like of float
+            Stretch of the loaded direction (unitless).
+        kind : {'engineering', 'true'}
+            Nominal or Cauchy stress.
+
+        Returns
+        -------
+        numpy.ndarray
+            Stress in MPa, the shape of ``stretch``.
+
+        Examples
+        --------
+        >>> HyperelasticModel.trial_stress_mpa("neo-hookean", (0.5,), "uniaxial", [2.0])
+        array([1.75])
+        """
+        import numpy as np
+
+        lam = np.asarray(stretch, dtype=float)
+        return np.asarray(_isochoric_stress(name, params, mode, lam, kind), dtype=float)
+
+    @staticmethod
+    def trial_shear_modulus_mpa(name: str,
+                                params: Sequence[float] | NDArray[np.float64]) -> float:
+        """:attr:`shear_modulus_mpa` of model ``name`` with ``params``, unchecked (see above).
+
+        Parameters
+        ----------
+        name : str
+            A key of :data:`HYPERELASTIC_MODELS`.
+        params : sequence of float
+            The parameters in the order of its names (MPa or unitless).
+
+        Returns
+        -------
+        float
+            mu in MPa (linear in the parameters of every model).
+
+        Examples
+        --------
+        >>> HyperelasticModel.trial_shear_modulus_mpa("mooney-rivlin", (0.3, 0.1))
+        0.8
+        """
+        return float(_shear_modulus(name, tuple(float(v) for v in params)))
 
     def stress_mpa(self, mode: str, stretch: ArrayLike,
                    kind: str = "engineering") -> NDArray[np.float64]:

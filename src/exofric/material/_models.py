@@ -263,6 +263,9 @@ class MooneyRivlin:
         # Bounds far outside any rubber (silicones: C10 ~ 0.01-10 MPa, d ~ 1e-4-1e-1 1/MPa) but
         # inside what the FE solver can take: C10, C01 within +-1e4 MPa, 1e-12 <= d <= 1e4 1/MPa
         # (bulk/shear modulus ratio up to ~1e12; 1e300 reaches the solver as inf/NaN).
+        # Normalised at construction, where a frozen dataclass sets its fields (through
+        # object.__setattr__, as its generated __init__ does): C10, C01, d and Shore stored as
+        # float whatever number type is given (JSON-ready, one repr).
         for name, v in (("c10", self.c10_mpa), ("c01", self.c01_mpa)):
             if isinstance(v, (str, bytes, bool)) or v is None:
                 raise InputError(f"{name} must be a number in MPa, got {v!r}")
