@@ -31,7 +31,7 @@ from exofric._version import __version__
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.calibration import CalibrationResult, InflationData, calibrate
-    from exofric.control import Controller, PIDGains, PlantParams
+    from exofric.control import Controller, GaitSetup, PIDGains, PlantParams, simulate_gait
     from exofric.design import SweepSpec, parse_sweep, run_sweep, search_designs
     from exofric.errors import ConvergenceError, InputError
     from exofric.fe import MeshSpec

@@ -37,6 +37,24 @@ from typing import TYPE_CHECKING
 from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.control._gait import (
+        GAIT_CONTROLLERS,
+        GaitComparison,
+        GaitResult,
+        GaitSetup,
+        GaitSizing,
+        StrideMetrics,
+        compare_gait,
+        identify_model,
+        simulate_gait,
+        size_valve,
+    )
+    from exofric.control._gait_controllers import (
+        IterativeLearning,
+        PlantModel,
+        PressureMPC,
+        PreviewFeedforward,
+    )
     from exofric.control._identify import IdentifiedPlant, fopdt_response, identify_step
     from exofric.control._metrics import StepMetrics, itae, step_metrics
     from exofric.control._pid import AntiWindup, Controller, ModelFeedforward, PIDGains

@@ -11,11 +11,13 @@
   (``attrs["source"]`` is the file name); domain classes build themselves from them.
 * :func:`read_raw_log`, :func:`write_raw_log`, :func:`parse_column_map` -- raw rig logs (CSV,
   Parquet, NI TDMS) converted to s, MPa, N, mm with pint (:data:`RAW_QUANTITIES`), checked for
-  NaN bursts, time going back and gaps; ``--columns`` maps other headers.
+  NaN bursts, time going back and gaps; ``columns`` (``--columns``) maps other headers.
 * :func:`read_stress_stretch` -- a material test curve as tensile machines write it (load and
   extension with the specimen's sizes, engineering or true strain and stress, any format of
   the table reader) to stretch and stress in MPa for :func:`exofric.material.fit_material`;
   :func:`tensile_stress_stretch` the same conversion on a DataFrame (:data:`TENSILE_ROLES`).
+* :func:`read_gait`, :class:`GaitData`, :func:`gait_data_path` -- walking data (knee angle,
+  moment) from OpenSim ``.sto``/``.mot`` and tables; the shipped OpenSim stride.
 * :func:`is_raw_log` -- whether a file is a raw rig log (a time series) or a results table.
 * :func:`read_toml`, :func:`read_json` -- a dict, or one line naming the file, line and column.
 * :func:`jsonable`, :func:`write_json`, :func:`write_text`, :func:`atomic_path` -- JSON-ready
@@ -55,6 +57,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         write_json,
         write_text,
     )
+    from exofric.io._gait import GAIT_DATA_FILE, GaitData, gait_data_path, read_gait
     from exofric.io._material import TENSILE_ROLES, read_stress_stretch, tensile_stress_stretch
     from exofric.io._rawlog import (
         RAW_QUANTITIES,

@@ -60,6 +60,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         plot_tube_ends,
         section_polygons,
     )
+    from exofric.plots._gait import plot_gait, plot_gait_compare
     from exofric.plots._friction import (
         plot_cubic_fit,
         plot_gamma_fit,
