@@ -103,3 +103,13 @@ def test_layer_contracts_hold() -> None:
     root = SRC.parents[1]
     r = subprocess.run([exe, "--no-cache"], cwd=root, capture_output=True, text=True)
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-2000:]
+
+
+@pytest.mark.parametrize("name", ["exofric", "exofric.simulate", "exofric.friction",
+                                  "exofric.control", "exofric.io", "exofric.design"])
+def test_dir_lists_the_api_not_the_machinery(name: str) -> None:
+    # issue 34: dir(ef) in a notebook showed `annotations`, `TYPE_CHECKING`, `lazy_package`
+    mod = importlib.import_module(name)
+    listed = set(dir(mod))
+    assert not listed & {"annotations", "TYPE_CHECKING", "lazy_package", "facade"}
+    assert set(mod.__all__) <= listed

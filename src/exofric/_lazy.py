@@ -10,6 +10,7 @@ from __future__ import annotations
 import importlib
 import sys
 from collections.abc import Callable, Mapping, Sequence
+from types import ModuleType
 from typing import Any
 
 __all__ = ["facade"]
@@ -52,7 +53,11 @@ def facade(
         return value
 
     def __dir__() -> list[str]:
-        return sorted(set(vars(sys.modules[package])) | set(public))
+        # the public names and the loaded subpackages: not the machinery of this file
+        # (``annotations``, ``TYPE_CHECKING``, ``lazy_package``)
+        mods = {n for n, v in vars(sys.modules[package]).items()
+                if isinstance(v, ModuleType) and not n.startswith("_")}
+        return sorted(set(public) | mods)
 
     return __getattr__, __dir__
 

@@ -23,6 +23,9 @@ from exofric.errors import InputError, check_positive, check_range
 
 __all__ = ["METHODS", "calibrate"]
 
+#: The calibration methods :func:`calibrate` accepts (``method=``): bisection on the hardness
+#: (the paper's), a bounded 1-D minimisation, a joint hardness and tube-ID fit, or the tube ID
+#: at a known hardness.
 METHODS = ("bisection", "bounded", "joint", "known-hardness")
 
 

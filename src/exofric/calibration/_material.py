@@ -524,7 +524,7 @@ class MaterialCalibration:
     n_model_evaluations: int = 0
     elapsed_s: float = 0.0
     notes: tuple[str, ...] = field(default=())
-    _problem: _Problem | None = field(default=None, repr=False, compare=False)
+    _problem: Any = field(default=None, repr=False, compare=False)  # a _Problem (private)
 
     @property
     def tube_id_stderr_mm(self) -> float | None:

@@ -51,8 +51,13 @@ __all__ = [
 
 #: ``model(shore, tube_id_mm, pressures_mpa) -> outer diameters (mm)``.
 ModelFn = Callable[[float, float, np.ndarray], np.ndarray]
+#: How C10 follows from E: ``"eq4"`` (the paper's Eq 4) or ``"paper-slip"`` (Table 2's printed
+#: values, a /1.005 for /1.05 slip; see paper note M1).
 C10Convention = Literal["eq4", "paper-slip"]
+#: The inflation models: the FE (``"fe"``), the 1-D radial BVP (``"1d"``), or the paper's Table 1
+#: ANSYS columns interpolated (``"paper-table1"``, no simulation).
 MODEL_KINDS = ("fe", "1d", "paper-table1")
+#: The default inflation model of the calibration.
 DEFAULT_MODEL = "fe"
 
 # The divisor the paper printed in Table 2 (C10 = G/2/1.005), a slip for 1 + 0.05.

@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.control._gait import (
         GAIT_CONTROLLERS,
         GaitComparison,
+        GaitLike,
         GaitResult,
         GaitSetup,
         GaitSizing,

@@ -41,7 +41,7 @@ import math
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -71,6 +71,7 @@ if TYPE_CHECKING:
 __all__ = [
     "GAIT_CONTROLLERS",
     "GaitComparison",
+    "GaitLike",
     "GaitResult",
     "GaitSetup",
     "GaitSizing",
@@ -96,9 +97,27 @@ SUMMARY_STRIDES = (1, 5, 10)
 FrictionFn = Callable[[float], float]
 
 
+@runtime_checkable
 class GaitLike(Protocol):
-    """Walking data: ``time_s`` (s), ``knee_angle_rad`` (rad), ``knee_moment_nm`` (Nm)
-    (e.g. :class:`exofric.io.GaitData`; ``stance_fraction`` used when present)."""
+    """Walking data as the gait simulation reads it (e.g. :class:`exofric.io.GaitData`).
+
+    ``stance_fraction`` (unitless) is used when present.
+
+    Attributes
+    ----------
+    time_s : numpy.ndarray
+        Sample times of one stride (s), increasing.
+    knee_angle_rad : numpy.ndarray
+        Knee flexion (rad, flexion positive).
+    knee_moment_nm : numpy.ndarray
+        Net knee moment (Nm, flexion positive).
+
+    Examples
+    --------
+    >>> from exofric.io import gait_data_path, read_gait
+    >>> isinstance(read_gait(gait_data_path()), GaitLike)
+    True
+    """
 
     time_s: NDArray[np.float64]
     knee_angle_rad: NDArray[np.float64]

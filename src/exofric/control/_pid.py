@@ -48,6 +48,8 @@ from exofric.errors import InputError, check_finite, check_range
 
 __all__ = ["PIDGains", "Controller", "AntiWindup", "ModelFeedforward"]
 
+#: The integrator's anti-windup when the command saturates: back-calculation (the default),
+#: conditional integration (clamping), or none.
 AntiWindup = Literal["back-calculation", "clamping", "none"]
 _AW = ("back-calculation", "clamping", "none")
 

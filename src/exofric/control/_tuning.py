@@ -39,6 +39,7 @@ from exofric.errors import InputError, check_positive, check_range
 
 __all__ = ["TuningResult", "rule_gains", "itae_gains", "CONTROLLERS"]
 
+#: The controller kinds the tuning rules give gains for.
 CONTROLLERS = ("pd", "pi", "pid")
 
 

@@ -10,6 +10,7 @@ import contextlib
 from collections.abc import Iterator
 from contextvars import ContextVar
 from dataclasses import asdict, dataclass
+from typing import Any
 
 __all__ = ["SolverStats", "StatsCollector", "collect_stats", "collecting", "record_attempt"]
 
@@ -88,8 +89,8 @@ class StatsCollector:
 
     Parameters
     ----------
-    tally : _Tally
-        The counters that :func:`solve_path` adds to while the ``with`` block runs.
+    tally : object
+        The (private) counters that :func:`solve_path` adds to while the ``with`` block runs.
 
     Examples
     --------
@@ -99,7 +100,7 @@ class StatsCollector:
     0
     """
 
-    def __init__(self, tally: _Tally) -> None:
+    def __init__(self, tally: Any) -> None:  # a _Tally (private)
         self._tally = tally
 
     @property

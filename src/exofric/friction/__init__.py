@@ -75,6 +75,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.friction._predict import (
         ApplicabilityWarning,
         Deviation,
+        LawPrediction,
         MeasuredCurve,
         Prediction,
         PredictionSet,

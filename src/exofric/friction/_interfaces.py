@@ -1095,7 +1095,7 @@ def fit_interfaces(
     ci : {"auto", "analytic", "ols", "cluster"}
         95 % CI: ``"analytic"`` t (n - k dof) x HC3-robust standard errors; ``"ols"``
         classical; ``"cluster"`` cluster-robust over replicate clusters (the covariance
-        :data:`exofric.friction._fit._CLUSTER_VARIANT` that ``fit_gamma`` uses, default CR2
+        variant that :func:`fit_gamma` uses, default CR2
         with Bell-McCaffrey dof); ``"auto"``: ``"cluster"`` when some (structure, pressure)
         cluster holds >= 2 points and there are more than k clusters, else ``"analytic"``.
     edge_tol_mpa : float

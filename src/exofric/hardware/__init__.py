@@ -55,6 +55,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         Device,
         DeviceError,
         DeviceFault,
+        DeviceURL,
         LoopFault,
         Reading,
         SensorStale,

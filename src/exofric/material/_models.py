@@ -133,6 +133,8 @@ class Correlation:
     reference: str
 
 
+#: The Shore A -> Young's modulus correlations by name (``'paper'``: the paper's Eq 3, ``'gent'``,
+#: ...); each maps a hardness (Shore A) to E (MPa) over its stated range.
 CORRELATIONS: dict[str, Correlation] = {
     c.name: c
     for c in (
