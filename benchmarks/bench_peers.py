@@ -136,11 +136,13 @@ def _in_process(fn: Callable[[], Any]) -> tuple[float, float, Any]:
 def _exo_mesh(r: Any) -> str:
     """exofric's mesh(es) of a result: the solution mesh, the error-estimate mesh if any, and
     the accuracy level."""
-    est = getattr(r, "estimate_mesh", None)
+    group = getattr(r, "estimate", None)  # a squeeze groups its estimate; an inflation does not
+    est = group.mesh if group is not None else getattr(r, "estimate_mesh", None)
+    accuracy = group.accuracy if group is not None else r.accuracy
     mesh = f"quad9 {r.mesh.n_radial} x {r.mesh.n_circ}"
     if est is not None:
         mesh += f" + {est.n_radial} x {est.n_circ}"
-    return f"{mesh} ({r.accuracy or 'explicit'})"
+    return f"{mesh} ({accuracy or 'explicit'})"
 
 
 # --------------------------------------------------------------------------- squeeze

@@ -36,6 +36,7 @@ import sys  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
+from types import SimpleNamespace  # noqa: E402
 from typing import Any  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
@@ -144,7 +145,8 @@ class _Result:
 
     def __init__(self, n: int) -> None:
         self.pressure_mpa = self.squeeze_force_n = self.squeeze_force_n_per_mm = \
-            self.wall_force_n = self.max_penetration_mm = [0.1 * i for i in range(1, n + 1)]
+            self.wall_force_n = [0.1 * i for i in range(1, n + 1)]
+        self.contact = SimpleNamespace(max_penetration_mm=self.pressure_mpa)
         self.newton_iterations = [5] * n
         self.contact_onset_pressure_mpa = 0.1
         self.dofs = 490

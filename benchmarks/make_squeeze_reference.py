@@ -128,7 +128,7 @@ def solve(task: dict[str, Any]) -> dict[str, Any]:
         "squeeze_force_n_per_mm": np.maximum(r.squeeze_force_n_per_mm, 0.0).tolist(),
         "wall_force_n_per_mm": r.wall_force_n_per_mm.tolist(),
         "equilibrium_n_per_mm": r.equilibrium_n_per_mm.tolist(),
-        "max_penetration_mm": r.max_penetration_mm.tolist(),
+        "max_penetration_mm": r.contact.max_penetration_mm.tolist(),
         "newton_iterations": r.newton_iterations.tolist(),
         "dofs": r.dofs,
         "solve_time_s": r.solve_time_s,

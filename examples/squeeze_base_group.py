@@ -49,7 +49,7 @@ result = ef.squeeze(structure, material, pressures_mpa)
 squeeze_force_n = result.squeeze_force_n
 n_at_0_6_mpa_n = float(squeeze_force_n[-1])
 contact_onset_mpa = result.contact_onset_pressure_mpa
-n_error_estimate_pct = result.n_error_estimate_pct
+n_error_estimate_pct = result.estimate.pct
 
 # %%
 # Vertical force balance
@@ -89,7 +89,7 @@ n_ratio_0_6_over_0_3 = float(squeeze_force_n[-1] / squeeze_force_n[pressures_mpa
 print(f"clearance tube-wire: {clearance_mm:.2f} mm")
 print(f"contact onset: {contact_onset_mpa:.4f} MPa")
 print(" P (MPa)   N (N)   wire contact half-width (mm)   N error estimate (%)")
-for p, n, w, e in zip(pressures_mpa, squeeze_force_n, result.wire_contact_halfwidth_mm,
+for p, n, w, e in zip(pressures_mpa, squeeze_force_n, result.contact.wire_contact_halfwidth_mm,
                       n_error_estimate_pct, strict=True):
     print(f"  {p:4.2f}   {n:7.2f}   {w:6.3f}   {e:6.2f}")
 print(f"N(0.6 MPa) = {n_at_0_6_mpa_n:.2f} N; paper {paper_n_at_0_6_mpa_n:.2f} N "

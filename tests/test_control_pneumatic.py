@@ -322,7 +322,7 @@ def test_tube_volume_table_against_inflation_and_closed_form() -> None:
     mat = MooneyRivlin.from_shore(62.5)
     pres = [0.0, 0.01, 0.02, 0.04]              # below contact onset (0.054 MPa)
     r = squeeze(BASE, mat, pres, mesh=MeshSpec(2, 12), gravity="none")
-    assert np.all(r.squeeze_force_n == 0.0) and np.all(r.wall_contact_arc_mm == 0.0)
+    assert np.all(r.squeeze_force_n == 0.0) and np.all(r.contact.wall_contact_arc_mm == 0.0)
     p, v = tube_volume_table(r)
     np.testing.assert_array_equal(p, pres)
     length = BASE.length_mm

@@ -239,8 +239,8 @@ def test_neo_hookean_is_mooney_rivlin_without_c01_through_the_squeeze():
     c = squeeze(BASE, material_model("yeoh", [c10, 0.0, 0.0], d=d), p, mesh=spec,
                 keep_fields=False)
     np.testing.assert_allclose(b.squeeze_force_n, a.squeeze_force_n, rtol=1e-12, atol=0)
-    np.testing.assert_allclose(b.wire_contact_halfwidth_mm, a.wire_contact_halfwidth_mm,
-                               rtol=1e-12, atol=0)
+    np.testing.assert_allclose(b.contact.wire_contact_halfwidth_mm,
+                               a.contact.wire_contact_halfwidth_mm, rtol=1e-12, atol=0)
     np.testing.assert_allclose(c.squeeze_force_n, b.squeeze_force_n, rtol=1e-12, atol=0)
     assert b.contact_onset_pressure_mpa == pytest.approx(a.contact_onset_pressure_mpa, abs=1e-12)
 

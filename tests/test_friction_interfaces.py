@@ -435,10 +435,8 @@ def _fe_curves():
     from exofric.fe import MeshSpec
     from exofric.geometry import Structure
     from exofric.material import MooneyRivlin
-    from exofric.simulate import SqueezeResult, squeeze
+    from exofric.simulate import squeeze
 
-    if "wire_pressure_integral_n_per_mm" not in SqueezeResult.__dataclass_fields__:
-        pytest.skip("this exofric.simulate.squeeze has no per-interface contact outputs yet")
     mat = MooneyRivlin.from_shore(62.5)
     structs = paper_structures()
     out = {}
@@ -490,10 +488,7 @@ def test_one_fe_structure_is_not_identifiable(fe_curves) -> None:
 def test_cli_end_to_end_squeeze_rig_fit(tmp_path: Path, capsys) -> None:
     """`exofric squeeze --json` -> `exofric rig --law interfaces` -> `exofric fit-friction --law
     interfaces` on three structures (3 x 32 meshes): the planted pair comes back."""
-    from exofric.simulate import SqueezeResult
 
-    if "wire_pressure_integral_n_per_mm" not in SqueezeResult.__dataclass_fields__:
-        pytest.skip("this exofric.simulate.squeeze has no per-interface contact outputs yet")
     geoms = [("10", "8.3", "4.97", "1.6"), ("7.5", "6.2", "3.7125", "1.1"),
              ("10", "8.3", "7.0", "1.6")]
     fit_args = ["fit-friction", "--law", "interfaces"]

@@ -84,10 +84,12 @@ def test_interface_integrals_match_calculix(solved: dict[str, object]) -> None:
     c = REF["cases"]["both"]
     p = np.asarray(REF["pressure_mpa"])
     k = p >= 0.3 - 1e-12
-    pairs = [(r.wire_pressure_integral_n_per_mm, c["wire_normal_n_per_mm"], 0.01),
-             (r.wall_pressure_integral_n_per_mm, c["wall_normal_n_per_mm"], 0.01),
-             (r.wire_tangential_force_n_per_mm, np.abs(c["wire_tangential_n_per_mm"]), 0.08),
-             (r.wall_tangential_force_n_per_mm, np.abs(c["wall_tangential_n_per_mm"]), 0.08)]
+    pairs = [(r.contact.wire_pressure_integral_n_per_mm, c["wire_normal_n_per_mm"], 0.01),
+             (r.contact.wall_pressure_integral_n_per_mm, c["wall_normal_n_per_mm"], 0.01),
+             (r.contact.wire_tangential_force_n_per_mm, np.abs(c["wire_tangential_n_per_mm"]),
+              0.08),
+             (r.contact.wall_tangential_force_n_per_mm, np.abs(c["wall_tangential_n_per_mm"]),
+              0.08)]
     for ours, ref, tol in pairs:
         rel = np.abs(np.asarray(ours)[k] / np.asarray(ref)[k] - 1)
         assert rel.max() < tol, rel

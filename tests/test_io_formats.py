@@ -260,8 +260,8 @@ def test_tdms_channels_with_other_waveform_timing_are_refused(tmp_path):
 def test_a_table_mapping_contradicting_the_header_names_both(tmp_path):
     p = tmp_path / "f.csv"
     p.write_text("Pressure (kPa),Friction (N)\n200,40\n400,80\n")
-    with pytest.raises(InputError, match=r"--columns says 'Pressure \(kPa\)' is in psi but the "
-                                         r"file says kPa"):
+    with pytest.raises(InputError, match=r"the columns mapping says 'Pressure \(kPa\)' is in "
+                                         r"psi but the file says kPa"):
         read_friction_table(p, {"pressure_psi": "Pressure (kPa)"})
 
 

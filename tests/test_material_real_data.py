@@ -19,6 +19,7 @@ RTV615; ODbL) and Treloar's uniaxial data. Units: MPa, mm, N; stretch unitless.
 from __future__ import annotations
 
 import json
+import os
 import warnings
 
 import numpy as np
@@ -130,9 +131,18 @@ def test_admissible_fit_matches_independent_multistart(name, key):
     check_against_reference(name, key, n_starts=4 if name != "ogden1" else 8)
 
 
+#: Ogden-3 on the three silicones costs ~70 s of the suite's 10 minutes: they run in
+#: ``make bench`` (EXOFRIC_FULL=1); the suite keeps Ogden-2 on every curve and Ogden-3 on one.
+FULL = bool(os.environ.get("EXOFRIC_FULL"))
+OGDEN_CASES = [("ogden2", k) for k in DATA] + [
+    ("ogden3", k) if FULL or k == "treloar-uniaxial" else pytest.param(
+        "ogden3", k, marks=pytest.mark.skip(reason="Ogden-3 on silicone: make bench "
+                                                   "(EXOFRIC_FULL=1), ~20 s each"))
+    for k in DATA]
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("key", list(DATA))
-@pytest.mark.parametrize("name", ["ogden2", "ogden3"])
+@pytest.mark.parametrize("name,key", OGDEN_CASES)
 def test_ogden_fit_matches_independent_multistart(name, key):
     """Ogden 2 and 3: 12 random starts of the penalty reference per case (~5-20 s each)."""
     check_against_reference(name, key, n_starts=12)

@@ -56,6 +56,22 @@ def test_shear_lag_linear_law_matches_tanh():
     assert f[-1] == pytest.approx(ea * beta * math.tanh(beta * L) * d, rel=1e-3)
 
 
+@pytest.mark.parametrize("ea", [1e5, 1e9])
+def test_whole_length_sliding_force_is_length_times_section_plateau(ea):
+    # Once the whole length slides, every station carries the section's plateau: F = L q_slide
+    # (a conservation of the axial force), whatever the cable's stiffness. A rigid cable (EA
+    # 1e9 N: kE = EA/h ~ 8e9 N/mm) once stopped Newton at a residual scaled by kE, biasing F
+    # by +2.2 % (found by the 3-D check); tolerance 1e-6.
+    from dataclasses import replace
+
+    st = replace(BASE, length_mm=30.0)
+    sq30 = SqueezeSetup(st, MAT, accuracy="draft").solve([0.6])
+    sec = section_pullout(st, MAT, 0.6, **MU, squeeze_result=sq30)
+    r = pullout(st, MAT, 0.6, **MU, cable_ea_n=ea, displacement_mm=3.0, cycles=0,
+                squeeze_result=sq30)
+    assert r.force_n[-1] == pytest.approx(st.length_mm * sec.sliding_force_n_per_mm, rel=1e-6)
+
+
 def test_zero_friction_gives_zero_force(sq):
     s = section_pullout(BASE, MAT, 0.6, mu_wire=0.0, mu_wall=0.0, mu_wire_wall=0.0,
                         squeeze_result=sq)
@@ -67,7 +83,8 @@ def test_full_sliding_equals_coulomb_sum(sq):
     # reports them (its own integrals of the contact forces, not our nodal reconstruction):
     # agreement to 1e-6 relative (the reconstruction differs only by round-off).
     s = section_pullout(BASE, MAT, 0.6, squeeze_result=sq, **MU)
-    ref = (0.3 * sq.wire_pressure_integral_n_per_mm[-1] + 0.2 * sq.squeeze_force_n_per_mm[-1])
+    ref = (0.3 * sq.contact.wire_pressure_integral_n_per_mm[-1]
+           + 0.2 * sq.squeeze_force_n_per_mm[-1])
     assert math.isfinite(s.slip_displacement_mm)
     assert s.force_n_per_mm[-1] == pytest.approx(ref, rel=1e-6)
     assert s.sliding_force_n_per_mm == pytest.approx(ref, rel=1e-6)
@@ -82,7 +99,7 @@ def test_free_ends_weak_wall_plateau_is_wall_capacity(sq):
     s = section_pullout(BASE, MAT, 0.6, mu_wire=0.8, mu_wall=0.05, mu_wire_wall=0.0,
                         ends="free", squeeze_result=sq)
     assert s.sliding_force_n_per_mm == pytest.approx(
-        0.05 * sq.wall_pressure_integral_n_per_mm[-1], rel=1e-6)
+        0.05 * sq.contact.wall_pressure_integral_n_per_mm[-1], rel=1e-6)
     # the last step: the wall capacity plus the free tube's regularising foundation
     # (1e-4 G N/mm^2 x the tube's ~5 mm travel ~ 8e-4 N/mm, 0.4%): 1% tolerance
     assert s.force_n_per_mm[-1] == pytest.approx(s.sliding_force_n_per_mm, rel=1e-2)

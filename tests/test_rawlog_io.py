@@ -273,7 +273,7 @@ def test_tdms_errors(tmp_path):
     assert "'pressure_kpa' has no waveform timing (wf_increment)" in msg
     p2 = _write_tdms(tmp_path / "ng.tdms", {"A": {"x": np.ones(3)}, "B": {"y": np.ones(3)}})
     msg = _one_line_error(p2, "no TDMS group has pressure and force channels")
-    assert "'A': 'x'" in msg and "'B': 'y'" in msg and "--columns" in msg
+    assert "'A': 'x'" in msg and "'B': 'y'" in msg and "; columns: name the channels" in msg
     p3 = _write_tdms(tmp_path / "len.tdms", {"G": {"time_s": base["time_s"], **chans,
                                                    "force_n": base["force_n"][:-1]}})
     _one_line_error(p3, "channels have different lengths: time_s 200, pressure_kpa 200, "
@@ -368,11 +368,11 @@ def test_max_gap_factor_must_exceed_one(tmp_path, factor):
     ("time_h,pressure_mpa,force_n", r"unknown time unit 'h' \(known: s, ms, min"),
     ("time_s,pressure_mpa,displacement_ft", r"unknown displacement unit 'ft'"),
     ("time_s,pressure_kpa,pressure_bar", r"two pressure columns, 'pressure_kpa' and "
-                                         r"'pressure_bar': keep one, or choose one with "
-                                         r"--columns, e.g. --columns pressure_kpa=pressure_kpa$"),
+                                         r"'pressure_bar': keep one, or choose one \(columns: "
+                                         r"e.g. pressure_kpa=pressure_kpa\)$"),
     ("time_s,p_kpa,force_n", r"no pressure column .*columns found: 'time_s', 'p_kpa', "
-                             r"'force_n'\); name the columns with --columns"),
-    ("t,pressure_mpa,force_n", r"no time column .*--columns time=t"),
+                             r"'force_n'\); columns: name the columns, e.g. time=t,"),
+    ("t,pressure_mpa,force_n", r"no time column .*columns: name the columns, e.g. time=t,"),
     ("time_s,pressure_mpa,weight_n", r"no force column"),
 ])
 def test_bad_headers(tmp_path, header, match):
@@ -384,12 +384,13 @@ def test_bad_headers(tmp_path, header, match):
 @pytest.mark.parametrize("header", ["time_s,pressure_mpa,force_n,force_n",
                                     "time_s,pressure_mpa,force_n,Force_N"])
 def test_one_header_twice_says_rename_not_columns(tmp_path, header):
-    # --columns cannot choose between two columns of one name: the message must not offer it
+    # a columns mapping cannot choose between two columns of one name: the message must not
+    # offer it
     p = tmp_path / "h.csv"
     p.write_text(header + "\n" + "".join(f"{i},1,2,3\n" for i in range(25)))
     msg = _one_line_error(p, r"column 'force_n' is in the file 2 times \(columns 3, 4\); "
                              r"rename all but one$")
-    assert "--columns" not in msg
+    assert "columns:" not in msg and "--columns" not in msg
 
 
 def test_unknown_unit_beside_a_known_one_is_ignored_and_listed(tmp_path):
@@ -399,7 +400,7 @@ def test_unknown_unit_beside_a_known_one_is_ignored_and_listed(tmp_path):
 
 def test_mapping_header_not_in_file(tmp_path):
     p = _csv(tmp_path, _long(30))
-    msg = _one_line_error(p, r"column 'P1' \(named by --columns pressure_kpa=P1\) is not in "
+    msg = _one_line_error(p, r"column 'P1' \(columns: named by pressure_kpa=P1\) is not in "
                              r"the file",
                           columns={"pressure_kpa": "P1"})
     assert "columns found: 'time_s', 'pressure_kpa', 'force_n'" in msg
@@ -495,7 +496,9 @@ def test_parquet_text_column(tmp_path):
 def test_column_map_errors(text, match):
     with pytest.raises(InputError, match=match) as exc:
         parse_column_map(text)
-    assert str(exc.value).startswith("--columns: ") and "\n" not in str(exc.value)
+    # the library names the Python parameter (the CLI shows it as --columns)
+    assert str(exc.value).startswith("columns: ") and "\n" not in str(exc.value)
+    assert exc.value.param == "columns"
 
 
 def test_write_errors(tmp_path):

@@ -96,8 +96,9 @@ def test_squeeze_frame_and_plot(squeezed, same_backend) -> None:
         "pressure_mpa": r.pressure_mpa, "squeeze_force_n": r.squeeze_force_n,
         "squeeze_force_per_depth_n_per_mm": r.squeeze_force_n_per_mm,
         "wall_force_n": r.wall_force_n, "wall_force_per_depth_n_per_mm": r.wall_force_n_per_mm,
-        "wire_contact_halfwidth_mm": r.wire_contact_halfwidth_mm,
-        "max_penetration_mm": r.max_penetration_mm, "newton_iterations": r.newton_iterations})
+        "wire_contact_halfwidth_mm": r.contact.wire_contact_halfwidth_mm,
+        "max_penetration_mm": r.contact.max_penetration_mm,
+        "newton_iterations": r.newton_iterations})
     ax = r.plot()
     assert len(ax.lines) == 1 + (r.contact_onset_pressure_mpa is not None)
     np.testing.assert_array_equal(ax.lines[0].get_ydata(), r.squeeze_force_n)

@@ -45,7 +45,7 @@ def test_equilibrium_at_zero_pressure():
 def test_penetration_within_requirement(base):
     # default penalty must keep penetration below max(0.1% of the clearance, 1e-4 mm)
     allowed = max(1e-3 * BASE.clearance_mm, 1e-4)
-    assert np.max(base.max_penetration_mm) < allowed
+    assert np.max(base.contact.max_penetration_mm) < allowed
 
 
 def test_forces_and_units(base):
@@ -59,7 +59,7 @@ def test_forces_and_units(base):
         paper.scalar("base_squeeze_force_at_0_6_mpa_n"), rel=0.15
     )
     # contact patch on the wire ~1 mm wide at 0.6 MPa (issue statement)
-    assert 0.3 < base.wire_contact_halfwidth_mm[-1] < 0.8
+    assert 0.3 < base.contact.wire_contact_halfwidth_mm[-1] < 0.8
     d = base.to_dict()
     for k in (
         "pressure_mpa",

@@ -137,7 +137,8 @@ def test_large_mu_approaches_full_stick_smoothly() -> None:
             r = squeeze(BASE, MAT, [0.4, 0.6], mesh=MESH, mu_wall=mu, mu_wire=mu)
         n.append(r.squeeze_force_n_per_mm[-1])
         if mu >= 1.5:
-            assert r.stick_fraction_wire[-1] == 1.0 and r.stick_fraction_wall[-1] == 1.0
+            c = r.contact
+            assert c.stick_fraction_wire[-1] == 1.0 and c.stick_fraction_wall[-1] == 1.0
     assert n[0] > n[1] > n[2] - 1e-3
     assert abs(n[3] / n[2] - 1) < 2e-3
 
@@ -175,11 +176,11 @@ def test_arc_integral_bounds_the_resultant_frictionless() -> None:
     """Without friction S_wire >= N at every pressure (|sum| <= sum of magnitudes), equal at
     first contact (a point contact: one node)."""
     r = squeeze(BASE, MAT, P12, mesh=MESH)
-    s, n = r.wire_pressure_integral_n_per_mm, r.squeeze_force_n_per_mm
+    s, n = r.contact.wire_pressure_integral_n_per_mm, r.squeeze_force_n_per_mm
     assert np.all(s >= n * (1 - 1e-12))
     assert s[-1] / n[-1] > 1.03
     first = np.flatnonzero(n > 0)[0]
-    assert len(r.contact[first]["wire"]["pressure_mpa"]) <= 2 or s[first] / n[first] < 1.01
+    assert len(r.contact.profiles[first]["wire"]["pressure_mpa"]) <= 2 or s[first] / n[first] < 1.01
 
 
 def test_contact_profiles_integrate_to_the_arc_integral() -> None:
@@ -190,10 +191,10 @@ def test_contact_profiles_integrate_to_the_arc_integral() -> None:
     show). The
     tangential traction never exceeds mu times the pressure (Coulomb, 1e-9)."""
     r = squeeze(BASE, MAT, [0.6], mesh=MESH, mu_wall=0.3, mu_wire=0.3)
-    prof = r.contact[0]["wire"]
+    prof = r.contact.profiles[0]["wire"]
     arc, pr = np.array(prof["arc_mm"]), np.array(prof["pressure_mpa"])
     integ = 2.0 * np.trapezoid(pr, arc)
-    assert abs(integ / r.wire_pressure_integral_n_per_mm[0] - 1) < 0.10
+    assert abs(integ / r.contact.wire_pressure_integral_n_per_mm[0] - 1) < 0.10
     sh = np.abs(np.array(prof["shear_mpa"]))
     assert np.all(sh <= 0.3 * pr * (1 + 1e-9) + 1e-12)
     d = r.to_dict()
@@ -273,8 +274,8 @@ def test_full_model_with_friction_is_the_rotated_half_model() -> None:
     off = squeeze(BASE, MAT, [0.3, 0.6], mesh=m, mu_wall=0.3, mu_wire=0.3, wire_angle_deg=20.0)
     np.testing.assert_allclose(off.squeeze_force_n_per_mm, half.squeeze_force_n_per_mm,
                                rtol=1e-6)
-    np.testing.assert_allclose(off.wire_pressure_integral_n_per_mm,
-                               half.wire_pressure_integral_n_per_mm, rtol=1e-6)
+    np.testing.assert_allclose(off.contact.wire_pressure_integral_n_per_mm,
+                               half.contact.wire_pressure_integral_n_per_mm, rtol=1e-6)
     np.testing.assert_allclose(off.squeeze_force_direction_deg, 20.0, atol=1e-6)
 
 

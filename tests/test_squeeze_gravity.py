@@ -140,8 +140,8 @@ def test_draft_estimate_bounds_the_error_against_a_fine_mesh():
     ref = squeeze(s, MAT, P12, mesh=MeshSpec(4, 96), keep_fields=False).squeeze_force_n_per_mm
     m = ref >= 0.01 * ref[-1]
     err = 100 * np.abs(r.squeeze_force_n_per_mm[m] / ref[m] - 1)
-    assert np.all(err <= r.n_error_estimate_pct[m] + 0.1), (err, r.n_error_estimate_pct[m])
-    assert r.estimate_mesh is not None and r.estimate_mesh.n_circ == 12
+    assert np.all(err <= r.estimate.pct[m] + 0.1), (err, r.estimate.pct[m])
+    assert r.estimate.mesh is not None and r.estimate.mesh.n_circ == 12
 
 
 def test_inflation_error_estimate_bounds_the_error_against_the_1d_solution():

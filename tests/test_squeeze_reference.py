@@ -118,15 +118,15 @@ def test_error_estimate_brackets_the_error(name: str) -> None:
     """The reported n_error_estimate_pct is >= the actual error against the reference."""
     n_ref = _ref_n(name)
     r = _exofric(name)
-    assert r.n_error_estimate_pct is not None
+    assert r.estimate.pct is not None
     sig = _significant(n_ref)
     err_pct = 100.0 * np.abs(r.squeeze_force_n_per_mm[sig] / n_ref[sig] - 1.0)
     # the reference's own error (<= 0.2%, mesh study) could make a correct estimate look
     # too small only where the estimate is that tight; no margin is granted beyond it
     ref_err = np.array(REF["structures"][name]["mesh_study"]["change_to_finer_pct"],
                        dtype=float)[sig]
-    assert np.all(r.n_error_estimate_pct[sig] + ref_err >= err_pct), (
-        r.n_error_estimate_pct[sig], err_pct)
+    assert np.all(r.estimate.pct[sig] + ref_err >= err_pct), (
+        r.estimate.pct[sig], err_pct)
 
 
 @pytest.mark.slow

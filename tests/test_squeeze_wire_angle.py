@@ -62,14 +62,14 @@ def test_full_model_at_zero_matches_the_half_model(half):
                                    rtol=0, atol=1e-8)
         np.testing.assert_allclose(f.wall_force_n_per_mm, h.wall_force_n_per_mm, rtol=0,
                                    atol=1e-8)
-        np.testing.assert_allclose(f.wire_contact_halfwidth_mm, h.wire_contact_halfwidth_mm,
+        np.testing.assert_allclose(f.contact.wire_contact_halfwidth_mm,
+                                   h.contact.wire_contact_halfwidth_mm, rtol=0, atol=1e-9)
+        np.testing.assert_allclose(f.contact.wall_contact_arc_mm, h.contact.wall_contact_arc_mm,
                                    rtol=0, atol=1e-9)
-        np.testing.assert_allclose(f.wall_contact_arc_mm, h.wall_contact_arc_mm, rtol=0,
-                                   atol=1e-9)
         assert f.contact_onset_pressure_mpa == pytest.approx(h.contact_onset_pressure_mpa,
                                                              abs=1e-8)
         if acc is not None:
-            err = h.n_error_estimate_n_per_mm
+            err = h.estimate.n_per_mm
             assert np.all(np.abs(f.squeeze_force_n_per_mm - h.squeeze_force_n_per_mm) <= err)
 
 
@@ -84,8 +84,8 @@ def test_off_centre_wire_without_gravity_is_the_centred_answer_turned(half, at20
     np.testing.assert_allclose(at20.squeeze_force_direction_deg[on], 20.0, atol=1e-6)
     np.testing.assert_allclose(at20.wall_force_direction_deg[on], 20.0, atol=1e-6)
     assert np.all(np.isnan(at20.squeeze_force_direction_deg[~on]))
-    np.testing.assert_allclose(at20.wire_contact_halfwidth_mm, half.wire_contact_halfwidth_mm,
-                               rtol=0, atol=1e-8)
+    np.testing.assert_allclose(at20.contact.wire_contact_halfwidth_mm,
+                               half.contact.wire_contact_halfwidth_mm, rtol=0, atol=1e-8)
     assert at20.contact_onset_pressure_mpa == pytest.approx(half.contact_onset_pressure_mpa,
                                                             abs=1e-8)
 

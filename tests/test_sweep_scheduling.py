@@ -202,7 +202,7 @@ def test_cli_reports_the_execution_mode(cli, tmp_path):
     assert "in this process" in d["execution_reason"]
     r = cli(["sweep", str(cfg), "--out", str(tmp_path / "b"), "--workers", "2"])
     assert r.code == 0, r.err
-    assert "processes: processes(2 x 1 thread" in r.out and "requested (--workers 2)" in r.out
+    assert "processes: processes(2 x 1 thread" in r.out and "requested: 2 worker processes" in r.out
     bad = cli(["sweep", str(cfg), "--out", str(tmp_path / "c"), "--executor", "gpu", "--json"])
     assert bad.code == 2 and bad.out == "" and len(bad.err.strip().splitlines()) == 1
     assert "--executor" in bad.err

@@ -55,7 +55,20 @@ def _root(
     """exofric: model, predict and control friction in variable-stiffness exosuits."""
 
 
-for _mod in sorted(m.name for m in pkgutil.iter_modules(__path__)):
+#: The order of the commands in ``exofric --help``: the order they had when modules were
+#: listed by name and some held two or four commands (friction: fit-friction, predict,
+#: invert, rig; pullout: pullout, stiffness; sweep: sweep, design). A module not listed here
+#: follows them, by name; command groups (control) come last in typer's listing anyway.
+_ORDER = ("calibrate", "fit_pullout", "fit_friction", "predict", "invert", "rig", "gait",
+          "inflate", "material", "paper", "pullout", "stiffness", "reduce", "reproduce", "ring",
+          "squeeze", "sweep", "design", "torque", "control")
+
+
+def _listed(name: str) -> tuple[int, str]:
+    return (_ORDER.index(name) if name in _ORDER else len(_ORDER), name)
+
+
+for _mod in sorted((m.name for m in pkgutil.iter_modules(__path__)), key=_listed):
     if not _mod.startswith("_"):
         importlib.import_module(f"{__name__}.{_mod}").register(app)
 
@@ -83,31 +96,52 @@ _USAGE: tuple[type[Exception], ...] = _click_classes("ClickException")
 _UNIT_SUFFIXES = ("_mpa", "_mm", "_nm", "_n", "_m", "_s", "_pct")
 
 
+def _running_command(cmd: Any, args: Sequence[str]) -> Any:
+    """The (sub)command ``args`` run: ``control compare ...`` -> the ``compare`` command."""
+    for a in args:
+        sub = getattr(cmd, "commands", {}).get(a)
+        if sub is None:
+            break
+        cmd = sub
+    return cmd
+
+
 def _option_flags(cmd: Any) -> dict[str, str]:
-    """Python parameter name -> first long flag, over every (sub)command of the CLI."""
+    """Python parameter name -> first long flag, of the options of ``cmd`` (one command)."""
     flags: dict[str, str] = {}
     for p in getattr(cmd, "params", []):
         longs = [o for o in getattr(p, "opts", []) if o.startswith("--")]
         if p.name and longs:
             flags.setdefault(p.name, longs[0])
-    for sub in getattr(cmd, "commands", {}).values():
-        for k, v in _option_flags(sub).items():
-            flags.setdefault(k, v)
     return flags
+
+
+#: A parameter name where a message names one: at the start of the message, or opening a clause
+#: (after "; ", ": ", ", " or "(") as ``name:``. Never after "# " or a quote (a file's header
+#: such as ``# width_mm:`` or 'friction_n' is the user's file, not an option).
+_SUBJECT = re.compile(r"^(?P<names>[a-z][a-z0-9_]*(?:(?:, | and | or )[a-z][a-z0-9_]*)*)"
+                      r"(?=[ ,]|:(?:\s|$)|$)")
+_CLAUSE = re.compile(r"(?:(?<=; )|(?<=: )|(?<=, )|(?<=\())(?P<name>[a-z][a-z0-9_]*)"
+                     r"(?=:(?:\s|$))")
+#: A parameter with a unit suffix in a sentence (``needs tube_id_mm (mm)``, ``< tube_od_mm``):
+#: an option's name plus its unit is a parameter, never prose; not after "#", a quote, "=" or
+#: a word character, not before a quote (a header ``# width_mm:`` or 'width_mm' is the file's).
+_UNIT_NAME = re.compile(r"(?<![#'\"=\w])(?<!# )(?P<name>[a-z][a-z0-9]*(?:_[a-z0-9]+)*?"
+                        r"(?:_mpa|_mm|_nm|_n|_m|_s|_pct))(?![\w'\"])")
 
 
 def _with_flags(exc: InputError, cmd: Any) -> str:
     """The core's message with Python parameter names (``pmax_mpa``) shown as CLI flags.
 
-    Only messages about a parameter (:attr:`InputError.param` set: they open with its name) are
-    rewritten. A name maps to the option of the same name, or of the name without its unit
-    suffix (``pmax_mpa`` -> ``pmax`` -> ``--pmax``); the opening parameter always, other
-    ``snake_case`` parameter names in the message too, except quoted ones ('friction_n' is a
-    column or key of the user's file, not an option).
+    ``cmd`` is the command that ran. Only messages about a parameter (:attr:`InputError.param`
+    set) are rewritten, and only names of that command's options (or of an option plus a unit
+    suffix: ``pmax_mpa`` -> ``--pmax``) where the message names a parameter: its opening words
+    (``mu_tube and mu_wall are required``), a clause opened by ``name:``, and an option's name
+    with its unit suffix in a sentence (``needs tube_id_mm``). Other words stay as written: a
+    file's header (``# width_mm:``), a quoted column ('friction_n'), a Python name in a sentence.
     """
     msg = str(exc)
-    head = exc.param
-    if not head:
+    if not exc.param:
         return msg
     flags = _option_flags(cmd)
 
@@ -119,15 +153,18 @@ def _with_flags(exc: InputError, cmd: Any) -> str:
                 return flags[name[: -len(suf)]]
         return None
 
-    def sub(m: re.Match[str]) -> str:
+    def one(m: re.Match[str]) -> str:
         return flag_for(m.group(0)) or m.group(0)
 
-    msg = re.sub(r"(?<![\w'\"-])[a-z][a-z0-9]*(?:_[a-z0-9]+)+\b(?!['\"])", sub, msg)
-    if msg.startswith(head + " ") or msg.startswith(head + ":"):
-        flag = flag_for(head)
-        if flag:
-            msg = flag + msg[len(head):]
-    return msg
+    def subject(m: re.Match[str]) -> str:
+        names = re.split(r"(, | and | or )", m.group("names"))
+        if not all(flag_for(n) for n in names[::2]):   # a sentence, not a list of parameters
+            return re.sub(r"^[a-z][a-z0-9_]*", one, m.group("names"))
+        return "".join(flag_for(n) or n for n in names)
+
+    msg = _CLAUSE.sub(one, msg)
+    msg = _SUBJECT.sub(subject, msg, count=1)
+    return _UNIT_NAME.sub(one, msg)
 
 
 def run(argv: Sequence[str] | None = None) -> int:
@@ -169,7 +206,8 @@ def run(argv: Sequence[str] | None = None) -> int:
         from exofric.errors import ConvergenceError, InputError
 
         if isinstance(exc, InputError):
-            print(f"exofric: error: {_with_flags(exc, cmd)}", file=sys.stderr)
+            ran = _running_command(cmd, list(sys.argv[1:] if argv is None else argv))
+            print(f"exofric: error: {_with_flags(exc, ran)}", file=sys.stderr)
             return 2
         if isinstance(exc, ConvergenceError):
             hint = ("" if "To try" in str(exc) else " To try: a finer mesh (--accuracy fine), "

@@ -8,7 +8,6 @@ dm^3/(s bar), air normal litres. The model is in :mod:`exofric.control._gait` an
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import typer
@@ -21,7 +20,6 @@ __all__ = ["register"]
 _CONTROLLERS = ("pid", "ff", "preview", "ilc", "mpc")
 
 
-@dataclass(frozen=True)
 class _GaitStructure(StructureOptions):
     """The lock's structure (mm), optional: given, the friction map and the tube volume come
     from the FE squeeze instead of the paper's Eq 9."""
@@ -42,7 +40,6 @@ class _GaitStructure(StructureOptions):
         return any(v is not None for v in (self.hole, self.tube_od, self.tube_id, self.wire))
 
 
-@dataclass(frozen=True)
 class _Pneumatics(OptionGroup):
     """Valve and line (the physical plant): supply MPa, sonic conductances dm^3/(s bar), line
     volume mm^3, valve kind."""

@@ -9,7 +9,6 @@ import typer
 
 from exofric import defaults as D
 from exofric.cli._common import (
-    JSON_OPTION,
     console,
     emit,
     kv_table,
@@ -17,129 +16,117 @@ from exofric.cli._common import (
     plot_path,
     save_figure,
 )
+from exofric.cli._options import OutputOptions, TensileSpecimenOptions, grouped
+
+
+@grouped
+def material(
+    shore: float | None = typer.Option(
+        None, help="Shore A hardness, in (0, 100) (Mooney-Rivlin by Eqs 3-6)."),
+    correlation: str = typer.Option(
+        "paper", help="Shore -> E0 correlation: paper (Eq 3), gent, qi, astm-log10."
+    ),
+    c01_ratio: float = typer.Option(0.05, help="C01/C10 ratio (Eq 5), in [0, 1]."),
+    poisson: float = typer.Option(D.POISSON, help="Poisson's ratio nu (Eq 6), in (0, 0.5)."),
+    model: str | None = typer.Option(
+        None, help="With --fit/--treloar: neo-hookean, mooney-rivlin, yeoh, ogden (with "
+        "--terms), ogden1, ogden2, ogden3."),
+    terms: int | None = typer.Option(
+        None, "--terms", help="Ogden terms with --model ogden: 1, 2 or 3 (default 3)."),
+    fit: str | None = typer.Option(
+        None, help="Uniaxial test CSV as a machine writes it: stretch, strain (%, true or "
+        "engineering) or extension (mm), and stress (MPa, kPa, psi; true or engineering) "
+        "or load (N); units read from headers like 'Load (N)'."),
+    fit_biaxial: str | None = typer.Option(None, help="Equibiaxial test CSV (same columns)."),
+    fit_planar: str | None = typer.Option(
+        None, help="Planar (pure shear) test CSV (same columns)."),
+    treloar: bool = typer.Option(
+        False, "--treloar", help="Fit Treloar's 1944 natural rubber data (all three modes)."),
+    specimen: TensileSpecimenOptions = TensileSpecimenOptions.options(),
+    columns: str | None = typer.Option(
+        None, "--columns", help="Odd headers: role=header pairs, e.g. "
+        "'force=Kraft (kN),extension=Weg'; roles stretch, strain, extension, stress, force."),
+    stability_range: str | None = typer.Option(
+        None, "--stability-range", help="Stretch range lo,hi of the per-mode stability "
+        "report (default the data's range + 10 %); unmeasured modes only warn."),
+    unconstrained: bool = typer.Option(
+        False, "--unconstrained", help="Least squares with bounds only (no stability "
+        "constraints); a fit unstable within the data is refused unless --allow-unstable."),
+    residuals: str = typer.Option(
+        "absolute", help="absolute (MPa) or relative residuals in the least squares."),
+    allow_unstable: bool = typer.Option(
+        False, "--allow-unstable",
+        help="Fit without the stability constraints and accept a fit that is "
+        "Drucker-unstable in the data's range (warns)."),
+    out: OutputOptions = OutputOptions.options(
+        plot=typer.Option(None, help="Write the fit figure here (.png/.svg/.pdf).")),
+) -> None:
+    """Mooney-Rivlin constants from Shore A hardness (paper Eqs 3-6), or a hyperelastic
+    model fitted to uniaxial/biaxial/planar test data (--fit, --treloar). MPa, 1/MPa."""
+    from exofric.errors import InputError
+    from exofric.material import MooneyRivlin
+
+    plot, as_json, stress_kind = out.plot, out.as_json, specimen.stress_kind
+    fitting = treloar or any(f is not None for f in (fit, fit_biaxial, fit_planar))
+    if fitting:
+        if shore is not None:
+            raise InputError("shore gives Mooney-Rivlin by Eqs 3-6; it does not combine "
+                             "with --fit or --treloar", param="shore")
+        tensile = {**{k: v for k, v in specimen.to_dict().items() if k != "stress_kind"},
+                   "columns": columns}
+        _fit_command(model, fit, fit_biaxial, fit_planar, treloar, stress_kind, residuals,
+                     allow_unstable, plot, as_json, terms=terms, tensile=tensile,
+                     stability_range=stability_range, unconstrained=unconstrained)
+        return
+    for name, value in (("model", model), ("stress_kind", stress_kind), ("plot", plot),
+                        ("terms", terms), ("strain_kind", specimen.strain_kind),
+                        ("gauge_length_mm", specimen.gauge_length_mm),
+                        ("area_mm2", specimen.area_mm2), ("width_mm", specimen.width_mm),
+                        ("thickness_mm", specimen.thickness_mm),
+                        ("columns", columns), ("stability_range", stability_range)):
+        if value is not None:
+            raise InputError(f"{name} applies only with --fit, --fit-biaxial, --fit-planar or "
+                             "--treloar", param=name)
+    if allow_unstable or unconstrained or residuals != "absolute":
+        which = ("residuals" if residuals != "absolute" else
+                 "allow_unstable" if allow_unstable else "unconstrained")
+        raise InputError(f"{which} applies only with --fit or --treloar", param=which)
+    if shore is None:
+        raise InputError("shore is required (Shore A, in (0, 100)), or fit a model to test "
+                         "data with --fit / --treloar", param="shore")
+
+    m = MooneyRivlin.from_shore(shore, correlation, c01_ratio=c01_ratio, poisson=poisson)
+    d: dict[str, Any] = dict(m.to_dict())
+    t2 = _paper_table2(shore, correlation, c01_ratio, poisson)
+    if t2:
+        d["paper_table2"] = t2
+
+    def render() -> None:
+        rows = [("E0 (Eq 3)", "e0_mpa", ".5f", "MPa"),
+                ("G = E0/3 (Eq 4)", "g_mpa", ".5f", "MPa"),
+                ("C10", "c10_mpa", ".5f", "MPa"), ("C01", "c01_mpa", ".6f", "MPa"),
+                ("d (Eq 6)", "d_per_mpa", ".6f", "1/MPa"), ("K = 2/d", "k_mpa", ".2f", "MPa")]
+        title = f"Mooney-Rivlin from Shore {shore:g} ({correlation})"
+        if not t2:
+            console.print(kv_table(title, [(q, f"{d[k]:{f}}", u) for q, k, f, u in rows]))
+            return
+        t = narrow_table(f"Shore {shore:g} -> Mooney-Rivlin, beside Table 2",
+                         ["quantity", "exofric", "Table 2", "unit"])
+        for q, k, f, u in rows:
+            t.add_row(q, f"{d[k]:{f}}", "-" if k not in t2 else f"{t2[k]:g}", u)
+        console.print(t)
+        console.print("Table 2 prints C10 = 0.6639 MPa, but its own Eq 4 gives G/2/1.05 = "
+                      f"{d['c10_mpa']:.4f} MPa: a /1.005 for /1.05 slip; its C01 and d follow "
+                      "the slipped C10 (docs/paper-notes.md, M1). exofric uses Eq 4; "
+                      "`--c10 0.6639 --c01 0.0332 --d 0.00575` on the FE commands uses the "
+                      "printed values.")
+
+    emit(d, as_json, render)
 
 
 def register(app: typer.Typer) -> None:
     """Add the ``material`` command to ``app``."""
-
-    @app.command("material")
-    def material(
-        shore: float | None = typer.Option(
-            None, help="Shore A hardness, in (0, 100) (Mooney-Rivlin by Eqs 3-6)."),
-        correlation: str = typer.Option(
-            "paper", help="Shore -> E0 correlation: paper (Eq 3), gent, qi, astm-log10."
-        ),
-        c01_ratio: float = typer.Option(0.05, help="C01/C10 ratio (Eq 5), in [0, 1]."),
-        poisson: float = typer.Option(D.POISSON, help="Poisson's ratio nu (Eq 6), in (0, 0.5)."),
-        model: str | None = typer.Option(
-            None, help="With --fit/--treloar: neo-hookean, mooney-rivlin, yeoh, ogden (with "
-            "--terms), ogden1, ogden2, ogden3."),
-        terms: int | None = typer.Option(
-            None, "--terms", help="Ogden terms with --model ogden: 1, 2 or 3 (default 3)."),
-        fit: str | None = typer.Option(
-            None, help="Uniaxial test CSV as a machine writes it: stretch, strain (%, true or "
-            "engineering) or extension (mm), and stress (MPa, kPa, psi; true or engineering) "
-            "or load (N); units read from headers like 'Load (N)'."),
-        fit_biaxial: str | None = typer.Option(None, help="Equibiaxial test CSV (same columns)."),
-        fit_planar: str | None = typer.Option(
-            None, help="Planar (pure shear) test CSV (same columns)."),
-        treloar: bool = typer.Option(
-            False, "--treloar", help="Fit Treloar's 1944 natural rubber data (all three modes)."),
-        stress_kind: str | None = typer.Option(
-            None, help="engineering or true stress in the CSVs; wins over a file's "
-            "'# stress_kind:' line (default: the header's word, else engineering)."),
-        strain_kind: str | None = typer.Option(
-            None, "--strain-kind", help="engineering (stretch = 1 + e) or true "
-            "(stretch = exp(e)) strain in the CSVs (default: the header's word, else "
-            "engineering)."),
-        gauge_length_mm: float | None = typer.Option(
-            None, "--gauge-length", help="Specimen gauge length (mm): stretch = 1 + "
-            "extension / gauge length (or a '# gauge_length_mm:' line)."),
-        area_mm2: float | None = typer.Option(
-            None, "--area", help="Specimen initial cross-section (mm^2): stress = load / area "
-            "(or --width and --thickness, or a '# area_mm2:' line)."),
-        width_mm: float | None = typer.Option(
-            None, "--width", help="Specimen width (mm); area = width x thickness."),
-        thickness_mm: float | None = typer.Option(
-            None, "--thickness", help="Specimen thickness (mm); area = width x thickness."),
-        columns: str | None = typer.Option(
-            None, "--columns", help="Odd headers: role=header pairs, e.g. "
-            "'force=Kraft (kN),extension=Weg'; roles stretch, strain, extension, stress, force."),
-        stability_range: str | None = typer.Option(
-            None, "--stability-range", help="Stretch range lo,hi of the per-mode stability "
-            "report (default the data's range + 10 %); unmeasured modes only warn."),
-        unconstrained: bool = typer.Option(
-            False, "--unconstrained", help="Least squares with bounds only (no stability "
-            "constraints); a fit unstable within the data is refused unless --allow-unstable."),
-        residuals: str = typer.Option(
-            "absolute", help="absolute (MPa) or relative residuals in the least squares."),
-        allow_unstable: bool = typer.Option(
-            False, "--allow-unstable",
-            help="Fit without the stability constraints and accept a fit that is "
-            "Drucker-unstable in the data's range (warns)."),
-        plot: str | None = typer.Option(None, help="Write the fit figure here (.png/.svg/.pdf)."),
-        as_json: bool = JSON_OPTION,
-    ) -> None:
-        """Mooney-Rivlin constants from Shore A hardness (paper Eqs 3-6), or a hyperelastic
-        model fitted to uniaxial/biaxial/planar test data (--fit, --treloar). MPa, 1/MPa."""
-        from exofric.errors import InputError
-        from exofric.material import MooneyRivlin
-
-        fitting = treloar or any(f is not None for f in (fit, fit_biaxial, fit_planar))
-        if fitting:
-            if shore is not None:
-                raise InputError("shore gives Mooney-Rivlin by Eqs 3-6; it does not combine "
-                                 "with fit or treloar", param="shore")
-            tensile = {"strain_kind": strain_kind, "gauge_length_mm": gauge_length_mm,
-                       "area_mm2": area_mm2, "width_mm": width_mm,
-                       "thickness_mm": thickness_mm, "columns": columns}
-            _fit_command(model, fit, fit_biaxial, fit_planar, treloar, stress_kind, residuals,
-                         allow_unstable, plot, as_json, terms=terms, tensile=tensile,
-                         stability_range=stability_range, unconstrained=unconstrained)
-            return
-        for name, value in (("model", model), ("stress_kind", stress_kind), ("plot", plot),
-                            ("terms", terms), ("strain_kind", strain_kind),
-                            ("gauge_length_mm", gauge_length_mm), ("area_mm2", area_mm2),
-                            ("width_mm", width_mm), ("thickness_mm", thickness_mm),
-                            ("columns", columns), ("stability_range", stability_range)):
-            if value is not None:
-                raise InputError(f"{name} applies only with fit, fit_biaxial, fit_planar or "
-                                 "treloar", param=name)
-        if allow_unstable or unconstrained or residuals != "absolute":
-            which = ("residuals" if residuals != "absolute" else
-                     "allow_unstable" if allow_unstable else "unconstrained")
-            raise InputError(f"{which} applies only with fit or treloar", param=which)
-        if shore is None:
-            raise InputError("shore is required (Shore A, in (0, 100)), or fit a model to test "
-                             "data with fit / treloar", param="shore")
-
-        m = MooneyRivlin.from_shore(shore, correlation, c01_ratio=c01_ratio, poisson=poisson)
-        d: dict[str, Any] = dict(m.to_dict())
-        t2 = _paper_table2(shore, correlation, c01_ratio, poisson)
-        if t2:
-            d["paper_table2"] = t2
-
-        def render() -> None:
-            rows = [("E0 (Eq 3)", "e0_mpa", ".5f", "MPa"),
-                    ("G = E0/3 (Eq 4)", "g_mpa", ".5f", "MPa"),
-                    ("C10", "c10_mpa", ".5f", "MPa"), ("C01", "c01_mpa", ".6f", "MPa"),
-                    ("d (Eq 6)", "d_per_mpa", ".6f", "1/MPa"), ("K = 2/d", "k_mpa", ".2f", "MPa")]
-            title = f"Mooney-Rivlin from Shore {shore:g} ({correlation})"
-            if not t2:
-                console.print(kv_table(title, [(q, f"{d[k]:{f}}", u) for q, k, f, u in rows]))
-                return
-            t = narrow_table(f"Shore {shore:g} -> Mooney-Rivlin, beside Table 2",
-                             ["quantity", "exofric", "Table 2", "unit"])
-            for q, k, f, u in rows:
-                t.add_row(q, f"{d[k]:{f}}", "-" if k not in t2 else f"{t2[k]:g}", u)
-            console.print(t)
-            console.print("Table 2 prints C10 = 0.6639 MPa, but its own Eq 4 gives G/2/1.05 = "
-                          f"{d['c10_mpa']:.4f} MPa: a /1.005 for /1.05 slip; its C01 and d follow "
-                          "the slipped C10 (docs/paper-notes.md, M1). exofric uses Eq 4; "
-                          "`--c10 0.6639 --c01 0.0332 --d 0.00575` on the FE commands uses the "
-                          "printed values.")
-
-        emit(d, as_json, render)
+    app.command("material")(material)
 
 
 def _paper_table2(shore: float, correlation: str, c01_ratio: float,
@@ -184,7 +171,7 @@ def _fit_command(model: str | None, fit: str | None, fit_biaxial: str | None,
 
     names = (*HYPERELASTIC_MODELS, "ogden")
     if model is None:
-        raise InputError(f"model is required with fit or treloar: one of {', '.join(names)}",
+        raise InputError(f"model is required with --fit or --treloar: one of {', '.join(names)}",
                          param="model")
     if model not in names:
         raise InputError(f"model must be one of {', '.join(names)}, got {model!r}",
@@ -212,11 +199,11 @@ def _fit_command(model: str | None, fit: str | None, fit_biaxial: str | None,
     tables: dict[str, dict[str, Any]] = {}
     if treloar:
         if any(f is not None for f in (fit, fit_biaxial, fit_planar)):
-            raise InputError("treloar fits the shipped data; it does not combine with fit, "
-                             "fit_biaxial or fit_planar", param="treloar")
+            raise InputError("treloar fits the shipped data; it does not combine with --fit, "
+                             "--fit-biaxial or --fit-planar", param="treloar")
         for k, v in opts.items():
             if v is not None:
-                raise InputError(f"{k} applies to test files (fit, fit_biaxial, fit_planar), "
+                raise InputError(f"{k} applies to test files (--fit, --fit-biaxial, --fit-planar), "
                                  "not to treloar", param=k)
         data = dict(treloar_1944())
         kinds = dict.fromkeys(data, "engineering")

@@ -11,11 +11,12 @@ import contextlib
 import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import typer
 
 from exofric.cli._common import JSON_OPTION, console, emit, kv_table, narrow_table, save_figure
+from exofric.cli._options import OptionGroup, grouped
 
 WORKERS = typer.Option(None, "--workers",
                        help="Local worker processes (default: chosen by the work size).")
@@ -30,6 +31,64 @@ TIMEOUT = typer.Option(60.0, "--timeout",
 RETRY = typer.Option(False, "--retry-failed", help="Solve designs recorded as failed again.")
 QUIET = typer.Option(False, "--quiet", help="No progress bar on stderr (it is also left out "
                      "when stderr is not a terminal; --json keeps it).")
+
+
+class _Execution(OptionGroup):
+    """Where the designs are solved: worker processes, a Dask scheduler, serial, executor."""
+
+    workers: int | None
+    scheduler: str | None
+    serial: bool
+    executor: str
+    OPTIONS: ClassVar[dict[str, Any]] = {"workers": WORKERS, "scheduler": SCHEDULER,
+                                         "serial": SERIAL, "executor": EXECUTOR}
+
+
+class _Search(OptionGroup):
+    """design's search: the target torque (Nm), lever arm (m), highest pressure (MPa), the
+    friction law's gamma and F0 (N), the objective and how many candidates to list."""
+
+    target_torque: float
+    arm: float | None
+    pmax: float
+    gamma: float | None
+    f0: float | None
+    objective: str
+    validated_only: bool
+    top: int
+    OPTIONS: ClassVar[dict[str, Any]] = {
+        "target_torque": typer.Option(40.0, "--target-torque",
+                                      help="Required joint torque (Nm)."),
+        "arm": typer.Option(None, "--arm", help="Lever arm R (m); default the sweep's."),
+        "pmax": typer.Option(0.6, "--pmax", help="Highest allowed pressure (MPa)."),
+        "gamma": typer.Option(None, "--gamma", help="Equivalent coefficient; default the "
+                              "sweep's (0.7168)."),
+        "f0": typer.Option(None, "--f0", help="Friction offset F0 (N)."),
+        "objective": typer.Option("pressure", "--objective", help="'pressure' (least P "
+                                  "reaching the torque) or 'margin' (most torque margin at "
+                                  "pmax)."),
+        "validated_only": typer.Option(False, "--validated-only", help="Rank only designs "
+                                       "inside the validated region."),
+        "top": typer.Option(10, "--top", help="Candidates to list."),
+    }
+
+    def check(self) -> None:
+        """The search options, checked before any work (one line, exit 2)."""
+        from exofric.errors import InputError, check_finite, check_positive, check_range
+
+        check_positive("--target-torque", self.target_torque, "Nm")
+        check_range("--pmax", self.pmax, 0.0, 2.0, lo_open=True, unit="MPa")
+        if self.arm is not None:
+            check_positive("--arm", self.arm, "m")
+        if self.gamma is not None:
+            check_positive("--gamma", self.gamma)
+        if self.f0 is not None:
+            check_finite("--f0 (N)", self.f0)
+        if self.objective not in ("pressure", "margin"):
+            raise InputError(f"--objective must be 'pressure' or 'margin', got "
+                             f"{self.objective!r}")
+        if self.top < 1:
+            raise InputError(f"--top must be >= 1, got {self.top}")
 
 
 @contextlib.contextmanager
@@ -98,157 +157,132 @@ def _load(config: Path | None) -> Any:
     return load_sweep(config)
 
 
-def _run(config: Path | None, out: Path | None, workers: int | None, scheduler: str | None,
-         serial: bool, retry: bool, quiet: bool, timeout: float, executor: str = "auto",
-         spec: Any = None) -> Any:
+def _run(config: Path | None, out: Path | None, ex: _Execution, retry: bool, quiet: bool,
+         timeout: float, spec: Any = None) -> Any:
+    """Run the sweep of ``config`` (or ``spec``) into ``out`` as ``ex`` asks."""
     from exofric.design import run_sweep
 
-    _check_options(workers, scheduler, timeout, executor)
+    _check_options(ex.workers, ex.scheduler, timeout, ex.executor)
     spec = spec if spec is not None else _load(config)
     out = out or Path(".exofric-sweeps") / spec.name
     with _progress(quiet) as progress:
-        return run_sweep(spec, out, workers=workers, scheduler=scheduler, serial=serial,
-                         executor=executor, retry_failed=retry, progress=progress,
-                         timeout_s=timeout)
+        return run_sweep(spec, out, workers=ex.workers, scheduler=ex.scheduler,
+                         serial=ex.serial, executor=ex.executor, retry_failed=retry,
+                         progress=progress, timeout_s=timeout)
+
+
+@grouped
+def sweep_cmd(
+    config: Path = typer.Argument(None, help="Sweep definition (TOML), see examples/."),
+    out: Path = typer.Option(None, "--out", help="Result directory (Parquet dataset, cache)."),
+    verify: Path = typer.Option(None, "--verify", help="Check the sweep folder VERIFY "
+                                "(checksums, files, derived columns) without solving: "
+                                "exit 0 all ok, 1 damaged or missing designs, 2 not a "
+                                "sweep folder.", metavar="OUT"),
+    execution: _Execution = _Execution.options(),
+    retry_failed: bool = RETRY,
+    timeout: float = TIMEOUT,
+    quiet: bool = QUIET,
+    as_json: bool = JSON_OPTION,
+) -> None:
+    """Solve N(P) for every design of a sweep; rows go to Parquet (mm, MPa, N, Nm).
+
+    By default the designs are solved in this process or on local worker processes,
+    whichever is predicted faster for the work size (the output says which and why).
+    Finished designs in OUT are reused (cache keyed by inputs + solver settings), so a
+    killed sweep resumes where it stopped; a damaged design file is moved to
+    OUT/_quarantine/, named in one warning line and solved again. ``--verify OUT`` only
+    checks the folder.
+    """
+    from exofric.errors import InputError
+
+    if verify is not None:
+        if config is not None or out is not None:
+            raise InputError("--verify takes the folder alone: exofric sweep --verify OUT")
+        _verify(verify, as_json)
+        return
+    if config is None or out is None:
+        raise InputError("sweep needs CONFIG and --out OUT (or --verify OUT)",
+                         param="config")
+    run = _run(config, out, execution, retry_failed, quiet, timeout)
+    d = run.to_dict()
+
+    def render() -> None:
+        s = run.summary
+        console.print(kv_table(f"Sweep {config.name}", [
+            ("designs", str(s.designs), ""), ("computed now", str(s.computed), ""),
+            ("cached", str(s.cached), ""), ("skipped (impossible)", str(s.skipped), ""),
+            ("failed", str(s.failed), ""), ("rows", str(d["rows"]), ""),
+            ("execution", f"{s.execution}: {s.scheduler}", ""),
+            ("why", s.execution_reason, ""), ("wall time", f"{s.wall_time_s:.2f}", "s"),
+            ("dataset", s.out, "")]))
+        for x in d["skipped_designs"]:
+            console.print(f"skipped {x['name']}: {x['reason']}")
+        for x in d["failures"]:
+            console.print(f"[red]failed[/red] {x['name']}: {x['error']}")
+
+    emit(d, as_json, render)
+
+
+@grouped
+def design_cmd(
+    config: Path = typer.Argument(None, help="Sweep definition (TOML); default: d1 x d2 "
+                                  "around the base group."),
+    search: _Search = _Search.options(),
+    out: Path = typer.Option(None, "--out", help="Sweep result directory (cache); default "
+                             ".exofric-sweeps/<sweep name>."),
+    plot: Path = typer.Option(None, "--plot",
+                              help="Design map PNG (default OUT/design-map.png)."),
+    no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the design map."),
+    surrogate: bool = typer.Option(False, "--surrogate",
+                                   help="Also fit a surrogate of N(P) on the sweep "
+                                   "(leave-one-out error), explore 4096 candidates in the "
+                                   "sweep's box on it and confirm the best 5 with the FE."),
+    execution: _Execution = _Execution.options(),
+    timeout: float = TIMEOUT,
+    quiet: bool = QUIET,
+    as_json: bool = JSON_OPTION,
+) -> None:
+    """Find swept designs reaching a target torque with the least pressure (Nm, MPa, mm)."""
+    from exofric.design import search_designs
+    from exofric.errors import InputError
+
+    # validate the search before any work: options, then the sweep definition (cheap),
+    # then pmax against its pressures, all before a single design is solved or read
+    search.check()
+    _check_options(execution.workers, execution.scheduler, timeout, execution.executor)
+    spec = _load(config)
+    p_top = max(spec.pressures_mpa)
+    if search.pmax > p_top + 1e-12:
+        raise InputError(f"--pmax {search.pmax:g} MPa is above the sweep's largest pressure "
+                         f"{p_top:g} MPa; allowed range (0, {p_top:g}] MPa")
+    run = _run(config, out, execution, False, quiet, timeout, spec=spec)
+    frame = run.frame
+    found = search_designs(frame, search.target_torque, search.arm if search.arm is not None
+                           else float(frame["arm_radius_m"].iloc[0]), search.pmax,
+                           gamma=search.gamma, f0_n=search.f0, objective=search.objective,
+                           validated_only=search.validated_only)
+    d = found.to_dict(top=search.top)
+    d["sweep"] = run.summary.to_dict()
+    d["warnings"] = list(run.warnings)
+    if surrogate:
+        d["surrogate"] = _surrogate(frame, spec, found, search.target_torque, search.pmax,
+                                    search.gamma, search.f0, search.objective,
+                                    search.validated_only)
+    if not no_plot:
+        from exofric.plots import plot_design_map
+
+        skipped = frame[frame["status"] == "skipped"]
+        d["plot"] = str(save_figure(plot_design_map(found, skipped=skipped),
+                                    plot or Path(run.summary.out) / "design-map.png"))
+
+    emit(d, as_json, lambda: _render_design(d))
 
 
 def register(app: typer.Typer) -> None:
     """Add the ``sweep`` and ``design`` commands."""
-
-    @app.command("sweep")
-    def sweep_cmd(
-        config: Path = typer.Argument(None, help="Sweep definition (TOML), see examples/."),
-        out: Path = typer.Option(None, "--out", help="Result directory (Parquet dataset, cache)."),
-        verify: Path = typer.Option(None, "--verify", help="Check the sweep folder VERIFY "
-                                    "(checksums, files, derived columns) without solving: "
-                                    "exit 0 all ok, 1 damaged or missing designs, 2 not a "
-                                    "sweep folder.", metavar="OUT"),
-        workers: int = WORKERS,
-        scheduler: str = SCHEDULER,
-        serial: bool = SERIAL,
-        executor: str = EXECUTOR,
-        retry_failed: bool = RETRY,
-        timeout: float = TIMEOUT,
-        quiet: bool = QUIET,
-        as_json: bool = JSON_OPTION,
-    ) -> None:
-        """Solve N(P) for every design of a sweep; rows go to Parquet (mm, MPa, N, Nm).
-
-        By default the designs are solved in this process or on local worker processes,
-        whichever is predicted faster for the work size (the output says which and why).
-        Finished designs in OUT are reused (cache keyed by inputs + solver settings), so a
-        killed sweep resumes where it stopped; a damaged design file is moved to
-        OUT/_quarantine/, named in one warning line and solved again. ``--verify OUT`` only
-        checks the folder.
-        """
-        from exofric.errors import InputError
-
-        if verify is not None:
-            if config is not None or out is not None:
-                raise InputError("--verify takes the folder alone: exofric sweep --verify OUT")
-            _verify(verify, as_json)
-            return
-        if config is None or out is None:
-            raise InputError("sweep needs CONFIG and --out OUT (or --verify OUT)",
-                             param="config")
-        run = _run(config, out, workers, scheduler, serial, retry_failed, quiet, timeout,
-                   executor)
-        d = run.to_dict()
-
-        def render() -> None:
-            s = run.summary
-            console.print(kv_table(f"Sweep {config.name}", [
-                ("designs", str(s.designs), ""), ("computed now", str(s.computed), ""),
-                ("cached", str(s.cached), ""), ("skipped (impossible)", str(s.skipped), ""),
-                ("failed", str(s.failed), ""), ("rows", str(d["rows"]), ""),
-                ("execution", f"{s.execution}: {s.scheduler}", ""),
-                ("why", s.execution_reason, ""), ("wall time", f"{s.wall_time_s:.2f}", "s"),
-                ("dataset", s.out, "")]))
-            for x in d["skipped_designs"]:
-                console.print(f"skipped {x['name']}: {x['reason']}")
-            for x in d["failures"]:
-                console.print(f"[red]failed[/red] {x['name']}: {x['error']}")
-
-        emit(d, as_json, render)
-
-    @app.command("design")
-    def design_cmd(
-        config: Path = typer.Argument(None, help="Sweep definition (TOML); default: d1 x d2 "
-                                      "around the base group."),
-        target_torque: float = typer.Option(40.0, "--target-torque",
-                                            help="Required joint torque (Nm)."),
-        arm: float = typer.Option(None, "--arm", help="Lever arm R (m); default the sweep's."),
-        pmax: float = typer.Option(0.6, "--pmax", help="Highest allowed pressure (MPa)."),
-        gamma: float = typer.Option(None, "--gamma", help="Equivalent coefficient; default "
-                                    "the sweep's (0.7168)."),
-        f0: float = typer.Option(None, "--f0", help="Friction offset F0 (N)."),
-        objective: str = typer.Option("pressure", "--objective",
-                                      help="'pressure' (least P reaching the torque) or "
-                                      "'margin' (most torque margin at pmax)."),
-        validated_only: bool = typer.Option(False, "--validated-only",
-                                            help="Rank only designs inside the validated region."),
-        top: int = typer.Option(10, "--top", help="Candidates to list."),
-        out: Path = typer.Option(None, "--out", help="Sweep result directory (cache); default "
-                                 ".exofric-sweeps/<sweep name>."),
-        plot: Path = typer.Option(None, "--plot",
-                                  help="Design map PNG (default OUT/design-map.png)."),
-        no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the design map."),
-        surrogate: bool = typer.Option(False, "--surrogate",
-                                       help="Also fit a surrogate of N(P) on the sweep "
-                                       "(leave-one-out error), explore 4096 candidates in the "
-                                       "sweep's box on it and confirm the best 5 with the FE."),
-        workers: int = WORKERS,
-        scheduler: str = SCHEDULER,
-        serial: bool = SERIAL,
-        executor: str = EXECUTOR,
-        timeout: float = TIMEOUT,
-        quiet: bool = QUIET,
-        as_json: bool = JSON_OPTION,
-    ) -> None:
-        """Find swept designs reaching a target torque with the least pressure (Nm, MPa, mm)."""
-        from exofric.design import search_designs
-        from exofric.errors import InputError, check_finite, check_positive, check_range
-
-        # validate the search before any work: options, then the sweep definition (cheap),
-        # then pmax against its pressures, all before a single design is solved or read
-        check_positive("--target-torque", target_torque, "Nm")
-        check_range("--pmax", pmax, 0.0, 2.0, lo_open=True, unit="MPa")
-        if arm is not None:
-            check_positive("--arm", arm, "m")
-        if gamma is not None:
-            check_positive("--gamma", gamma)
-        if f0 is not None:
-            check_finite("--f0 (N)", f0)
-        if objective not in ("pressure", "margin"):
-            raise InputError(f"--objective must be 'pressure' or 'margin', got {objective!r}")
-        if top < 1:
-            raise InputError(f"--top must be >= 1, got {top}")
-        _check_options(workers, scheduler, timeout, executor)
-        spec = _load(config)
-        p_top = max(spec.pressures_mpa)
-        if pmax > p_top + 1e-12:
-            raise InputError(f"--pmax {pmax:g} MPa is above the sweep's largest pressure "
-                             f"{p_top:g} MPa; allowed range (0, {p_top:g}] MPa")
-        run = _run(config, out, workers, scheduler, serial, False, quiet, timeout, executor,
-                   spec=spec)
-        frame = run.frame
-        search = search_designs(frame, target_torque, arm if arm is not None else
-                                float(frame["arm_radius_m"].iloc[0]), pmax, gamma=gamma,
-                                f0_n=f0, objective=objective, validated_only=validated_only)
-        d = search.to_dict(top=top)
-        d["sweep"] = run.summary.to_dict()
-        d["warnings"] = list(run.warnings)
-        if surrogate:
-            d["surrogate"] = _surrogate(frame, spec, search, target_torque, pmax, gamma, f0,
-                                        objective, validated_only)
-        if not no_plot:
-            from exofric.plots import plot_design_map
-
-            skipped = frame[frame["status"] == "skipped"]
-            d["plot"] = str(save_figure(plot_design_map(search, skipped=skipped),
-                                        plot or Path(run.summary.out) / "design-map.png"))
-
-        emit(d, as_json, lambda: _render_design(d))
+    app.command("sweep")(sweep_cmd)
+    app.command("design")(design_cmd)
 
 
 def _surrogate(frame: Any, spec: Any, search: Any, target: float, pmax: float,

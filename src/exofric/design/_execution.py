@@ -73,7 +73,7 @@ class ExecutionPlan:
 
     Examples
     --------
-    >>> p = ExecutionPlan("serial", 1, "--serial")
+    >>> p = ExecutionPlan("serial", 1, "requested: serial, in this process")
     >>> p.mode, p.to_dict()["workers"]
     ('serial', 1)
     """

@@ -272,8 +272,9 @@ def solve_design(
                        gravity=solver.gravity,
                        settings=solver.newton(), keep_fields=False)
         for k in ("pressure_mpa", "squeeze_force_n", "squeeze_force_n_per_mm", "wall_force_n",
-                  "max_penetration_mm", "newton_iterations"):
+                  "newton_iterations"):
             out[k] = np.asarray(getattr(res, k)).tolist()
+        out["max_penetration_mm"] = np.asarray(res.contact.max_penetration_mm).tolist()
         # largest principal stretch (> 2.5: beyond the model's validated strain range)
         out["max_stretch"] = np.asarray(
             getattr(res, "max_stretch", np.full(len(out["pressure_mpa"]), np.nan))).tolist()
@@ -429,20 +430,20 @@ def _explicit_plan(n_todo: int, workers: int | None, scheduler: str | None, seri
     if n_todo == 0:
         return ExecutionPlan("none", 0, "nothing to solve (all designs cached or impossible)")
     if serial or executor == "serial":
-        return ExecutionPlan("serial", 1, "requested (--serial)")
+        return ExecutionPlan("serial", 1, "requested: serial, in this process")
     if scheduler:
-        return ExecutionPlan("dask", 0, f"requested (--scheduler {scheduler})")
+        return ExecutionPlan("dask", 0, f"requested: the Dask scheduler at {scheduler}")
     if executor == "dask":
         k = max(1, min(workers or available_cpus(), n_todo))
-        return ExecutionPlan("dask", k, f"requested (--executor dask): LocalCluster of {k}")
+        return ExecutionPlan("dask", k, f"requested: Dask, a LocalCluster of {k}")
     if workers is not None:
         k = min(workers, n_todo)
-        return ExecutionPlan("processes", k, f"requested (--workers {workers}), at most one "
-                             "per design to solve")
+        return ExecutionPlan("processes", k, f"requested: {workers} worker processes, at most "
+                             "one per design to solve")
     if executor == "processes":
         k = max(1, min(available_cpus(), n_todo))
-        return ExecutionPlan("processes", k, "requested (--executor processes): one per CPU, "
-                             "at most one per design to solve")
+        return ExecutionPlan("processes", k, "requested: worker processes, one per CPU, at "
+                             "most one per design to solve")
     return None
 
 

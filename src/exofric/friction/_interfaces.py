@@ -274,9 +274,14 @@ class InterfaceFrictionModel:
 
 
 def _get(source: Any, key: str) -> Any:
+    """``key`` of a dict (a squeeze's JSON), or of a result object: at its top level or in its
+    contact group (:class:`~exofric.simulate.ContactOutputs`, where S_wire lives)."""
     if isinstance(source, Mapping):
         return source.get(key)
-    return getattr(source, key, None)
+    value = getattr(source, key, None)
+    if value is None:
+        value = getattr(getattr(source, "contact", None), key, None)
+    return value
 
 
 @dataclass(frozen=True, init=False)

@@ -5,15 +5,16 @@ force column and optionally a displacement column, each with its unit in the hea
 common spelling (``pressure_kpa``, ``Pressure (kPa)``, ``Pressure [kPa]``, a units row, a TDMS
 ``unit_string``, an LVM ``Y_Unit_Label``; case-insensitive): pressure in MPa, kPa, Pa, bar, mbar
 or psi; force in N, kN, kgf or lbf; displacement in mm, m, um or in; time in s, ms or min.
-Other columns (setpoints, command terms) are ignored but listed. A ``--columns`` mapping
-(:func:`parse_column_map`) names the columns of a log whose headers say something else. The
-file is read by :mod:`exofric.io._table` (one reader for every measured table: CSV/TSV/``;``
-with decimal commas, UTF-16/Latin-1, vendor preambles, LabVIEW LVM, NI TDMS, Parquet, xlsx).
+Other columns (setpoints, command terms) are ignored but listed. A ``columns`` mapping
+(:func:`parse_column_map`; ``--columns`` at the command line) names the columns of a log whose
+headers say something else. The file is read by :mod:`exofric.io._table` (one reader for every
+measured table: CSV/TSV/``;`` with decimal commas, UTF-16/Latin-1, vendor preambles, LabVIEW
+LVM, NI TDMS, Parquet, xlsx).
 
 :func:`read_raw_log` converts every channel to exofric's units (s, MPa, N, mm) with :mod:`pint`
 (no hand-written factors) and refuses a bad log with one line that starts with the file name and
 names the column and the time range: an unknown unit, a missing or doubled quantity, a
-``--columns`` unit that contradicts the file's, a non-numeric cell, NaN/empty/infinite samples,
+``columns`` unit that contradicts the file's, a non-numeric cell, NaN/empty/infinite samples,
 time that does not increase, a gap in time, a pressure or force too large for its unit (naming
 the probable unit), a unit change inside the log. Nothing is silently dropped or repaired.
 Comment and preamble lines, the key/value metadata (Parquet) or the properties (TDMS, LVM) are
@@ -85,7 +86,7 @@ _READ_SUFFIXES = TABLE_SUFFIXES
 _WRITE_SUFFIXES = (".csv", ".txt", ".parquet", ".pq")
 #: Parquet schema-metadata key holding the metadata lines (a JSON list of strings).
 _META_KEY = b"exofric.metadata"
-_EXAMPLE = "--columns time=t,pressure_kpa=P1,force_n=Fx"
+_EXAMPLE = "time=t,pressure_kpa=P1,force_n=Fx"
 
 
 class _MissingColumn(InputError):
@@ -114,7 +115,7 @@ class _Raw:
 
 
 # ---------------------------------------------------------------------------------------------
-# Column names and the --columns mapping.
+# Column names and the columns mapping.
 
 
 def _known(quantity: str) -> str:
@@ -136,15 +137,16 @@ def _key(key: str, item: str, where: str) -> tuple[str, str]:
     parts = _split(key)
     if parts is None:
         raise InputError(f"{where}: unknown quantity in {item!r} (keys: time, time_<unit>, "
-                         "pressure_<unit>, force_<unit>, displacement_<unit>)")
+                         "pressure_<unit>, force_<unit>, displacement_<unit>)", param="columns")
     q, u = parts
     if u is None:
         if q != "time":
             raise InputError(f"{where}: {item!r} needs a unit: {q}_<unit> with unit one of "
-                             f"{_known(q)}")
+                             f"{_known(q)}", param="columns")
         u = "s"
     if u not in _UNITS[q]:
-        raise InputError(f"{where}: unknown {q} unit {u!r} in {item!r} (known: {_known(q)})")
+        raise InputError(f"{where}: unknown {q} unit {u!r} in {item!r} (known: {_known(q)})",
+                         param="columns")
     return q, u
 
 
@@ -157,17 +159,20 @@ def _table_key(key: str, item: str, columns: Sequence[str]) -> tuple[str, str]:
         base, unit = k, None
     if base not in bases:
         keys = ", ".join(b if u is None else f"{b}_<unit>" for b, u in bases.items())
-        raise InputError(f"--columns: unknown column in {item!r} (keys: {keys})")
+        raise InputError(f"columns: unknown column in {item!r} (keys: {keys})",
+                         param="columns")
     if bases[base] is not None and unit is None:
-        raise InputError(f"--columns: {item!r} needs a unit: {base}_<unit>, e.g. "
-                         f"{base}_{bases[base]}")
+        raise InputError(f"columns: {item!r} needs a unit: {base}_<unit>, e.g. "
+                         f"{base}_{bases[base]}", param="columns")
     if bases[base] is None and unit is not None:
-        raise InputError(f"--columns: {item!r}: {base} has no unit")
+        raise InputError(f"columns: {item!r}: {base} has no unit", param="columns")
     return base, unit or ""
 
 
 def parse_column_map(text: str, columns: Sequence[str] | None = None) -> dict[str, str]:
-    """Parse a ``--columns`` mapping: which header of a raw log holds which quantity, in which unit.
+    """Parse a ``columns`` mapping: which header of a raw log holds which quantity, in which unit.
+
+    The text is what ``--columns`` takes at the command line; messages name ``columns``.
 
     Parameters
     ----------
@@ -190,7 +195,7 @@ def parse_column_map(text: str, columns: Sequence[str] | None = None) -> dict[st
     Raises
     ------
     InputError
-        One line starting with ``--columns:`` naming the item: a malformed item (no ``=``,
+        One line starting with ``columns:`` naming the item: a malformed item (no ``=``,
         empty key or header), an unknown quantity or unit, a pressure/force/displacement key
         without a unit, a repeated key, two keys for one quantity, one header named twice.
 
@@ -203,7 +208,7 @@ def parse_column_map(text: str, columns: Sequence[str] | None = None) -> dict[st
     >>> parse_column_map("pressure=P1")
     Traceback (most recent call last):
     ...
-    exofric.errors.InputError: --columns: 'pressure=P1' needs a unit: pressure_<unit> with unit \
+    exofric.errors.InputError: columns: 'pressure=P1' needs a unit: pressure_<unit> with unit \
 one of mpa, kpa, pa, bar, mbar, psi
     """
     out: dict[str, str] = {}
@@ -215,23 +220,24 @@ one of mpa, kpa, pa, bar, mbar, psi
         item = raw.strip()
         key, eq, value = item.partition("=")
         if not eq or not key.strip() or not value.strip():
-            raise InputError(f"--columns: malformed item {item!r} (expected KEY=HEADER, e.g. "
-                             "pressure_kpa=P1)")
+            raise InputError(f"columns: malformed item {item!r} (expected KEY=HEADER, e.g. "
+                             "pressure_kpa=P1)", param="columns")
         if columns is not None:
             q, u = _table_key(key, item, columns)
             canon = f"{q}_{u}" if u else q
         else:
-            q, u = _key(key, item, "--columns")
+            q, u = _key(key, item, "columns")
             canon = f"{q}_{u}"
         header = value.strip()
         if canon in out:
-            raise InputError(f"--columns: key {canon!r} is given twice ({item!r})")
+            raise InputError(f"columns: key {canon!r} is given twice ({item!r})",
+                             param="columns")
         if q in by_quantity:
-            raise InputError(f"--columns: {item!r}: {q} is already mapped by "
-                             f"{by_quantity[q]!r}; give one column per quantity")
+            raise InputError(f"columns: {item!r}: {q} is already mapped by "
+                             f"{by_quantity[q]!r}; give one column per quantity", param="columns")
         if header in by_header:
-            raise InputError(f"--columns: {item!r}: header {header!r} is already mapped by "
-                             f"{by_header[header]!r}")
+            raise InputError(f"columns: {item!r}: header {header!r} is already mapped by "
+                             f"{by_header[header]!r}", param="columns")
         out[canon] = header
         by_quantity[q] = item
         by_header[header] = item
@@ -250,9 +256,10 @@ def _checked_mapping(columns: Mapping[str, str] | None, name: str) -> dict[str, 
         item = f"{key}={header}"
         q, u = _key(str(key), item, f"{name}: columns")
         if q in out:
-            raise InputError(f"{name}: columns: {item!r}: {q} is already mapped")
+            raise InputError(f"{name}: columns: {item!r}: {q} is already mapped",
+                             param="columns")
         if not str(header).strip():
-            raise InputError(f"{name}: columns: {item!r} names no header")
+            raise InputError(f"{name}: columns: {item!r} names no header", param="columns")
         out[q] = (u, str(header).strip())
     return out
 
@@ -273,15 +280,16 @@ def _resolve(headers: Sequence[str], mapping: dict[str, tuple[str, str]], name: 
             idx = [i for i, h in enumerate(found) if h.lower() == header.lower()]
         if len(idx) != 1:
             how = "is not in the file" if not idx else "is in the file more than once"
-            raise _MissingColumn(f"{name}: {what} {header!r} (named by --columns {q}_{u}="
-                                 f"{header}) {how} ({what}s found: {_headers_text(found)})")
+            raise _MissingColumn(f"{name}: {what} {header!r} (columns: named by {q}_{u}="
+                                 f"{header}) {how} ({what}s found: {_headers_text(found)})",
+                                 param="columns")
         own = units[idx[0]] if units is not None else None
         if own is not None and unit_token(own) != u:
             src = "unit_string" if what == "channel" else "unit"
-            raise InputError(f"{name}: --columns {q}_{u}={header} says {_UNITS[q][u][0]} but "
+            raise InputError(f"{name}: columns: {q}_{u}={header} says {_UNITS[q][u][0]} but "
                              f"the file's {src} of {what} {found[idx[0]]!r} is {own!r}: "
                              f"which is it? (with {own!r} right, drop the mapping or write "
-                             f"{q}_{unit_token(own)}={header})")
+                             f"{q}_{unit_token(own)}={header})", param="columns")
         channels[q] = _Channel(q, u, found[idx[0]], idx[0])
     used = {c.index for c in channels.values()}
     for q in _UNITS:
@@ -295,28 +303,29 @@ def _resolve(headers: Sequence[str], mapping: dict[str, tuple[str, str]], name: 
                 continue
             (good if parts[1] in _UNITS[q] else bad).append((i, parts[1]))
         same = [i for i, _ in good if found[i].lower() == found[good[0][0]].lower()]
-        if len(same) > 1:  # one header twice: --columns cannot choose between them
+        if len(same) > 1:  # one header twice: a columns mapping cannot choose between them
             raise InputError(f"{name}: {what} {found[same[0]]!r} is in the file "
                              f"{len(same)} times ({what}s {', '.join(str(i + 1) for i in same)}"
                              f"); rename all but one")
         if len(good) > 1:
             names = " and ".join(repr(found[i]) for i, _ in good)
-            raise InputError(f"{name}: two {q} {what}s, {names}: keep one, or choose one with "
-                             f"--columns, e.g. --columns {found[good[0][0]].lower()}="
-                             f"{found[good[0][0]]}")
+            raise InputError(f"{name}: two {q} {what}s, {names}: keep one, or choose one "
+                             f"(columns: e.g. {found[good[0][0]].lower()}="
+                             f"{found[good[0][0]]})", param="columns")
         if good:
             i, u = good[0]
             channels[q] = _Channel(q, u, found[i], i)
         elif bad:
             i, u = bad[0]
             raise InputError(f"{name}: {what} {found[i]!r} has an unknown {q} unit {u!r} "
-                             f"(known: {_known(q)}; or name the {what} with --columns)")
+                             f"(known: {_known(q)}); columns: a mapping "
+                             f"{q}_<unit>={found[i]} names its unit", param="columns")
     for q in need:
         if q not in channels:
             raise _MissingColumn(
                 f"{name}: no {q} {what} (a name {q}_<unit>, unit one of {_known(q)}; "
-                f"{what}s found: {_headers_text(found)}); name the {what}s with --columns, "
-                f"e.g. {_EXAMPLE}")
+                f"{what}s found: {_headers_text(found)}); columns: name the {what}s, "
+                f"e.g. {_EXAMPLE}", param="columns")
     used = {c.index for c in channels.values()}
     return channels, [h for i, h in enumerate(found) if i not in used]
 
@@ -458,11 +467,12 @@ def _too_large(raw: _Raw, q: str, vals: np.ndarray, top: float, typical: float, 
     canon = _CANONICAL[q]
     shown = _show_unit(q, unit)
     what = "tube pressure" if q == "pressure" else "friction force"
-    hint = (f"; they look like {_show_unit(q, best)}: name the column {q}_{best} or map it "
-            f"with --columns {q}_{best}={raw.channels[q].header}") if best else ""
+    hint = (f"; they look like {_show_unit(q, best)}: name the column {q}_{best} (columns: "
+            f"or map it, e.g. {q}_{best}={raw.channels[q].header})") if best else ""
     raise InputError(f"{name}: values {lo:.4g}-{hi:.4g} under {raw.channels[q].header} "
                      f"({shown}) reach {peak:.4g} {RAW_QUANTITIES[canon]} in {label}, not a "
-                     f"plausible {what} (limit {top:g} {RAW_QUANTITIES[canon]}){hint}")
+                     f"plausible {what} (limit {top:g} {RAW_QUANTITIES[canon]}){hint}",
+                     param="columns" if best else None)
 
 
 def _unit_change(raw: _Raw, q: str, out: dict[str, np.ndarray], name: str, label: str,
@@ -528,8 +538,8 @@ def _waveform_time(grid: Grid, channels: dict[str, _Channel], values: dict[str, 
     if grid.fmt == "lvm":
         wf = grid.waveform
         if not wf:
-            raise InputError(f"{name}: no time column (X_Columns No and no Delta_X); name one "
-                             "with --columns time=NAME")
+            raise InputError(f"{name}: no time column (X_Columns No and no Delta_X); columns: "
+                             "name one, e.g. time=NAME", param="columns")
         n = len(values["pressure"])
         channels["time"] = _Channel("time", "s", wf["label"], -1)
         values["time"] = float(wf["start_offset"]) + float(wf["increment"]) * np.arange(
@@ -543,7 +553,9 @@ def _waveform_time(grid: Grid, channels: dict[str, _Channel], values: dict[str, 
         raise InputError(
             f"{name}: group {group!r} has no time channel (time_<unit>, unit one of "
             f"{_known('time')}) and pressure channel {pressure.name!r} has no waveform "
-            "timing (wf_increment); add a time channel or name one with --columns time=NAME")
+            "timing (wf_increment); add a time channel (columns: or name one, e.g. "
+            "time=NAME)",
+            param="columns")
     for q in ("force", "displacement"):
         if q not in channels:
             continue
@@ -583,8 +595,8 @@ def _read(p: Path, name: str, mapping: dict[str, tuple[str, str]]) -> tuple[_Raw
                 raise missing[0]
             listing = "; ".join(f"{g.group!r}: {_headers_text(g.headers, 8)}" for g in grids)
             raise InputError(f"{name}: no TDMS group has pressure and force channels (groups: "
-                             f"{listing or 'none'}); name the channels with --columns, e.g. "
-                             f"{_EXAMPLE}")
+                             f"{listing or 'none'}); columns: name the channels, e.g. "
+                             f"{_EXAMPLE}", param="columns")
     else:
         grid = grids[0]
         need = _REQUIRED if not (grid.fmt == "lvm" and grid.waveform) else ("pressure", "force")

@@ -772,20 +772,22 @@ def _pick(grid: Grid, want: Sequence[str], optional: Sequence[str],
                 [i for i, h in enumerate(found) if h.lower() == header.lower()]
             if len(idx) != 1:
                 how = "is not in the file" if not idx else "is in the file more than once"
-                raise InputError(f"{name}: column {header!r} (named by --columns) {how} "
-                                 f"(columns found: {', '.join(repr(h) for h in found)})")
+                raise InputError(f"{name}: column {header!r} (named by the columns mapping) "
+                                 f"{how} (columns found: {', '.join(repr(h) for h in found)})",
+                                 param="columns")
             i = idx[0]
             own = grid.units[i]
             if own is not None and mtok is not None and unit_token(own) != mtok:
-                raise InputError(f"{name}: --columns says {header!r} is in {_show(mtok)} but the "
-                                 f"file says {own}; correct the mapping or the file")
+                raise InputError(f"{name}: the columns mapping says {header!r} is in "
+                                 f"{_show(mtok)} but the file says {own}; correct the mapping "
+                                 "or the file", param="columns")
             unit = own if mtok is None else _show(mtok)
         else:
             cands = [i for i, k in enumerate(grid.keys)
                      if i not in used and (split_key(k)[0] == base or k == canon)]
             if not cands:
                 if canon in want:
-                    alt = f"; or name it with --columns {canon}=<header>"
+                    alt = f"; or name it in the columns mapping ({canon}=<header>)"
                     raise InputError(f"{name}: missing column {canon!r} (required: "
                                      f"{', '.join(want)}; found: "
                                      f"{', '.join(found) or 'none'}){alt}")
@@ -796,7 +798,7 @@ def _pick(grid: Grid, want: Sequence[str], optional: Sequence[str],
             if len(cands) > 1:
                 names = " and ".join(repr(found[i]) for i in cands)
                 raise InputError(f"{name}: two {base} columns, {names}: keep one, or choose one "
-                                 f"with --columns")
+                                 "in the columns mapping", param="columns")
             i = cands[0]
             unit = grid.units[i]
         used.add(i)
@@ -809,7 +811,7 @@ def _pick(grid: Grid, want: Sequence[str], optional: Sequence[str],
             continue
         if unit is None:
             raise InputError(f"{name}: column {header!r} has no unit; write it as {canon!r} or "
-                             f"'{base} ({_show(tok)})', or give it with --columns")
+                             f"'{base} ({_show(tok)})', or give it in the columns mapping")
         fac = unit_factor(unit, tok, what=f"{name}: column {header!r}")
         out[canon] = _Pick(canon, i, header, unit, fac)
     return out
@@ -938,7 +940,7 @@ def read_measured_table(path: str | Path, required: Sequence[str],
 def is_raw_log(path: str | Path, columns: str | None = None) -> bool:
     r"""Whether ``path`` is a raw rig log (a time series) rather than a table of results.
 
-    True for TDMS files, when a ``--columns`` mapping names time, force or displacement, or when
+    True for TDMS files, when a ``columns`` mapping names time, force or displacement, or when
     the file's header (any separator, encoding and spelling :func:`read_measured_table` reads)
     has a time column. An unreadable file gives False: the table reader then names the problem.
 
@@ -947,7 +949,7 @@ def is_raw_log(path: str | Path, columns: str | None = None) -> bool:
     path : str or Path
         The file.
     columns : str or None
-        A ``--columns`` mapping (``name=header,...``).
+        A ``columns`` mapping (``name=header,...``; ``--columns`` on the command line).
 
     Returns
     -------

@@ -344,12 +344,13 @@ def plot_squeeze_force(
     """
     ax, created = new_axes(ax, (6.4, 4.2))
     ax.plot(result.pressure_mpa, result.squeeze_force_n, "o-", label=label)
-    est = getattr(result, "n_error_estimate_n_per_mm", None)
-    if est is not None:  # the two-mesh discretisation error estimate, as a band (N)
-        half = np.asarray(est) * result.structure.length_mm
+    estimate = getattr(result, "estimate", None)  # ErrorEstimate (absent on other N(P) results)
+    if estimate is not None and estimate.n_per_mm is not None:
+        # the two-mesh discretisation error estimate, as a band (N)
+        half = np.asarray(estimate.n_per_mm) * result.structure.length_mm
         ax.fill_between(result.pressure_mpa, result.squeeze_force_n - half,
                         result.squeeze_force_n + half, color="tab:blue", alpha=0.25, lw=0,
-                        label=f"estimated discretisation error ({result.accuracy})")
+                        label=f"estimated discretisation error ({estimate.accuracy})")
     if reference is not None:
         ax.plot([reference[0]], [reference[1]], "*", ms=12, color="tab:red", label=reference[2])
     if result.contact_onset_pressure_mpa is not None:
@@ -537,7 +538,7 @@ def plot_contact_pressure(result: SqueezeResult, ax: Any | None = None, *,
     """
     ax, created = new_axes(ax, (6.4, 4.2))
     p = float(result.pressure_mpa[index])
-    prof = result.contact[index] if result.contact else {}
+    prof = result.contact.profiles[index] if result.contact.profiles else {}
     fric = result.mu_wall > 0.0 or result.mu_wire > 0.0
     for name, color in (("wire", "#1f4e79"), ("wall", "#e08a2c")):
         arc = prof.get(name)
@@ -556,8 +557,8 @@ def plot_contact_pressure(result: SqueezeResult, ax: Any | None = None, *,
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_xlabel("arc position from the contact centre (mm)")
     ax.set_ylabel("contact traction (MPa)")
-    sw = result.wire_pressure_integral_n_per_mm
-    sl = result.wall_pressure_integral_n_per_mm
+    sw = result.contact.wire_pressure_integral_n_per_mm
+    sl = result.contact.wall_pressure_integral_n_per_mm
     title = f"P = {p:g} MPa"
     if sw is not None and sl is not None:
         title += f": S_wire {sw[index]:.3f}, S_wall {sl[index]:.3f} N/mm"

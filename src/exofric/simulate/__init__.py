@@ -1,7 +1,8 @@
 """The FE problems users ask for, their results, and the closed-form references they are checked by.
 
 * :func:`inflate` -> :class:`InflationResult` -- free inflation of the tube (quarter model).
-* :func:`squeeze` -> :class:`SqueezeResult` -- the tube-wire-hole squeeze N(P) (half model,
+* :func:`squeeze` -> :class:`SqueezeResult` (its groups :class:`ContactOutputs`,
+  :class:`ErrorEstimate`) -- the tube-wire-hole squeeze N(P) (half model,
   paper §3.4, Figs 6-7).
 * :class:`SqueezeSetup` -- everything a squeeze depends on but the pressures (structure,
   material, ends, friction, accuracy, gravity, ...), validated once; ``setup.solve(P)`` is
@@ -58,7 +59,8 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from exofric.simulate._ring import RingResult, ring_test
     from exofric.simulate._setup import SqueezeSetup
-    from exofric.simulate._squeeze import SqueezeResult, squeeze
+    from exofric.simulate._squeeze import squeeze
+    from exofric.simulate._squeeze_result import ContactOutputs, ErrorEstimate, SqueezeResult
     from exofric.simulate._stretch import StretchWarning, check_stretch
     from exofric.simulate._tolerance import TOLERANCE_NAMES, ToleranceResult, squeeze_tolerances
 

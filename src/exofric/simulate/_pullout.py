@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 
 from exofric import defaults
-from exofric.errors import InputError, check_positive, warn_implausible
+from exofric.errors import ConvergenceError, InputError, check_positive, warn_implausible
 from exofric.fe import nodal_weights
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
@@ -44,7 +44,7 @@ from exofric.simulate._common import check_friction
 if TYPE_CHECKING:
     import pandas as pd
 
-    from exofric.simulate._squeeze import SqueezeResult
+    from exofric.simulate._squeeze_result import SqueezeResult
 
 __all__ = ["PulloutResult", "SectionPullout", "check_pullout_friction", "pullout",
            "section_pullout"]
@@ -383,7 +383,7 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float,
     w_now = nodal_weights(edges, x_now, len(nodes))
     w_ref = nodal_weights(edges, nodes, len(nodes))
     stretch = 1.0 if res.axial_stretch is None else float(res.axial_stretch[k])
-    prof = res.contact[k]
+    prof = res.contact.profiles[k]
     idx, cap, on_wire, length = [], [], [], []
     s = {"wire": 0.0, "wall": 0.0}
     ratio = 0.0
@@ -616,6 +616,9 @@ def _iwan(delta: np.ndarray, q: np.ndarray, line_cap: float, line_k: float) -> _
     return _Iwan(np.array(ks), np.array(fs), spring, n_tube)
 
 
+_EPS = float(np.finfo(float).eps)
+
+
 def _shear_lag(law: _Iwan, ea: float, length: float, path: np.ndarray, ratio: float,
                n_z: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pulled-end force F (N) along ``path`` (mm); also u (steps, nodes) and sliding flags.
@@ -668,8 +671,9 @@ def _shear_lag(law: _Iwan, ea: float, length: float, path: np.ndarray, ratio: fl
                 q, dq, st = q_of(u, cap)
                 r = ku(u) + hl * q
                 r[0] = 0.0
+                # the load scale, or the round-off of kE du (a stiff cable: kE up to 1e10 N/mm)
                 if np.abs(r[1:]).max() <= max(1e-9 * max(1.0, np.abs(hl * q).max()),
-                                                1e-12 * kE * max(1.0, np.abs(u).max())):
+                                                64 * _EPS * kE * max(1.0, np.abs(u).max())):
                     break
                 ab = np.zeros((3, n))
                 ab[1] = 2 * kE + hl[1:] * dq[1:]
@@ -685,10 +689,13 @@ def _shear_lag(law: _Iwan, ea: float, length: float, path: np.ndarray, ratio: fl
                     if energy(trial, cap) <= e0 + 1e-4 * alpha * slope:
                         break
                     alpha *= 0.5
-                u[1:] += (alpha if alpha > 1e-6 else 1.0) * du
+                step = (alpha if alpha > 1e-6 else 1.0) * du
+                u[1:] += step
+                if np.abs(step).max() <= 1e-13 * max(1.0, np.abs(u).max()):
+                    break                    # converged to round-off (the residual is kE eps u)
             else:
-                raise InputError("pull-out along the length: Newton did not converge at "
-                                 f"displacement {d:g} mm (reduce --displacement steps)")
+                raise ConvergenceError("pull-out along the length: Newton did not converge at "
+                                       f"displacement {d:g} mm (more path steps: n_path)")
             new = ~st & ~kin
             if ratio == 1.0 or not np.any(new):
                 break

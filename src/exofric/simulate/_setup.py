@@ -25,7 +25,7 @@ from exofric.simulate._common import FEMaterial, check_friction, fe_material_of,
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from exofric.simulate._squeeze import SqueezeResult
+    from exofric.simulate._squeeze_result import SqueezeResult
 
 __all__ = ["SqueezeSetup"]
 

@@ -7,7 +7,7 @@ N/mm, totals = per depth x tube length.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
@@ -20,7 +20,6 @@ from exofric.errors import (
 from exofric.fe import (
     MeshSpec,
     NewtonSettings,
-    SolverStats,
     SqueezeProblem,
     collect_stats,
     nodal_weights,
@@ -32,397 +31,17 @@ from exofric.fe import (
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
 from exofric.simulate._common import (
-    opt_list,
     resolve_accuracy,
 )
 from exofric.simulate._setup import SqueezeSetup
+from exofric.simulate._squeeze_result import ContactOutputs, ErrorEstimate, SqueezeResult
 from exofric.simulate._stretch import check_stretch
 
 if TYPE_CHECKING:
-    import pandas as pd
+    pass
 
 __all__ = ["SqueezeResult", "resolve_accuracy", "squeeze"]
 
-
-@dataclass(frozen=True)
-class SqueezeResult:
-    """Squeeze of the wire by the inflated tube, per pressure (paper Figs 6-7).
-
-    Forces are for the full section (2 x the half model): per unit depth (N/mm)
-    and in total over the tube length (N). With an off-centre wire (``wire_angle_deg`` != 0,
-    the full model) the squeezing force N is the magnitude of the resultant contact force of
-    the tube on the wire and the wall force the magnitude of the hole wall's resultant on the
-    tube; their directions are reported separately.
-
-    Attributes
-    ----------
-    pressure_mpa : ndarray
-        Pressures (MPa).
-    squeeze_force_n_per_mm, squeeze_force_n : ndarray
-        Tube-wire contact force along the line of centres (N/mm, N); with an off-centre wire
-        the magnitude of the resultant force of the tube on the wire.
-    wall_force_n_per_mm, wall_force_n : ndarray
-        Net vertical force of the hole wall on the tube (N/mm, N); with an off-centre wire the
-        magnitude of its resultant.
-    wire_contact_halfwidth_mm : ndarray
-        Half-width of the contact arc on the wire (mm, 0 before contact).
-    wall_contact_arc_mm : ndarray
-        Length of hole wall in contact with the tube (mm, full section).
-    max_penetration_mm : ndarray
-        Largest penalty penetration into the hole or the wire (mm).
-    max_stretch : ndarray
-        Largest principal stretch (unitless) in the tube (StretchWarning above 2.5).
-    newton_iterations : ndarray of int
-        Newton iterations spent reaching each pressure (all sub-steps).
-    contact_onset_pressure_mpa : float or None
-        Pressure at which the tube first touches the wire (None if not reached).
-    weight_n_per_mm : float
-        Self-weight of the tube section per unit depth (N/mm), the regulariser's load.
-    dofs : int
-        Degrees of freedom of the model (incl. constrained).
-    solve_time_s : float
-        Wall time of the solve alone (s).
-    setup : SqueezeSetup
-        What was solved (structure, material, ends, friction, accuracy, gravity, ...); its
-        fields are also this result's properties ``structure``, ``material``, ``penalty``
-        (N/mm^3), ``density`` (t/mm^3), ``gravity``, ``wire_angle_deg`` (deg), ``mu_wall``,
-        ``mu_wire`` and ``ends``.
-    mesh : MeshSpec
-        Mesh used.
-    symmetry : str
-        Which symmetry was used.
-    nodes : ndarray (n, 2)
-        Undeformed node coordinates (mm), half model.
-    elements : ndarray (e, 9)
-        Element connectivity (quad9).
-    displacements : tuple of ndarray (n, 2)
-        Nodal displacements (mm) per pressure (empty unless ``keep_fields``).
-    von_mises_mpa : tuple of ndarray (e,)
-        Element-mean von Mises Cauchy stress (MPa) per pressure (empty unless ``keep_fields``).
-    accuracy : str
-        The named accuracy level (``'draft'``, ``'standard'``, ``'fine'``) or ``'mesh'``
-        for an explicit mesh.
-    estimate_mesh : MeshSpec or None
-        The nested coarser mesh of the error estimate (None for an explicit mesh).
-    n_error_estimate_pct : ndarray or None
-        Estimated discretisation error of N (%) per pressure, Fs |N - N_coarse| / N with the
-        safety factor Fs = :data:`exofric.defaults.ESTIMATE_SAFETY_FACTOR`, at least
-        :data:`exofric.defaults.ESTIMATE_FLOOR_PCT` where N > 0 and at most 100; 0 where both
-        meshes give 0, 100 where only one has contact (None for an explicit mesh).
-    n_error_estimate_n_per_mm : ndarray or None
-        The same estimate in N/mm (per depth).
-    coarse_squeeze_force_n_per_mm : ndarray or None
-        N on the coarse mesh (N/mm), full section.
-    solver_stats : SolverStats
-        Newton attempts, failed attempts, iterations, linear solves and the wall time (s)
-        spent in them and in the failed ones, over both meshes, the onset bracketing and the
-        regulariser's release.
-    squeeze_force_direction_deg : ndarray or None
-        Direction of the tube's resultant force on the wire (deg from +y, positive toward +x;
-        0 for the half model, NaN where N = 0).
-    wall_force_direction_deg : ndarray or None
-        Direction of the hole wall's resultant force on the tube (deg from +y, positive toward
-        +x; NaN where it is 0).
-    friction_penalty : float
-        Tangential penalty (N/mm^3).
-    wire_pressure_integral_n_per_mm, wall_pressure_integral_n_per_mm : ndarray or None
-        Integral of the normal contact pressure over the tube-wire (S_wire) and tube-wall
-        contact arcs per pressure (N per mm of tube), full section.
-    wire_tangential_force_n_per_mm, wall_tangential_force_n_per_mm : ndarray or None
-        Integral of the magnitude of the in-plane friction traction over those arcs (N/mm;
-        0 without friction).
-    stick_fraction_wire, stick_fraction_wall : ndarray or None
-        Share of each contact arc (by length) that sticks (unitless; NaN without contact or
-        without friction).
-    contact : tuple of dict
-        Per pressure, ``{"wire": ..., "wall": ...}``, each with lists along the contact arc
-        (nodes in contact, sorted): ``node`` (mesh node index), ``arc_mm`` and
-        ``angle_deg`` from the arc's centre (the
-        side of the circle facing away from the other obstacle; the half model's x >= 0
-        half), ``pressure_mpa`` (true normal pressure), ``shear_mpa`` (signed friction
-        traction, MPa) and ``stick``.
-    friction_dissipation_n_per_mm : ndarray or None
-        Frictional work of each committed load sub-step (N mm per mm depth, full section;
-        >= 0), None without friction (per unit reference length with closed or open ends).
-    axial_stretch : ndarray or None
-        Axial stretch of the tube (unitless) per pressure (1 in plane strain).
-
-    Examples
-    --------
-    >>> from exofric.geometry import BASE
-    >>> from exofric.material import MooneyRivlin
-    >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.6], keep_fields=False)
-    >>> round(float(r.squeeze_force_n[0]))
-    241
-    """
-
-    pressure_mpa: np.ndarray
-    squeeze_force_n_per_mm: np.ndarray
-    squeeze_force_n: np.ndarray
-    wall_force_n_per_mm: np.ndarray
-    wall_force_n: np.ndarray
-    wire_contact_halfwidth_mm: np.ndarray
-    wall_contact_arc_mm: np.ndarray
-    max_penetration_mm: np.ndarray
-    max_stretch: np.ndarray
-    newton_iterations: np.ndarray
-    contact_onset_pressure_mpa: float | None
-    weight_n_per_mm: float
-    dofs: int
-    solve_time_s: float
-    setup: SqueezeSetup
-    mesh: MeshSpec
-    symmetry: str
-    nodes: np.ndarray = field(repr=False)
-    elements: np.ndarray = field(repr=False)
-    displacements: tuple[np.ndarray, ...] = field(default=(), repr=False)
-    von_mises_mpa: tuple[np.ndarray, ...] = field(default=(), repr=False)
-    accuracy: str = "mesh"
-    estimate_mesh: MeshSpec | None = None
-    n_error_estimate_pct: np.ndarray | None = None
-    n_error_estimate_n_per_mm: np.ndarray | None = None
-    coarse_squeeze_force_n_per_mm: np.ndarray | None = field(default=None, repr=False)
-    solver_stats: SolverStats = field(default_factory=SolverStats, repr=False)
-    squeeze_force_direction_deg: np.ndarray | None = None
-    wall_force_direction_deg: np.ndarray | None = None
-    friction_penalty: float = defaults.CONTACT_PENALTY_N_PER_MM3 * defaults.FRICTION_PENALTY_REL
-    wire_pressure_integral_n_per_mm: np.ndarray | None = None
-    wall_pressure_integral_n_per_mm: np.ndarray | None = None
-    wire_tangential_force_n_per_mm: np.ndarray | None = None
-    wall_tangential_force_n_per_mm: np.ndarray | None = None
-    stick_fraction_wire: np.ndarray | None = None
-    stick_fraction_wall: np.ndarray | None = None
-    contact: tuple[dict[str, dict[str, list[Any]]], ...] = field(default=(), repr=False)
-    friction_dissipation_n_per_mm: np.ndarray | None = field(default=None, repr=False)
-    axial_stretch: np.ndarray | None = None
-
-    # -- what was solved: the setup's fields, as before the setup existed ---------------------
-
-    @property
-    def structure(self) -> Structure:
-        """Hole, tube and wire (mm)."""
-        return self.setup.structure
-
-    @property
-    def material(self) -> MooneyRivlin | HyperelasticModel:
-        """Tube material."""
-        return self.setup.material
-
-    @property
-    def penalty(self) -> float:
-        """Contact penalty used (N/mm^3)."""
-        return float(self.setup.penalty)
-
-    @property
-    def density(self) -> float:
-        """Tube density used for the self-weight (t/mm^3)."""
-        return float(self.setup.density)
-
-    @property
-    def gravity(self) -> str:
-        """Orientation of gravity (unitless): ``'none'``, ``'toward-wall'`` or ``'toward-wire'``."""
-        return self.setup.gravity
-
-    @property
-    def wire_angle_deg(self) -> float:
-        """Angle of the wire centre from the top of the hole (deg; 0: the half model)."""
-        return self.setup.angle_deg
-
-    @property
-    def mu_wall(self) -> float:
-        """Coulomb coefficient of the tube on the hole wall (unitless)."""
-        return self.setup.mu[0]
-
-    @property
-    def mu_wire(self) -> float:
-        """Coulomb coefficient of the tube on the wire (unitless)."""
-        return self.setup.mu[1]
-
-    @property
-    def ends(self) -> str:
-        """The tube's axial condition: ``'plane-strain'``, ``'closed'`` or ``'open'``."""
-        return self.setup.ends
-
-    def contact_point_data(self, index: int = -1) -> dict[str, np.ndarray]:
-        """Per-node contact fields of one pressure, for VTU point data (0 off the arcs).
-
-        Parameters
-        ----------
-        index : int
-            Position in :attr:`pressure_mpa` (default the last).
-
-        Returns
-        -------
-        dict of str to ndarray (n_nodes,)
-            ``contact_pressure_wire_mpa``, ``contact_pressure_wall_mpa`` (true normal
-            pressure), ``contact_shear_wire_mpa``, ``contact_shear_wall_mpa`` (signed friction
-            traction) and ``contact_stick`` (1 where a contact node sticks).
-
-        Examples
-        --------
-        >>> from exofric.fe import MeshSpec
-        >>> from exofric.geometry import BASE
-        >>> from exofric.material import MooneyRivlin
-        >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.6], mesh=MeshSpec(2, 12))
-        >>> d = r.contact_point_data()
-        >>> float(d["contact_pressure_wire_mpa"].max()) > 1.0
-        True
-        """
-        n = len(self.nodes)
-        out = {k: np.zeros(n) for k in ("contact_pressure_wire_mpa", "contact_pressure_wall_mpa",
-                                        "contact_shear_wire_mpa", "contact_shear_wall_mpa",
-                                        "contact_stick")}
-        if not self.contact:
-            return out
-        prof = self.contact[index]
-        for name in ("wire", "wall"):
-            arc = prof[name]
-            idx = np.asarray(arc["node"], dtype=int)
-            out[f"contact_pressure_{name}_mpa"][idx] = arc["pressure_mpa"]
-            out[f"contact_shear_{name}_mpa"][idx] = arc["shear_mpa"]
-            out["contact_stick"][idx] = np.maximum(out["contact_stick"][idx],
-                                                   np.asarray(arc["stick"], dtype=float))
-        return out
-
-    @property
-    def length_mm(self) -> float:
-        """Tube length L (mm) over which totals are integrated."""
-        return self.structure.length_mm
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict (unit-suffixed keys)."""
-        return {
-            "pressure_mpa": self.pressure_mpa.tolist(),
-            "squeeze_force_n": self.squeeze_force_n.tolist(),
-            "squeeze_force_n_per_mm": self.squeeze_force_n_per_mm.tolist(),
-            "wall_force_n": self.wall_force_n.tolist(),
-            "wall_force_n_per_mm": self.wall_force_n_per_mm.tolist(),
-            "wire_contact_halfwidth_mm": self.wire_contact_halfwidth_mm.tolist(),
-            "wall_contact_arc_mm": self.wall_contact_arc_mm.tolist(),
-            "max_penetration_mm": self.max_penetration_mm.tolist(),
-            "max_stretch": self.max_stretch.tolist(),
-            "newton_iterations": [int(i) for i in self.newton_iterations],
-            "contact_onset_pressure_mpa": self.contact_onset_pressure_mpa,
-            "weight_n_per_mm": self.weight_n_per_mm,
-            "dofs": self.dofs,
-            "length_mm": self.length_mm,
-            "solve_time_s": self.solve_time_s,
-            "structure": self.structure.to_dict(),
-            "material": self.material.to_dict(),
-            "mesh": self.mesh.to_dict(),
-            "penalty_n_per_mm3": self.penalty,
-            "density_t_per_mm3": self.density,
-            "symmetry": self.symmetry,
-            "accuracy": self.accuracy,
-            "gravity": self.gravity,
-            "estimate_mesh": None if self.estimate_mesh is None else self.estimate_mesh.to_dict(),
-            "n_error_estimate_pct": opt_list(self.n_error_estimate_pct),
-            "n_error_estimate_n_per_mm": opt_list(self.n_error_estimate_n_per_mm),
-            "coarse_squeeze_force_n_per_mm": opt_list(self.coarse_squeeze_force_n_per_mm),
-            "solver_stats": self.solver_stats.to_dict(),
-            "wire_angle_deg": self.wire_angle_deg,
-            "squeeze_force_direction_deg": _nan_list(self.squeeze_force_direction_deg),
-            "wall_force_direction_deg": _nan_list(self.wall_force_direction_deg),
-            "mu_wall": self.mu_wall,
-            "mu_wire": self.mu_wire,
-            "friction_penalty_n_per_mm3": self.friction_penalty,
-            "wire_pressure_integral_n_per_mm": _nan_list(self.wire_pressure_integral_n_per_mm),
-            "wall_pressure_integral_n_per_mm": _nan_list(self.wall_pressure_integral_n_per_mm),
-            "wire_tangential_force_n_per_mm": _nan_list(self.wire_tangential_force_n_per_mm),
-            "wall_tangential_force_n_per_mm": _nan_list(self.wall_tangential_force_n_per_mm),
-            "stick_fraction_wire": _nan_list(self.stick_fraction_wire),
-            "stick_fraction_wall": _nan_list(self.stick_fraction_wall),
-            "contact": list(self.contact),
-            "ends": self.ends,
-            "axial_stretch": (np.ones_like(self.pressure_mpa) if self.axial_stretch is None
-                              else self.axial_stretch).tolist(),
-        }
-
-    def to_frame(self) -> pd.DataFrame:
-        """The per-pressure curves as a DataFrame: one row per pressure (MPa, N, N/mm, mm).
-
-        Columns: ``pressure_mpa``, ``squeeze_force_n`` (total over the tube length),
-        ``squeeze_force_per_depth_n_per_mm``, ``wall_force_n``,
-        ``wall_force_per_depth_n_per_mm``, ``wire_contact_halfwidth_mm``,
-        ``wall_contact_arc_mm``, ``max_penetration_mm``, ``max_stretch`` (unitless),
-        ``newton_iterations`` (count) and ``n_error_estimate_pct`` (%, NaN for an explicit
-        mesh).
-
-        Returns
-        -------
-        pandas.DataFrame
-
-        Examples
-        --------
-        >>> from exofric.fe import MeshSpec
-        >>> from exofric.geometry import BASE
-        >>> from exofric.material import MooneyRivlin
-        >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6], mesh=MeshSpec(2, 12))
-        >>> df = r.to_frame()
-        >>> list(df.columns[:3]), len(df)
-        (['pressure_mpa', 'squeeze_force_n', 'squeeze_force_per_depth_n_per_mm'], 2)
-        """
-        import pandas as pd
-
-        return pd.DataFrame({
-            "pressure_mpa": self.pressure_mpa,
-            "squeeze_force_n": self.squeeze_force_n,
-            "squeeze_force_per_depth_n_per_mm": self.squeeze_force_n_per_mm,
-            "wall_force_n": self.wall_force_n,
-            "wall_force_per_depth_n_per_mm": self.wall_force_n_per_mm,
-            "wire_contact_halfwidth_mm": self.wire_contact_halfwidth_mm,
-            "wall_contact_arc_mm": self.wall_contact_arc_mm,
-            "max_penetration_mm": self.max_penetration_mm,
-            "max_stretch": self.max_stretch,
-            "newton_iterations": np.asarray(self.newton_iterations, dtype=int),
-            "n_error_estimate_pct": _opt_col(self.n_error_estimate_pct, self.pressure_mpa),
-            "wire_pressure_integral_n_per_mm": _opt_col(self.wire_pressure_integral_n_per_mm,
-                                                        self.pressure_mpa),
-            "wall_pressure_integral_n_per_mm": _opt_col(self.wall_pressure_integral_n_per_mm,
-                                                        self.pressure_mpa),
-            "wire_tangential_force_n_per_mm": _opt_col(self.wire_tangential_force_n_per_mm,
-                                                       self.pressure_mpa),
-            "wall_tangential_force_n_per_mm": _opt_col(self.wall_tangential_force_n_per_mm,
-                                                       self.pressure_mpa),
-            "stick_fraction_wire": _opt_col(self.stick_fraction_wire, self.pressure_mpa),
-            "stick_fraction_wall": _opt_col(self.stick_fraction_wall, self.pressure_mpa),
-        })
-
-    def plot(self, ax: Any | None = None) -> Any:
-        """Draw N(P), the squeezing force (N) against pressure (MPa) (Fig 7).
-
-        One line, plus a dotted vertical line at the contact onset when reached
-        (:func:`exofric.plots.plot_squeeze_force`); the deformed sections of Fig 6 are
-        :func:`exofric.plots.plot_squeeze`. Write it with :func:`exofric.plots.save`.
-
-        Parameters
-        ----------
-        ax : matplotlib Axes, optional
-            Where to draw (default a new figure).
-
-        Returns
-        -------
-        matplotlib Axes
-
-        Examples
-        --------
-        >>> from exofric.fe import MeshSpec
-        >>> from exofric.geometry import BASE
-        >>> from exofric.material import MooneyRivlin
-        >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6], mesh=MeshSpec(2, 12))
-        >>> r.plot().get_xlabel()
-        'pressure P (MPa)'
-        """
-        from exofric.plots import plot_squeeze_force
-
-        return plot_squeeze_force(self, ax)
-
-
-def _nan_list(a: np.ndarray | None) -> list[float | None] | None:
-    """An optional array as a JSON list, NaN as None (JSON has no NaN)."""
-    if a is None:
-        return None
-    return [None if not np.isfinite(v) else float(v) for v in np.asarray(a, dtype=float)]
 
 
 def _direction_deg(f: np.ndarray) -> np.ndarray:
@@ -431,10 +50,6 @@ def _direction_deg(f: np.ndarray) -> np.ndarray:
     ang = np.degrees(np.arctan2(f[:, 0], f[:, 1])) + 0.0
     return np.where(np.hypot(f[:, 0], f[:, 1]) > 0.0, ang, np.nan)
 
-
-def _opt_col(a: np.ndarray | None, like: np.ndarray) -> np.ndarray:
-    """An optional per-pressure array as a column (NaN when absent)."""
-    return np.full(len(like), np.nan) if a is None else np.asarray(a, dtype=float)
 
 
 class _MeshSolution:
@@ -850,7 +465,7 @@ def squeeze(
     >>> r = squeeze(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6], keep_fields=False)
     >>> [round(float(n), 1) for n in r.squeeze_force_n]
     [47.8, 240.5]
-    >>> r.accuracy, r.mesh.n_circ, bool(r.n_error_estimate_pct[-1] < 1.0)  # % of N
+    >>> r.estimate.accuracy, r.mesh.n_circ, bool(r.estimate.pct[-1] < 1.0)  # % of N
     ('standard', 32, True)
     """
 
@@ -861,6 +476,26 @@ def squeeze(
         settings=settings, onset_tol_mpa=onset_tol_mpa, regulariser=regulariser,
         rotation_regulariser=rotation_regulariser, keep_fields=keep_fields,
     ).solve(pressures_mpa)
+
+
+def _contact_outputs(sol: _MeshSolution, prob: SqueezeProblem) -> ContactOutputs:
+    """The contact group of a solved mesh: arcs, penetration, integrals, friction, profiles."""
+    arr, itf = sol.arr, sol.interfaces
+    return ContactOutputs(
+        wire_contact_halfwidth_mm=arr[:, 2],
+        wall_contact_arc_mm=arr[:, 3],
+        max_penetration_mm=arr[:, 4],
+        friction_penalty=prob.penalty_t,
+        wire_pressure_integral_n_per_mm=itf[:, 0],
+        wall_pressure_integral_n_per_mm=itf[:, 1],
+        wire_tangential_force_n_per_mm=itf[:, 2],
+        wall_tangential_force_n_per_mm=itf[:, 3],
+        stick_fraction_wire=itf[:, 4],
+        stick_fraction_wall=itf[:, 5],
+        profiles=tuple(sol.profiles),
+        friction_dissipation_n_per_mm=(np.asarray(prob.dissipation, float)
+                                       if prob.frictional else None),
+    )
 
 
 def solve_setup(setup: SqueezeSetup, pressures_mpa: Any) -> SqueezeResult:
@@ -891,9 +526,6 @@ def solve_setup(setup: SqueezeSetup, pressures_mpa: Any) -> SqueezeResult:
         squeeze_force_n=arr[:, 0] * L,
         wall_force_n_per_mm=arr[:, 1],
         wall_force_n=arr[:, 1] * L,
-        wire_contact_halfwidth_mm=arr[:, 2],
-        wall_contact_arc_mm=arr[:, 3],
-        max_penetration_mm=arr[:, 4],
         max_stretch=sol.stretch,
         newton_iterations=sol.iterations,
         contact_onset_pressure_mpa=onset,
@@ -909,23 +541,11 @@ def solve_setup(setup: SqueezeSetup, pressures_mpa: Any) -> SqueezeResult:
         elements=prob.mesh.elements.copy(),
         displacements=disp,
         von_mises_mpa=vm,
-        accuracy=level,
-        estimate_mesh=coarse_spec,
-        n_error_estimate_pct=est_pct,
-        n_error_estimate_n_per_mm=est_abs,
-        coarse_squeeze_force_n_per_mm=coarse_n,
+        estimate=ErrorEstimate(accuracy=level, mesh=coarse_spec, pct=est_pct, n_per_mm=est_abs,
+                               coarse_n_per_mm=coarse_n),
         solver_stats=counted.stats,
         squeeze_force_direction_deg=sol.n_dir,
         wall_force_direction_deg=sol.wall_dir,
-        friction_penalty=prob.penalty_t,
-        wire_pressure_integral_n_per_mm=sol.interfaces[:, 0],
-        wall_pressure_integral_n_per_mm=sol.interfaces[:, 1],
-        wire_tangential_force_n_per_mm=sol.interfaces[:, 2],
-        wall_tangential_force_n_per_mm=sol.interfaces[:, 3],
-        stick_fraction_wire=sol.interfaces[:, 4],
-        stick_fraction_wall=sol.interfaces[:, 5],
-        contact=tuple(sol.profiles),
-        friction_dissipation_n_per_mm=(np.asarray(prob.dissipation, float)
-                                       if prob.frictional else None),
+        contact=_contact_outputs(sol, prob),
         axial_stretch=sol.axial_stretch,
     )

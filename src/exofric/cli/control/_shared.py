@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import typer
 
 from exofric.cli._common import (
     save_figure,
 )
+from exofric.cli._options import OptionGroup
 
 if TYPE_CHECKING:
     from exofric.reproduction import CaseResult, ControlSetup
@@ -51,6 +52,35 @@ DT = _opt(None, "Sample time in s (default 0.01 s, or the plant's PWM period).")
 DURATION = _opt(15.0, "Simulated time in s.")
 BAND = _opt(2.0, "Settling band in % of the step.")
 PLOT = _opt(None, "Write a PNG plot of the response(s) to this path.")
+
+
+class LoopOptions(OptionGroup):
+    """The simulated loop of ``control`` and ``control compare``: target friction (N), friction
+    map, gamma, plant (TOML, step CSV, mismatch), tau_c (s), feedforward structure,
+    anti-windup, sample time and duration (s), settling band (%)."""
+
+    target_friction: float
+    structure: str
+    gamma: float | None
+    plant: str | None
+    step_csv: str | None
+    mismatch: float | None
+    tau_c: float | None
+    ff_mode: str
+    antiwindup: str
+    dt: float | None
+    duration: float
+    band: float
+    OPTIONS: ClassVar[dict[str, Any]] = {
+        "target_friction": TARGET, "structure": STRUCTURE, "gamma": GAMMA, "plant": PLANT,
+        "step_csv": STEP_CSV, "mismatch": MISMATCH, "tau_c": TAU_C, "ff_mode": FF_MODE,
+        "antiwindup": ANTIWINDUP, "dt": DT, "duration": DURATION, "band": BAND}
+
+    def setup(self) -> ControlSetup:
+        """The checked :class:`~exofric.reproduction.ControlSetup` of these options."""
+        return _setup(self.target_friction, self.structure, self.gamma, self.plant,
+                      self.step_csv, self.mismatch, self.tau_c, self.ff_mode, self.antiwindup,
+                      self.dt, self.duration, self.band)
 
 
 def _plant_from_file(path: str) -> dict[str, Any]:

@@ -7,7 +7,6 @@ from typing import TYPE_CHECKING
 import typer
 
 from exofric.cli._common import (
-    JSON_OPTION,
     console,
     emit,
     narrow_table,
@@ -16,23 +15,12 @@ from exofric.cli._common import (
 
 if TYPE_CHECKING:
     from exofric.reproduction import CompareResult
+from exofric.cli._options import OutputOptions, grouped
 from exofric.cli.control._shared import (
-    ANTIWINDUP,
-    BAND,
-    DT,
-    DURATION,
-    FF_MODE,
-    GAMMA,
-    MISMATCH,
-    PLANT,
     PLOT,
-    STEP_CSV,
-    STRUCTURE,
-    TARGET,
-    TAU_C,
+    LoopOptions,
     _fmt,
     _plot_cases,
-    _setup,
     _stuck_note,
 )
 
@@ -40,20 +28,18 @@ from exofric.cli.control._shared import (
 def register(ctl: typer.Typer) -> None:
     """Add ``compare`` to ``ctl``."""
     @ctl.command("compare")
+    @grouped
     def compare_cmd(
-        target_friction: float = TARGET, structure: str = STRUCTURE,
-        gamma: float | None = GAMMA, plant: str | None = PLANT, step_csv: str | None = STEP_CSV,
-        mismatch: float | None = MISMATCH, tau_c: float | None = TAU_C, ff_mode: str = FF_MODE,
-        antiwindup: str = ANTIWINDUP, dt: float | None = DT, duration: float = DURATION,
-        band: float = BAND, plot: str | None = PLOT, as_json: bool = JSON_OPTION,
+        loop: LoopOptions = LoopOptions.options(),
+        out: OutputOptions = OutputOptions.options(plot=PLOT),
     ) -> None:
         """The six cases of Fig 12 (PD, PI, PID; without/with the model) beside the paper."""
         from exofric.reproduction import compare
 
+        plot, as_json = out.plot, out.as_json
         if plot:
             plot_path(plot)
-        setup = _setup(target_friction, structure, gamma, plant, step_csv, mismatch, tau_c,
-                       ff_mode, antiwindup, dt, duration, band)
+        setup = loop.setup()
         res: CompareResult = compare(setup)
         written = (_plot_cases(list(res.cases), plot, f"target {setup.target_n:g} N")
                    if plot else None)

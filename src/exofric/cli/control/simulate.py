@@ -7,7 +7,6 @@ from typing import TYPE_CHECKING
 import typer
 
 from exofric.cli._common import (
-    JSON_OPTION,
     console,
     emit,
     kv_table,
@@ -16,24 +15,13 @@ from exofric.cli._common import (
 
 if TYPE_CHECKING:
     pass
+from exofric.cli._options import OutputOptions, grouped
 from exofric.cli.control._shared import (
-    ANTIWINDUP,
-    BAND,
-    DT,
-    DURATION,
-    FF_MODE,
-    GAMMA,
-    MISMATCH,
-    PLANT,
     PLOT,
-    STEP_CSV,
-    STRUCTURE,
-    TARGET,
-    TAU_C,
+    LoopOptions,
     _fmt,
     _opt,
     _plot_cases,
-    _setup,
     _stuck_note,
 )
 
@@ -41,6 +29,7 @@ from exofric.cli.control._shared import (
 def register(ctl: typer.Typer) -> None:
     """Add the group's default action (one simulated step) to ``ctl``."""
     @ctl.callback(invoke_without_command=True)
+    @grouped
     def control(
         ctx: typer.Context,
         controller: str = _opt("pid", "Controller: pd, pi or pid."),
@@ -50,11 +39,8 @@ def register(ctl: typer.Typer) -> None:
         feedforward: bool = typer.Option(False, "--feedforward",
                                          help="Add the model feedforward P_ff = g^-1(F)."),
         tuning: str = _opt("rule", "Gains: rule (IMC/SIMC) or itae (optimised, saturated loop)."),
-        target_friction: float = TARGET, structure: str = STRUCTURE,
-        gamma: float | None = GAMMA, plant: str | None = PLANT, step_csv: str | None = STEP_CSV,
-        mismatch: float | None = MISMATCH, tau_c: float | None = TAU_C, ff_mode: str = FF_MODE,
-        antiwindup: str = ANTIWINDUP, dt: float | None = DT, duration: float = DURATION,
-        band: float = BAND, plot: str | None = PLOT, as_json: bool = JSON_OPTION,
+        loop: LoopOptions = LoopOptions.options(),
+        out: OutputOptions = OutputOptions.options(plot=PLOT),
     ) -> None:
         """Simulate one friction step (default: PID without the model, 54.40 N, test 5)."""
         from exofric.errors import InputError
@@ -71,14 +57,14 @@ def register(ctl: typer.Typer) -> None:
         from exofric.control import CONTROLLERS, PIDGains, itae_gains
         from exofric.reproduction import run_case
 
+        plot, as_json, band = out.plot, out.as_json, loop.band
         if plot:
             plot_path(plot)
 
         kind = controller.lower()
         if kind not in CONTROLLERS:
             raise InputError(f"--controller must be pd, pi or pid, got {controller!r}")
-        setup = _setup(target_friction, structure, gamma, plant, step_csv, mismatch, tau_c,
-                       ff_mode, antiwindup, dt, duration, band)
+        setup = loop.setup()
         rule = setup.tuning(kind)
         if tuning == "itae":
             rule = itae_gains(rule, replace(setup.plant, mismatch=0.0), setup.model_map,
