@@ -36,6 +36,10 @@ HOSTILE_BY_OPTION = {
     ("reproduce", "--notes-dir"): [MISSING, "{file}"],
 }
 
+#: commands whose every accepted value runs a fit or a simulation: the five values that reach
+#: each kind of check (sign, NaN, overflow, empty, a directory), to keep the suite's time
+HOSTILE_BY_COMMAND = {c: ["-1", "nan", "1e300", "", "{dir}"] for c in ("fit-pullout", "gait")}
+
 
 def _base(tmp: Path) -> dict[str, list[str]]:
     """A cheap valid invocation of every command (files made in ``tmp``)."""
@@ -50,6 +54,9 @@ def _base(tmp: Path) -> dict[str, list[str]]:
     cfg = RawRigConfig(sample_rate_hz=50.0, replicates=1, pull_mm=4.0)
     log = simulate_raw_log([0.2, 0.4], [80.0, 160.0], 0.7, config=cfg, seed=1)
     write_raw_log(raw, log.to_frame())
+    pulls = tmp / "pulls.csv"   # forces this structure can give (raw.csv's cannot: 0.7 x 160 N)
+    write_raw_log(pulls, simulate_raw_log([0.2, 0.4], [18.8, 98.5], 0.5, config=cfg,
+                                          seed=1).to_frame())
     one = tmp / "one.toml"
     one.write_text('[[structure]]\nname = "a"\nhole_mm = 10.0\ntube_od_mm = 8.3\n'
                    "wire_mm = 1.6\n")
@@ -80,6 +87,11 @@ def _base(tmp: Path) -> dict[str, list[str]]:
                     "--pressure", "0.3", "--mu-wire", "0.3", "--mu-wall", "0.5",
                     "--mu-wire-wall", "0.2", "--shore", "62.5", "--accuracy", "draft",
                     "--section"],
+        "fit-pullout": [str(pulls), "--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97",
+                        "--wire", "1.6", "--shore", "62.5", "--accuracy", "draft", "--mu-wall",
+                        "0.5", "--mu-wire-wall", "0.2", "--n-z", "8", "--n-path", "10",
+                        "--max-evaluations", "5"],
+        "gait": ["--strides", "1", "--controller", "ff"],
         "stiffness": ["--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire", "1.6",
                       "--pressures", "0.3", "--radius", "0.1", "--mu-wire", "0.3", "--mu-wall",
                       "0.5", "--mu-wire-wall", "0.2", "--shore", "62.5", "--accuracy", "draft"],
@@ -143,7 +155,8 @@ def test_hostile_values(command, tmp_path, monkeypatch):
     (tmp_path / "adir").mkdir()
     (tmp_path / "afile").write_text("x\n")
     for opt, is_arg in COMMANDS[command]:
-        for value in HOSTILE_BY_OPTION.get((command, opt), HOSTILE):
+        for value in HOSTILE_BY_OPTION.get((command, opt),
+                                           HOSTILE_BY_COMMAND.get(command, HOSTILE)):
             value = value.format(dir=tmp_path / "adir", file=tmp_path / "afile")
             if is_arg:
                 args = [*command.split(), value, "--json"]

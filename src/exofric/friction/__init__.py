@@ -34,6 +34,9 @@ torque in Nm, arm radius in m.
 * :func:`reduce_log` -> :class:`RigReduction` -- a raw rig log (time, pressure, force,
   displacement) segmented into plateaus and pulls: static and kinetic friction per pull with
   autocorrelation-aware errors, direction bias, up/down hysteresis.
+* :func:`fit_pullout` -> :class:`PulloutFit` -- mu_wire, mu_wall, mu_wire_wall and mu_static
+  from measured force-displacement pulls (:func:`pulls_from_reduction`), pull-clustered
+  intervals, coefficients the pulls cannot identify reported as such.
 
 Examples
 --------
@@ -83,6 +86,12 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         paper_structures,
         predict,
         structures_from_dict,
+    )
+    from exofric.friction._pullfit import (
+        PullFitSettings,
+        PulloutFit,
+        fit_pullout,
+        pulls_from_reduction,
     )
     from exofric.friction._rawrig import RawRigConfig, RawRigLog, simulate_raw_log
     from exofric.friction._reduce import (

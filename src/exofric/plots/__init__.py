@@ -17,6 +17,8 @@ methods delegate here.
   :func:`plot_cubic_fit` (Fig 11), :func:`plot_torque`, :func:`plot_interface_fit` (the
   two-interface law against the pooled gamma).
 * Raw rig logs: :func:`plot_reduction` (plateaus, pulls and averaging windows).
+* Pull-out: :func:`plot_pullout`, :func:`plot_joint_stiffness`, :func:`plot_pullout_fit`
+  (measured against fitted pulls, with residuals).
 * Control: :func:`plot_simulation`, :func:`plot_control_cases` (Fig 12).
 * Design: :func:`plot_design_map`, :func:`map_axes`.
 * Materials: :func:`plot_material_fit` (hyperelastic fit per test mode, with residuals).
@@ -60,15 +62,16 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
         plot_tube_ends,
         section_polygons,
     )
-    from exofric.plots._gait import plot_gait, plot_gait_compare
     from exofric.plots._friction import (
         plot_cubic_fit,
         plot_gamma_fit,
         plot_predictions,
         plot_torque,
     )
+    from exofric.plots._gait import plot_gait, plot_gait_compare
     from exofric.plots._interfaces import plot_interface_fit
     from exofric.plots._material import plot_material_fit
+    from exofric.plots._pullfit import plot_pullout_fit
     from exofric.plots._pullout import plot_joint_stiffness, plot_pullout
     from exofric.plots._rig import plot_reduction
     from exofric.plots._ring import plot_ring_test
