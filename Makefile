@@ -1,6 +1,7 @@
 # exofric: two commands on a fresh machine.
 #   make demo   set up .venv (if missing) with the runtime dependencies, run the main job
 #   make test   add the test and development extras, then the whole test suite
+#   make docs   add the docs extra, build the documentation site into docs/_build/html
 SHELL  := /bin/bash
 PYTHON ?= python3
 VENV   := .venv
@@ -11,7 +12,7 @@ export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 export MKL_NUM_THREADS ?= 1
 
-.PHONY: demo test setup browser calculix lint bench clean
+.PHONY: demo test setup browser calculix lint bench clean docs
 
 # Two stamps: `make demo` needs only the runtime dependencies; `make test` adds the extras
 # (Dask, Parquet, TDMS, Modbus/serial, the report's browser test, FElupe, the dev tools).
@@ -26,7 +27,7 @@ $(STAMP_RT): pyproject.toml
 $(STAMP): $(STAMP_RT)
 	@echo "exofric: installing the test and development extras (first time: about 60 s)"
 	set -o pipefail; $(BIN)/python -m pip install --disable-pip-version-check \
-	  -e ".[dask,report,bench,dev,tdms,hardware]" \
+	  -e ".[dask,report,bench,dev,tdms,hardware,docs]" \
 	  | { grep -E --line-buffered '^(Collecting|Successfully|ERROR)' || true; }
 	@touch $@
 
@@ -63,6 +64,22 @@ lint: setup
 
 bench: setup calculix
 	$(BIN)/python benchmarks/run.py
+	# the cross-checks too slow for the test suite (Ogden-3 on the shipped silicone curves)
+	EXOFRIC_FULL=1 $(BIN)/python -m pytest -q -p no:cacheprovider tests/test_material_real_data.py -k ogden
+
+# The documentation site (Sphinx): warnings are errors, references to exofric's names checked
+# (nitpicky), the examples executed by sphinx-gallery; offline (docs/conf.py). -E re-reads every
+# page so that no warning hides in an unchanged one; unchanged examples are not re-run.
+DOCS_STAMP := $(VENV)/.stamp-docs
+$(DOCS_STAMP): $(STAMP_RT)
+	@echo "exofric: installing the docs extra (Sphinx, numpydoc, MyST, sphinx-gallery, furo)"
+	set -o pipefail; $(BIN)/python -m pip install --disable-pip-version-check -e ".[docs]" \
+	  | { grep -E --line-buffered '^(Collecting|Successfully|ERROR)' || true; }
+	@touch $@
+
+docs: $(DOCS_STAMP)
+	MPLBACKEND=Agg $(BIN)/sphinx-build -E -W --keep-going -n -q -b html docs docs/_build/html
+	@echo "docs: $(CURDIR)/docs/_build/html/index.html"
 
 clean:
-	rm -rf $(VENV) exofric-report .pytest_cache .mypy_cache .ruff_cache
+	rm -rf $(VENV) exofric-report .pytest_cache .mypy_cache .ruff_cache docs/_build docs/auto_examples

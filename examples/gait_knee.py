@@ -1,12 +1,11 @@
 """The knee lock through walking: can a friction brake deliver a torque profile stride after stride?
 
-Run: ``python examples/gait_knee.py`` (about 5 s; with ``--plot`` it writes gait_knee.png).
+Run: ``python examples/gait_knee.py`` (about 5 s; it writes gait_knee.png).
 Units: s, rad (deg printed), Nm, N, MPa, normal litres, J.
 """
 
 # %% 1. One stride of walking: OpenSim's example data (Apache-2.0), right knee flexion and
 # moment from heel strike to heel strike. The knee absorbs energy over a stride (net work < 0).
-import sys
 
 import numpy as np
 
@@ -46,7 +45,7 @@ for c_vent in (0.05, 0.1, 0.2):
     print(f"vent C {c_vent:4.2f} dm3/(s bar): MPC RMS error {m.rms_error_nm:.2f} Nm, release "
           f"{m.release_latency_ms:.0f} ms, unwanted torque {m.unwanted_torque_nms:.2f} N m s")
 
-if __name__ == "__main__" and "--plot" in sys.argv:
+if __name__ == "__main__":
     from exofric.plots import plot_gait, save
 
-    save(plot_gait(table.results[0]), "gait_knee.png")
+    print("wrote", save(plot_gait(table.results[0]), "gait_knee.png"))

@@ -31,7 +31,8 @@ import exofric as ef
 from exofric.friction import fit_gamma
 from exofric.io import read_raw_log, read_squeeze_curve
 
-HERE = Path(__file__).resolve().parent
+# the log lies beside this script (the docs gallery runs it in its folder, without __file__)
+HERE = Path(__file__).resolve().parent if "__file__" in globals() else Path.cwd()
 log = read_raw_log(HERE / "rig-log.csv")
 provenance = log.attrs["metadata"]
 pressure_unit_in_file = log.attrs["units"]["pressure_mpa"]

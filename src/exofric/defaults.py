@@ -180,6 +180,7 @@ SWEEP_TASK_OVERHEAD_S: Final[MappingProxyType[str, float]] = MappingProxyType(
 #: time (s) and at least SWEEP_MIN_GAIN_REL of the serial time (unitless fraction): a sweep of
 #: a few quick designs stays in the calling process.
 SWEEP_MIN_GAIN_S: Final = 0.2
+#: The relative part of that rule: the least gain as a fraction of the serial time (unitless).
 SWEEP_MIN_GAIN_REL: Final = 0.1
 
 __all__ += ["SWEEP_DESIGN_COST", "SWEEP_MIN_GAIN_REL", "SWEEP_MIN_GAIN_S", "SWEEP_POOL_START_S",
@@ -273,6 +274,7 @@ RAWLOG_MAX_FORCE_N: Final = 1.0e4
 #: Typical levels (MPa, N) used to name the probable unit of an implausible column: the unit
 #: whose reading lands closest (in log scale) to these.
 RAWLOG_TYPICAL_PRESSURE_MPA: Final = 0.4
+#: The typical force level (N) of the same rule.
 RAWLOG_TYPICAL_FORCE_N: Final = 100.0
 #: Factors between units of one quantity (MPa/kPa, bar/kPa, psi/kPa, lbf/N, kgf/N, ...): a jump of
 #: the level by one of them within one sample is a unit change inside the log (an error).
@@ -290,6 +292,7 @@ __all__ += ["RAWLOG_MAX_FORCE_N", "RAWLOG_MAX_PRESSURE_MPA", "RAWLOG_TYPICAL_FOR
 #: REDUCE_MIN_PLATEAU_S (0.005 MPa is 5 kPa, a regulator's typical hold accuracy; 2 % keeps the
 #: band proportionate at high pressure).
 REDUCE_PLATEAU_TOL_MPA: Final = 0.005
+#: The relative part of the plateau band (unitless fraction of the plateau's pressure).
 REDUCE_PLATEAU_TOL_REL: Final = 0.02
 #: Shortest pressure plateau (s).
 REDUCE_MIN_PLATEAU_S: Final = 1.0
@@ -298,6 +301,7 @@ REDUCE_SMOOTH_S: Final = 0.1
 #: Travel (mm, with a displacement column) or time (s, without) excluded from the start of a
 #: pull before the steady (kinetic) window: the stretch and the breakaway transient.
 REDUCE_SKIP_MM: Final = 2.0
+#: The same exclusion as time (s), for a log without a displacement column.
 REDUCE_SKIP_S: Final = 1.0
 #: Time excluded at the end of a pull (deceleration) (s).
 REDUCE_END_TRIM_S: Final = 0.1
@@ -306,6 +310,7 @@ REDUCE_MIN_PULL_S: Final = 0.5
 #: Tare: rest windows of this length (s) before and after each pull, starting this long (s)
 #: after a pull ends or before one starts (the wire relaxes).
 REDUCE_TARE_S: Final = 0.5
+#: The gap (s) between a pull's end or start and its tare window.
 REDUCE_TARE_GAP_S: Final = 0.3
 #: Moving-average window of the breakaway (static) peak (s): short against the breakaway transient,
 #: whose cusp a longer average flattens (0.02 s loses ~1 % of the peak on the virtual rig; 0.005 s

@@ -34,6 +34,8 @@ from exofric.friction import FrictionModel, SqueezeCurve
 
 __all__ = ["DesignSearch", "design_metrics", "search_designs", "DEFAULT_SPACE", "OBJECTIVES"]
 
+#: What :func:`search_designs` ranks by: ``"pressure"`` (the lowest pressure, MPa, that reaches
+#: the target torque) or ``"margin"`` (the largest torque margin, Nm, at the pressure limit).
 OBJECTIVES = ("pressure", "margin")
 
 #: Design space used by ``exofric design`` without a CONFIG: d1 and d2 around the base

@@ -45,6 +45,8 @@ __all__ = ["SCHEMA", "STATUSES", "SweepCheck", "SweepStore", "check_rows", "load
 #: The manifest's file name in a sweep folder.
 MANIFEST = "_sweep.json"
 
+#: The status of a design's rows in a sweep store: solved (``"ok"``), the solver failed
+#: (``"failed"``), or not solved because the structure is impossible (``"skipped"``).
 STATUSES = ("ok", "failed", "skipped")
 
 #: Columns of the dataset. Integers are 0 and floats NaN where there is no solve.

@@ -78,7 +78,7 @@ class PlaneStressBody(HyperelasticBody):
     At each quadrature point the out-of-plane stretch ``l`` minimises the energy density
     ``W(s, J, l) = W_iso(s, J, l) + K/2 (J l - 1)^2`` (``sigma_zz = 0``); a vectorised Newton
     on ``W_l = 0`` from ``l = 1/J`` converges in 2-4 iterations (``W_ll ~ K J^2`` dominates).
-    With the derivatives of :func:`~exofric.fe._hyperelastic.isochoric_derivatives`::
+    With the derivatives of :func:`~exofric.fe.isochoric_derivatives`::
 
         P = 2 W_s F + W_J cof F
         A = 4 W_ss F x F + 2 W_sJ (F x cof + cof x F) + W_JJ cof x cof + 2 W_s I + W_J Dcof

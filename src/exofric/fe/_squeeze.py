@@ -77,11 +77,15 @@ __all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "MU_MAX", "MU_WARN", "GRAVITY_OPTI
            "ROTATION_SPRING_REL",
            "wire_halfwidth", "wall_arc", "ring_wire_halfwidth", "ring_wall_arc"]
 
+#: Standard gravity (mm/s^2) for the tube's weight (``gravity="toward-wall"`` or
+#: ``"toward-wire"``).
 GRAVITY_MM_S2 = 9810.0
 
 #: Largest Coulomb coefficient accepted (unitless); above :data:`MU_WARN` it is implausible
 #: for silicone on metal (a warning where users give it).
 MU_MAX = 2.0
+#: Coulomb coefficient (unitless) above which a given coefficient draws a warning as
+#: implausible for silicone on metal (accepted up to :data:`MU_MAX`).
 MU_WARN = 1.5
 
 #: Orientations of gravity in the squeeze: none (regulariser only), toward the hole wall the

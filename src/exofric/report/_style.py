@@ -197,7 +197,7 @@ def comparison_cells(c: dict[str, Any]) -> tuple[str, str, str]:
 
     Values are rounded to the decimals the paper printed (``c["decimals"]``; ours with at
     least two significant figures). The difference (ours - paper) is shown as
-    ``c["difference_kind"]`` says (:data:`exofric.reproduction._compare.DIFFERENCE_KINDS`):
+    ``c["difference_kind"]`` says (the kinds of :class:`exofric.reproduction.Comparison`):
     ``relative`` -- in the row's unit and in % of the paper value; ``points`` -- the row is in
     %, so the difference is in percentage points (``pp``); ``absolute`` -- in the unit only;
     ``none`` -- '-' (p-values, fitted coefficients, a missing value).

@@ -68,6 +68,7 @@ __all__ = ["ReproduceConfig", "ReproduceResult", "StageTime", "STAGES", "reprodu
 
 #: Coarse meshes of ``--fast`` (CI): N(0.6 MPa) within 0.1% of the default mesh's.
 FAST_SQUEEZE_MESH = MeshSpec(n_radial=1, n_circ=12, grading=6.0)
+#: The inflation mesh of ``--fast`` (CI), coarse as :data:`FAST_SQUEEZE_MESH`.
 FAST_INFLATION_MESH = MeshSpec(n_radial=1, n_circ=4)
 
 #: (key, title) of each stage, in order.
