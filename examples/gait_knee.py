@@ -4,7 +4,8 @@ Run: ``python examples/gait_knee.py`` (about 5 s; it writes gait_knee.png).
 Units: s, rad (deg printed), Nm, N, MPa, normal litres, J.
 """
 
-# %% 1. One stride of walking: OpenSim's example data (Apache-2.0), right knee flexion and
+# %%
+# 1. One stride of walking: OpenSim's example data (Apache-2.0), right knee flexion and
 # moment from heel strike to heel strike. The knee absorbs energy over a stride (net work < 0).
 
 import numpy as np
@@ -24,20 +25,23 @@ print(f"{walk.source}: {walk.duration_s:.3f} s stride, flexion "
       f" deg, net knee work {walk.knee_work_j:.1f} J ({walk.knee_work_j / walk.body_mass_kg:.3f}"
       " J/kg)")
 
-# %% 2. The demand: 30 % of the biological moment while the knee flexes under an extension
+# %%
+# 2. The demand: 30 % of the biological moment while the knee flexes under an extension
 # moment in early stance (loading response) -- the only part of stance a brake can assist.
 setup = GaitSetup(assist=0.3, strides=10)
 ff = simulate_gait(walk, setup, controller="ff")
 print(f"demand window {ff.window}, peak {ff.peak_demand_nm:.1f} Nm; supply model "
       f"{ff.model.to_dict()}")
 
-# %% 3. Every controller on the default valve (ISO 6358 C = 0.05 dm^3/(s bar), 1 m of 4 mm
+# %%
+# 3. Every controller on the default valve (ISO 6358 C = 0.05 dm^3/(s bar), 1 m of 4 mm
 # hose): the metrics of the 10th stride, and the lock never pushes (power <= 0).
 table = compare_gait(walk, setup)
 print(table.format())
 assert not any(r.wrong_direction for r in table.results)
 
-# %% 4. A sizing question: a vent port of larger conductance releases faster.
+# %%
+# 4. A sizing question: a vent port of larger conductance releases faster.
 for c_vent in (0.05, 0.1, 0.2):
     plant = PneumaticParams(vent=Orifice(c_vent))
     r = simulate_gait(walk, setup, controller="mpc", plant=plant)

@@ -13,7 +13,8 @@ Run: ``python examples/pullout_calibration.py`` (about 20 s; writes pullout_cali
 when run as a script). Units: mm, N, MPa; coefficients unitless. SYNTHETIC data.
 """
 
-# %% 1. The structure, the material and the planted truth.
+# %%
+# 1. The structure, the material and the planted truth.
 # The base group of the paper (116 mm tube), Shore 62.5 silicone. mu_wall is taken as known
 # here (with fixed tube ends it only shows when the wall arc slips; see the docs).
 import numpy as np
@@ -30,7 +31,8 @@ TRAVEL_MM = 2.0                     # each pull's travel: well past the breakawa
 # a cheap model (draft mesh, 20 cable elements, 30 load steps): the data come from the same one
 SETTINGS = PullFitSettings(accuracy="draft", n_z=20, n_path=30)
 
-# %% 2. Noisy pulls: three per pressure, each with its own 2 % friction scatter (pull to
+# %%
+# 2. Noisy pulls: three per pressure, each with its own 2 % friction scatter (pull to
 # pull, as real rigs show) and 0.2 N load-cell noise per sample.
 rng = np.random.default_rng(7)
 squeeze = SqueezeSetup(BASE, MAT, accuracy="draft").solve(list(PRESSURES))
@@ -45,7 +47,8 @@ for k, p in enumerate(PRESSURES):
         pulls.append({"label": f"{p:g} MPa #{rep + 1}", "pressure_mpa": p,
                       "displacement_mm": x, "force_n": np.abs(force)})
 
-# %% 3. Fit mu_wire and mu_wire_wall to the whole curves.
+# %%
+# 3. Fit mu_wire and mu_wire_wall to the whole curves.
 fit = fit_pullout(BASE, MAT, pulls, mu_wall=TRUTH["mu_wall"], mu_wire_wall="fit",
                   settings=SETTINGS)
 print(fit.to_frame().to_string(index=False, float_format=lambda v: f"{v:.4f}"))
@@ -55,7 +58,8 @@ for name in fit.fitted:
           f"[{fit.ci_low[name]:.4f}, {fit.ci_high[name]:.4f}] "
           f"({'covers' if inside else 'MISSES'} the truth)")
 
-# %% 4. What the plateaus alone would give: the same two unknowns from the sliding forces,
+# %%
+# 4. What the plateaus alone would give: the same two unknowns from the sliding forces,
 # on columns L S_wire and L N that are nearly parallel (condition number >> 1).
 pl = fit.plateau
 print(f"plateaus alone: mu_wire {pl['mu_wire']:.3f} +- {pl['se_cr1'][0]:.3f}, mu_wire_wall "

@@ -3,7 +3,8 @@
 Run: ``python examples/pullout_knee.py`` (about 5 s). Units: mm, N, MPa; Nm, rad.
 """
 
-# %% 1. One section: the axial response of a unit length of squeezed tube at 0.6 MPa.
+# %%
+# 1. One section: the axial response of a unit length of squeezed tube at 0.6 MPa.
 # The wire sticks to the tube, slip spreads over the tube-wire arc, and at full sliding the
 # force per length is mu_wire S_wire + mu_wire_wall N (the squeeze's contact integrals).
 from exofric.friction import joint_stiffness
@@ -17,12 +18,14 @@ sec = section_pullout(BASE, mat, 0.6, accuracy="draft", **mu)
 print(f"section: k0 = {sec.initial_stiffness_n_per_mm2:.3f} N/mm per mm, full slip at "
       f"{sec.slip_displacement_mm:.3f} mm, plateau {sec.sliding_force_n_per_mm:.3f} N/mm")
 
-# %% 2. The whole 116 mm tube, cable EA 1.3e5 N, a static coefficient 20% above the kinetic:
+# %%
+# 2. The whole 116 mm tube, cable EA 1.3e5 N, a static coefficient 20% above the kinetic:
 # breakaway peak, then sliding; one back-and-forth gives the hysteresis loop.
 r = pullout(BASE, mat, 0.6, mu_static=0.36, displacement_mm=3.0, accuracy="draft", **mu)
 print(f"whole length: breakaway {r.static_force_n:.1f} N, sliding {r.sliding_force_n:.1f} N")
 
-# %% 3. At the knee (R = 0.1 m): stiffness before slip and breakaway torque over pressure.
+# %%
+# 3. At the knee (R = 0.1 m): stiffness before slip and breakaway torque over pressure.
 j = joint_stiffness(BASE, mat, [0.2, 0.4, 0.6], radius_m=0.1, accuracy="draft", **mu)
 for p, k, t in zip(j.pressure_mpa, j.stiffness_nm_per_rad, j.breakaway_torque_nm,
                    strict=True):

@@ -379,3 +379,12 @@ def test_tube_ends_against_the_incompressible_references():
     # the squeeze with closed ends: the tube lengthens, so N per mm in the hole drops
     assert ex.squeeze_axial_stretch > 1.05
     assert ex.n_at_0_6_mpa_n_per_mm["closed"] < ex.n_at_0_6_mpa_n_per_mm["plane-strain"]
+
+
+def test_cell_markers_carry_no_text():
+    # sphinx-gallery drops the text on a "# %%" line: the gallery page lost each section's
+    # title ("1. One stride of walking ...") until the text moved to the next comment line
+    bad = [f"{p.name}:{i}" for p in sorted(EX.glob("*.py"))
+           for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+           if line.startswith("# %%") and line.strip() != "# %%"]
+    assert not bad, bad
