@@ -388,3 +388,24 @@ def test_cell_markers_carry_no_text():
            for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
            if line.startswith("# %%") and line.strip() != "# %%"]
     assert not bad, bad
+
+
+# --- silicone_fit.py, hardware_loop_sim.py ----------------------------------------------------
+
+
+def test_silicone_example_neo_hookean_is_the_closed_form_least_squares():
+    # incompressible neo-Hookean in uniaxial tension: P = mu (l - l^-2), linear in mu, so the
+    # least-squares mu is sum(P g) / sum(g^2) with g = l - l^-2 (an independent closed form)
+    ex = example("silicone_fit")
+    g = ex.stretch - ex.stretch ** -2.0
+    mu = float(np.sum(ex.stress_mpa * g) / np.sum(g * g))
+    assert ex.fits["neo-hookean"].model.shear_modulus_mpa == pytest.approx(mu, rel=1e-6)
+    assert all(f.admissible for f in ex.fits.values())
+    assert ex.fits["mooney-rivlin"].constrained        # C10 + C01 < 0 unconstrained on silicone
+
+
+def test_hardware_loop_example_settles_and_vents():
+    ex = example("hardware_loop_sim")
+    assert ex.result.vented and ex.result.cycles == 1001
+    assert ex.m.settling_time_s < 9.0
+    assert ex.frame["force_n"].iloc[-1] == pytest.approx(ex.TARGET_N, rel=0.02)

@@ -336,6 +336,7 @@ WRITTEN_IMAGES = WrittenImages()
 #: not listed here follow, by file name.
 EXAMPLE_ORDER: tuple[str, ...] = (
     "treloar_fit.py",
+    "silicone_fit.py",
     "inflate_tube.py",
     "tube_ends.py",
     "squeeze_base_group.py",
@@ -345,6 +346,7 @@ EXAMPLE_ORDER: tuple[str, ...] = (
     "reduce_rig_log.py",
     "predict_structures.py",
     "pi_loop.py",
+    "hardware_loop_sim.py",
     "gait_knee.py",
     "small_sweep.py",
 )
