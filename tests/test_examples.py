@@ -409,3 +409,15 @@ def test_hardware_loop_example_settles_and_vents():
     assert ex.result.vented and ex.result.cycles == 1001
     assert ex.m.settling_time_s < 9.0
     assert ex.frame["force_n"].iloc[-1] == pytest.approx(ex.TARGET_N, rel=0.02)
+
+
+def test_tolerance_example_bands_are_ordered_around_the_nominal():
+    # the band's quantiles in order and the nominal design inside them at every pressure (the
+    # band itself is checked against plain Monte Carlo and the linearisation in test_tolerance)
+    ex = example("tolerance_bands")
+    f = ex.frame
+    assert np.all(f["squeeze_force_n_p05"] <= f["squeeze_force_n_p50"])
+    assert np.all(f["squeeze_force_n_p50"] <= f["squeeze_force_n_p95"])
+    assert np.all((f["squeeze_force_n_p05"] <= f["squeeze_force_n"])
+                  & (f["squeeze_force_n"] <= f["squeeze_force_n_p95"]))
+    assert 5.0 < ex.width_pct < 60.0                  # +-2 Shore, +-0.1 mm: tens of percent

@@ -340,6 +340,7 @@ EXAMPLE_ORDER: tuple[str, ...] = (
     "inflate_tube.py",
     "tube_ends.py",
     "squeeze_base_group.py",
+    "tolerance_bands.py",
     "pullout_knee.py",
     "pullout_calibration.py",
     "fit_gamma.py",
