@@ -152,3 +152,15 @@ def test_a_group_misdeclared_fails_at_import_not_at_run_time() -> None:
         def g(hole: float = typer.Option(1.0),
               st: StructureOptions = StructureOptions.options()) -> None: ...
         grouped(g)
+
+
+def test_help_lists_the_commands_in_pipeline_order() -> None:
+    # issue 34: `exofric --help` listed commands in module-name order; now the pipeline's
+    import typer
+
+    from exofric.cli import app
+
+    names = list(typer.main.get_command(app).commands)   # type: ignore[attr-defined]
+    pipeline = ["paper", "material", "inflate", "calibrate", "squeeze", "pullout", "reduce",
+                "fit-friction", "predict", "torque", "gait", "sweep", "reproduce", "control"]
+    assert [n for n in names if n in pipeline] == pipeline

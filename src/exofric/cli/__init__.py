@@ -55,13 +55,13 @@ def _root(
     """exofric: model, predict and control friction in variable-stiffness exosuits."""
 
 
-#: The order of the commands in ``exofric --help``: the order they had when modules were
-#: listed by name and some held two or four commands (friction: fit-friction, predict,
-#: invert, rig; pullout: pullout, stiffness; sweep: sweep, design). A module not listed here
-#: follows them, by name; command groups (control) come last in typer's listing anyway.
-_ORDER = ("calibrate", "fit_pullout", "fit_friction", "predict", "invert", "rig", "gait",
-          "inflate", "material", "paper", "pullout", "stiffness", "reduce", "reproduce", "ring",
-          "squeeze", "sweep", "design", "torque", "control")
+#: The order of the commands in ``exofric --help``: the pipeline (issue 34): the paper, the
+#: material and its calibration, the FE problems, friction from rig data and its predictions,
+#: the lock at the knee, control, design sweeps, the whole paper. A module not listed follows
+#: them, by name; command groups (control) come last in typer's listing anyway.
+_ORDER = ("paper", "material", "inflate", "calibrate", "ring", "squeeze", "pullout", "stiffness",
+          "reduce", "fit_friction", "rig", "predict", "invert", "torque", "fit_pullout", "gait",
+          "sweep", "design", "reproduce", "control")
 
 
 def _listed(name: str) -> tuple[int, str]:
