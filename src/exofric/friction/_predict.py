@@ -47,7 +47,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from exofric.errors import InputError, check_positive, check_pressures, check_series
 from exofric.friction._fit import relative_errors
-from exofric.friction._interfaces import WIRE_KEY
+from exofric.friction._interfaces import WIRE_KEY, _get
 from exofric.friction._law import FrictionLaw, curve_column
 from exofric.friction._model import FrictionModel
 from exofric.friction._stats import AnovaResult, anova_vs_base
@@ -732,28 +732,13 @@ def _same_geometry(a: Structure, b: Structure) -> bool:
                ((a.hole_mm, b.hole_mm), (a.tube_od_mm, b.tube_od_mm), (a.wire_mm, b.wire_mm)))
 
 
-def _wire_per_mm(res: Any) -> Any:
-    """S_wire per mm (N/mm) of a squeeze result, its dict, or a stand-in; None if absent.
-
-    A :class:`~exofric.simulate.SqueezeResult` holds it in its contact group; its JSON and
-    simpler stand-ins at the top level.
-    """
-    contact = getattr(res, "contact", None)
-    per_mm = getattr(contact, WIRE_KEY, None) if contact is not None else None
-    if per_mm is None:
-        per_mm = getattr(res, WIRE_KEY, None)
-    if per_mm is None and isinstance(res, Mapping):
-        per_mm = res.get(WIRE_KEY)
-    return per_mm
-
-
 def _wire_integral(res: Any, structure: Structure) -> NDArray[np.float64]:
     """S_wire (N) per pressure of a squeeze result, or InputError naming the missing key.
 
     The result gives it per mm of tube (``wire_pressure_integral_n_per_mm``, N/mm): times its
     ``length_mm`` (default the structure's).
     """
-    per_mm = _wire_per_mm(res)
+    per_mm = _get(res, WIRE_KEY)
     if per_mm is None:
         raise InputError(
             f"{structure.name}: the squeeze result has no {WIRE_KEY!r} (the tube-wire contact "
@@ -790,7 +775,7 @@ def _law_inputs(res: Any, s: Structure, p: NDArray[np.float64], n: NDArray[np.fl
     """
     cols = {"pressure_mpa": p, _SQUEEZE_COLUMN: n}
     needed = {k for law in laws for k in law.inputs} - set(cols)
-    maybe = _wire_per_mm(res)
+    maybe = _get(res, WIRE_KEY)
     if _WIRE_COLUMN in needed or (maybe is not None and np.size(maybe) == p.size):
         cols[_WIRE_COLUMN] = _wire_integral(res, s)
         if cols[_WIRE_COLUMN].shape != p.shape:
