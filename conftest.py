@@ -37,3 +37,37 @@ def _doctest_names(request: pytest.FixtureRequest, doctest_namespace: dict[str, 
     if "tmp_dir" in source:
         doctest_namespace["tmp_dir"] = request.getfixturevalue("tmp_path")
     request.getfixturevalue("monkeypatch").chdir(ROOT)
+
+
+def _resolve(dotted: str) -> Any:
+    """The object named ``dotted`` (a module, then attributes), or None."""
+    import importlib
+
+    parts = dotted.split(".")
+    for i in range(len(parts), 0, -1):
+        try:
+            obj: Any = importlib.import_module(".".join(parts[:i]))
+        except ImportError:
+            continue
+        for name in parts[i:]:
+            obj = getattr(obj, name, None)
+        return obj
+    return None
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Each doctest runs once, from its home module: a public function's checked wrapper
+    (``exofric._validate.checked``) names its package as ``__module__`` (so it pickles by its
+    public path), which makes doctest find its examples a second time in the package's
+    ``__init__``, without the home module's names; those copies are deselected."""
+    keep, dropped = [], []
+    for item in items:
+        dtest = getattr(item, "dtest", None)
+        if (dtest is not None and item.path.name == "__init__.py"
+                and hasattr(_resolve(dtest.name), "__wrapped__")):
+            dropped.append(item)
+        else:
+            keep.append(item)
+    if dropped:
+        config.hook.pytest_deselected(items=dropped)
+        items[:] = keep

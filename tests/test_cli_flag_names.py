@@ -56,7 +56,7 @@ def _shown(argv: list[str], exc: InputError) -> str:
      "tube_id must be < tube_od_mm in design 3"),
     (["invert"], "target friction 8 N is outside the curve's range [16, 205] N", None,
      "target friction 8 N is outside the curve's range [16, 205] N"),
-    (["control", "run"], "target must be > 0 N", None, "--target must be > 0 N"),
+    (["control", "run"], "target must be > 0 N", None, "--target-friction must be > 0 N"),
     # a file name that starts like an option is a file name
     (["calibrate"], "data.csv: file not found", "data", "data.csv: file not found"),
     # no parameter: never rewritten
@@ -85,3 +85,23 @@ def test_a_name_of_another_command_is_not_a_flag_end_to_end(cli):
              "--target-friction", "8"])
     assert r.code == 2 and r.out == ""
     assert r.err.startswith("exofric: error: target friction 8 N is outside"), r.err
+
+
+@pytest.mark.parametrize("argv,message,param,expected", [
+    # a message about the user's file: its columns and keys stay as the file names them,
+    # even where a name plus unit suffix is also an option (pullout's --pressure)
+    (["pullout"], "s.json: pressure_mpa must be >= 0", "pressure_mpa",
+     "s.json: pressure_mpa must be >= 0"),
+    (["fit-pullout"], "/data/run 3.csv: gap in time_s from 1 s to 9 s", "time_s",
+     "/data/run 3.csv: gap in time_s from 1 s to 9 s"),
+    (["reduce"], "log.csv: columns: unknown column 'x'", "columns",
+     "log.csv: --columns: unknown column 'x'"),
+    # the Python API's kind errors (exofric._validate): the parameter opens the message,
+    # the function's Python name stays Python
+    (["squeeze"], "mu_wall must be a number, got '0.2' (str) in squeeze()", "mu_wall",
+     "--mu-wall must be a number, got '0.2' (str) in squeeze()"),
+    (["squeeze"], "material is required by squeeze() (missing argument)", "material",
+     "material is required by squeeze() (missing argument)"),
+])
+def test_file_messages_and_kind_errors(argv, message, param, expected):
+    assert _shown(argv, InputError(message, param=param)) == expected

@@ -100,6 +100,7 @@ def test_missing_optional_dependency_names_its_extra(monkeypatch, capsys):
             raise ModuleNotFoundError("No module named 'pyarrow'", name="pyarrow")
 
     monkeypatch.setattr(typer.main, "get_command", lambda _app: Command())
+    monkeypatch.setattr(cli, "_BUILT", [None, None])  # the click tree is built once per app
     code = cli.run(["sweep", "x.toml"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1

@@ -4,8 +4,11 @@ Commands are discovered from the CLI itself (``sweep`` and ``design`` are covere
 tests). Each command starts from a cheap valid invocation (small meshes, the paper's tables,
 no FE where the command allows it); each of its options in turn gets every hostile value
 (negative, zero, NaN, inf, 1e300, a huge integer, an empty string, a missing path, a
-directory). Runs are in-process (``exofric.cli.run``) so the whole sweep of ~700 runs stays
-in seconds; an exception escaping ``run`` is what a user would see as a traceback.
+directory). Runs are in-process (``exofric.cli.run``, which builds the click command tree once:
+a failing run costs milliseconds) so the whole sweep of ~900 runs stays in seconds; an exception
+escaping ``run`` is what a user would see as a traceback. Options read only in another mode of a
+command (``material --fit``'s tensile-specimen options, ``calibrate --tensile``'s) are attacked
+again from a base in that mode (``EXTRA_BASES``), so their own checks are reached.
 """
 
 from __future__ import annotations
@@ -36,9 +39,15 @@ HOSTILE_BY_OPTION = {
     ("reproduce", "--notes-dir"): [MISSING, "{file}"],
 }
 
+#: --plot of any command: a number is a file name (``-1`` -> ``-1.png``, drawn and written, a
+#: second or more each); one such name, then the values refused before any work (the shared
+#: checks of ``plot_path``: tests/test_cli_hostile.py::test_reported_attacks...)
+HOSTILE_BY_FLAG = {"--plot": ["-1", "", MISSING, "{dir}"]}
+
 #: commands whose every accepted value runs a fit or a simulation: the five values that reach
 #: each kind of check (sign, NaN, overflow, empty, a directory), to keep the suite's time
-HOSTILE_BY_COMMAND = {c: ["-1", "nan", "1e300", "", "{dir}"] for c in ("fit-pullout", "gait")}
+HOSTILE_BY_COMMAND = {c: ["-1", "nan", "1e300", "", "{dir}"]
+                      for c in ("fit-pullout", "gait", "pullout", "stiffness")}
 
 
 def _base(tmp: Path) -> dict[str, list[str]]:
@@ -98,6 +107,26 @@ def _base(tmp: Path) -> dict[str, list[str]]:
     }
 
 
+MATERIAL_DATA = Path(__file__).resolve().parents[1] / "src" / "exofric" / "material" / "data"
+DS20 = str(MATERIAL_DATA / "srmd_dragonskin20_uniaxial.csv")
+
+#: A second valid invocation where a command's options mean something else (fits instead of
+#: the default path): every option of the command is attacked again from this base, so that
+#: an option read only in that mode (--gauge-length, --stress-kind, --residuals...) has its
+#: own value checked, not just refused as out of place.
+EXTRA_BASES: dict[str, tuple[str, list[str], list[str]]] = {
+    "material --fit": ("material", ["--fit", DS20, "--model", "neo-hookean"], [
+        "--fit", "--fit-biaxial", "--fit-planar", "--stress-kind", "--strain-kind",
+        "--gauge-length", "--area", "--width", "--thickness", "--columns", "--stability-range",
+        "--residuals", "--terms", "--model"]),
+    "calibrate --tensile": ("calibrate", ["--tensile", DS20, "--model", "neo-hookean"], [
+        "--tensile", "--tensile-biaxial", "--tensile-planar", "--stress-kind", "--strain-kind",
+        "--gauge-length", "--area", "--width", "--thickness", "--tensile-noise"]),
+}
+#: calibrate fits the material for every value it accepts: the five values of each kind
+HOSTILE_BY_COMMAND["calibrate --tensile"] = ["-1", "nan", "1e300", "", "{dir}"]
+
+
 def _commands() -> dict[str, list[tuple[str, bool]]]:
     """``{"control identify": [(option or "ARG", is_argument), ...]}`` from the CLI."""
     out: dict[str, list[tuple[str, bool]]] = {}
@@ -145,18 +174,24 @@ def _check(args: list[str], code: int, err: str) -> None:
         assert len(lines) == 1, (args, err)
 
 
-@pytest.mark.parametrize("command", sorted(COMMANDS))
-def test_hostile_values(command, tmp_path, monkeypatch):
+@pytest.mark.parametrize("case", sorted(COMMANDS) + sorted(EXTRA_BASES))
+def test_hostile_values(case, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    base = _base(tmp_path)[command]
+    if case in EXTRA_BASES:
+        command, base, attacked = EXTRA_BASES[case]
+    else:
+        command, base, attacked = case, _base(tmp_path)[case], None
     if command != "reproduce":  # its only valid run is the whole paper (tests/test_reproduce.py)
         code, err = _run([*command.split(), *base, "--json"])
         assert code == 0, err  # the base itself is valid
     (tmp_path / "adir").mkdir()
     (tmp_path / "afile").write_text("x\n")
-    for opt, is_arg in COMMANDS[command]:
-        for value in HOSTILE_BY_OPTION.get((command, opt),
-                                           HOSTILE_BY_COMMAND.get(command, HOSTILE)):
+    options = [(o, a) for o, a in COMMANDS[command] if attacked is None or o in attacked]
+    assert attacked is None or len(options) == len(attacked), (case, options)
+    for opt, is_arg in options:
+        values = HOSTILE_BY_OPTION.get((command, opt)) or HOSTILE_BY_FLAG.get(opt) or \
+            HOSTILE_BY_COMMAND.get(case, HOSTILE)
+        for value in values:
             value = value.format(dir=tmp_path / "adir", file=tmp_path / "afile")
             if is_arg:
                 args = [*command.split(), value, "--json"]

@@ -5,6 +5,10 @@ Random finite, non-finite, huge, negative and non-numeric arguments to the publi
 bytes / random numbers in the files the readers of exofric.io take: the only outcomes allowed
 are a valid result or :class:`exofric.errors.InputError` (never a builtin ValueError/TypeError,
 a NumPy warning turned error or a crash). No FE solve runs here.
+
+Every public function of every stage (issue 38): each argument of a kind its type hint does not
+admit (a bare object, a str for a number, None, True, a dict, a list of junk, complex, bytes;
+systematically and drawn at random) is an InputError naming that parameter, before any work.
 """
 
 from __future__ import annotations
@@ -207,3 +211,250 @@ def test_squeeze_json_random_numbers(tmp_path, p, n):
 
     text = json.dumps({"pressure_mpa": p, "squeeze_force_n": n})
     _read(tmp_path, "squeeze", text.encode(), ".json")
+
+
+# ---- the Python API's argument kinds (issue 38) ----------------------------------------------
+#
+# Every function a stage exports checks its arguments' kinds from its type hints
+# (exofric._validate): an argument of the wrong kind is an InputError naming the parameter,
+# never a builtin TypeError from deep inside nor a string taken for a number. The reference
+# for "wrong" is the hint's text, read here independently of exofric._validate: a value is
+# wrong for a hint when none of the hint's words admits it (a str is wrong for a hint that
+# names no str, Path, Literal, Any or object; None for one without None; ...).
+
+import functools  # noqa: E402
+import importlib  # noqa: E402
+import inspect  # noqa: E402
+import pickle  # noqa: E402
+import re  # noqa: E402
+
+STAGE_MODULES = ["exofric.paper", "exofric.material", "exofric.fe", "exofric.simulate",
+                 "exofric.calibration", "exofric.friction", "exofric.control",
+                 "exofric.hardware", "exofric.design", "exofric.reproduction", "exofric.io",
+                 "exofric.plots", "exofric.report"]
+
+#: Parameters that take any object by design (their hint is Any, object, or a protocol of
+#: methods that isinstance cannot check); the function checks them itself.
+ACCEPTS_ANYTHING = {
+    # matplotlib Axes/Figure, or None: matplotlib's own objects
+    *(f"exofric.plots.{f}:{a}" for f, a in [
+        ("plot_calibration", "ax"), ("plot_material_calibration", "fig"), ("plot_table1", "fig"),
+        ("save", "fig"), ("plot_control_cases", "fig"), ("plot_simulation", "ax"),
+        ("plot_design_map", "ax"), ("draw_section", "ax"), ("plot_contact_pressure", "ax"),
+        ("plot_inflation", "fig"), ("plot_inflation_curve", "ax"), ("plot_squeeze", "fig"),
+        ("plot_squeeze_curves", "ax"), ("plot_squeeze_force", "ax"), ("plot_tube_ends", "fig"),
+        ("plot_cubic_fit", "ax"), ("plot_gamma_fit", "fig"), ("plot_predictions", "fig"),
+        ("plot_torque", "ax"), ("plot_gait", "fig"), ("plot_gait_compare", "fig"),
+        ("plot_interface_fit", "fig"), ("plot_material_fit", "fig"), ("plot_pullout_fit", "fig"),
+        ("plot_joint_stiffness", "ax"), ("plot_pullout", "ax"), ("plot_reduction", "fig"),
+        ("plot_ring_test", "ax")]),
+    # results of several kinds drawn by duck typing
+    "exofric.plots.plot_cubic_fit:ours", "exofric.plots.plot_cubic_fit:paper_eq8",
+    "exofric.plots.plot_pullout_fit:fit", "exofric.plots.plot_joint_stiffness:result",
+    "exofric.plots.plot_pullout:result",
+    # any JSON-able object / any value to format
+    "exofric.io.jsonable:obj", "exofric.io.write_json:obj", "exofric.report.fmt:v",
+    # data in several documented forms (arrays, frames, mappings, result objects)
+    "exofric.calibration.calibrate:data", "exofric.calibration.calibrate_material:inflation",
+    "exofric.calibration.calibrate_material:tensile",
+    "exofric.calibration.calibrate_material:ring_mesh",
+    "exofric.friction.fit_gamma:friction_pressure_mpa", "exofric.friction.fit_gamma:friction_n",
+    "exofric.friction.predict:material", "exofric.friction.law_columns:curves",
+    "exofric.friction.fit_pullout:pulls", "exofric.friction.simulate_law_rig:curves",
+    "exofric.material.fit_material:uniaxial", "exofric.material.fit_material:biaxial",
+    "exofric.material.fit_material:planar",
+    "exofric.control.identify_charge:time_s", "exofric.control.identify_charge:pressure_mpa",
+    "exofric.control.identify_charge:command_mpa", "exofric.control.closed_loop:source",
+    # protocols of methods (a device, a controller, a clock, a plant, an FE problem)
+    "exofric.hardware.open_device:plant", "exofric.hardware.open_device:friction",
+    "exofric.hardware.run_loop:device", "exofric.hardware.run_loop:controller",
+    "exofric.hardware.run_loop:clock", "exofric.fe.solve_path:problem",
+}
+
+#: Words of hints this test knows; a hint with another word (a type alias, a protocol) is
+#: probed only with a bare object no hint but Any admits.
+_BUILTIN_WORDS = {
+    "float", "int", "bool", "str", "bytes", "None", "list", "tuple", "dict", "set", "Sequence",
+    "Mapping", "Iterable", "Collection", "MutableMapping", "Callable", "Optional", "Union",
+    "Literal", "Any", "object", "np", "ndarray", "NDArray", "ArrayLike", "float64", "int64",
+    "intp", "bool_", "npt", "Path", "pd", "DataFrame", "Series", "sp", "csr_matrix",
+}
+
+
+class _Junk:
+    """A bare object: no hint but Any/object admits it."""
+
+    def __repr__(self) -> str:
+        return "<junk>"
+
+
+@functools.cache
+def _public_functions() -> dict[str, object]:
+    found: dict[str, object] = {}
+    seen: set[int] = set()
+    for modname in STAGE_MODULES:
+        mod = importlib.import_module(modname)
+        for name in mod.__all__:
+            obj = getattr(mod, name)
+            if inspect.isfunction(obj) and id(obj) not in seen:
+                seen.add(id(obj))
+                found[f"{modname}.{name}"] = obj
+    return found
+
+
+
+def _words(hint: str) -> set[str]:
+    return set(re.findall(r"[A-Za-z_]\w*", re.sub(r"(['\"]).*?\1", "", hint)))
+
+
+@functools.cache
+def _classes() -> frozenset[str]:
+    """The public classes of every stage, by name."""
+    return frozenset(n for m in STAGE_MODULES for n in importlib.import_module(m).__all__
+                     if inspect.isclass(getattr(importlib.import_module(m), n)))
+
+
+def _known(words: set[str]) -> bool:
+    return words <= _BUILTIN_WORDS | _classes()
+
+
+def _wrong_values(hint: str, default: object) -> list[object]:
+    """Values the hint's words do not admit (never the default: a default is not checked)."""
+    w = _words(hint)
+    out: list[object] = [_Junk()]
+    if not _known(w) or w & {"Any", "object"}:
+        return out
+    bare_seq = re.search(r"\b(Sequence|list|tuple|Iterable|Collection)\b(?!\[)", hint)
+    if not w & {"str", "Path", "Literal"}:
+        out += ["0.2", "x" * 500]
+    if not w & {"None", "Optional"}:
+        out.append(None)
+    if not w & {"bool", "ArrayLike"}:
+        out.append(True)
+    if not w & {"float", "ArrayLike"}:
+        out.append(0.5)
+    if not w & {"Mapping", "dict", "MutableMapping"}:
+        out.append({"a": 1})
+    if not bare_seq:
+        out.append([_Junk()])
+    out += [1 + 2j, b"bytes"]
+    return [v for v in out if v is not default]
+
+
+@functools.cache
+def _probes() -> list[tuple[str, str, str, object]]:
+    """(function, parameter, hint, default) of every checked parameter of every function."""
+    out = []
+    for qual, fn in _public_functions().items():
+        for p in inspect.signature(fn).parameters.values():
+            if p.kind is p.VAR_KEYWORD or p.annotation is p.empty:
+                continue
+            if f"{qual}:{p.name}" in ACCEPTS_ANYTHING:
+                continue
+            out.append((qual, p.name, str(p.annotation), p.default))
+    return out
+
+
+def _call_with(qual: str, param: str, value: object) -> BaseException | None:
+    fn = _public_functions()[qual]
+    kind = inspect.signature(fn).parameters[param].kind
+    try:
+        if kind is inspect.Parameter.VAR_POSITIONAL:
+            fn(value)
+        else:
+            fn(**{param: value})
+    except BaseException as exc:  # noqa: BLE001 - the test inspects whatever came out
+        return exc
+    return None
+
+
+def test_every_public_function_checks_its_arguments_and_keeps_its_signature():
+    from exofric._validate import is_checked
+
+    funcs = _public_functions()
+    assert len(funcs) > 150
+    for qual, fn in funcs.items():
+        assert is_checked(fn), qual
+        raw = inspect.unwrap(fn)
+        assert inspect.signature(fn) == inspect.signature(raw) and fn.__doc__ == raw.__doc__
+        assert pickle.loads(pickle.dumps(fn)) is fn, qual   # by reference, for process pools
+    import exofric
+
+    for name in exofric.__all__:   # the top-level names are the same checked objects
+        obj = getattr(exofric, name)
+        if inspect.isfunction(obj):
+            assert is_checked(obj) and any(obj is f for f in funcs.values()), name
+
+
+def test_accepts_anything_lists_only_real_parameters():
+    funcs = _public_functions()
+    for entry in ACCEPTS_ANYTHING:
+        qual, param = entry.split(":")
+        assert qual in funcs and param in inspect.signature(funcs[qual]).parameters, entry
+
+
+@pytest.mark.parametrize("module", STAGE_MODULES)
+def test_a_wrong_kind_is_an_input_error_naming_the_parameter(module):
+    """Every checked parameter of every function, each value its hint does not admit: an
+    InputError whose ``param`` is that parameter and whose one line names it."""
+    bad = []
+    for qual, param, hint, default in _probes():
+        if not qual.startswith(module + "."):
+            continue
+        for value in _wrong_values(hint, default):
+            exc = _call_with(qual, param, value)
+            ok = isinstance(exc, InputError) and exc.param == param and \
+                str(exc).startswith(param + " ") and "\n" not in str(exc) and len(str(exc)) < 300
+            if not ok:
+                bad.append(f"{qual}({param}={value!r:.20}) [{hint}] -> {exc!r:.200}")
+    assert not bad, "\n".join(bad)
+
+
+@settings(max_examples=100, deadline=None)
+@given(data=st.data())
+def test_random_wrong_kinds_are_input_errors(data):
+    """Random text, bytes, complex numbers, nested lists and dicts for random parameters."""
+    qual, param, hint, default = data.draw(st.sampled_from(_probes()))
+    w = _words(hint)
+    kinds = [st.builds(_Junk), st.complex_numbers(allow_nan=False).filter(lambda z: z.imag),
+             st.binary(max_size=8)]
+    if _known(w) and not w & {"Any", "object"}:
+        if not w & {"str", "Path", "Literal"}:
+            kinds.append(st.text(max_size=8))
+        if not w & {"Mapping", "dict", "MutableMapping"}:
+            kinds.append(st.dictionaries(st.text(max_size=3), st.integers(), min_size=1))
+        if not re.search(r"\b(Sequence|list|tuple|Iterable|Collection)\b(?!\[)", hint):
+            kinds.append(st.lists(st.one_of(st.builds(_Junk), st.just(1j)), min_size=1,
+                                  max_size=3))
+    value = data.draw(st.one_of(kinds))
+    exc = _call_with(qual, param, value)
+    assert isinstance(exc, InputError) and exc.param == param, (qual, param, value, exc)
+
+
+def test_the_reported_calls_and_the_kinds_that_keep_working(tmp_path):
+    """Issue 38's two calls; lists for arrays, NumPy scalars for numbers, str for paths."""
+    import numpy as np
+
+    import exofric as ef
+    from exofric import io
+
+    with pytest.raises(InputError, match=r"^log must be a DataFrame or a mapping") as e1:
+        ef.reduce_log(12345)
+    with pytest.raises(InputError, match=r"^mu_wall must be a number, got '0.2' \(str\)"):
+        ef.squeeze(ef.BASE, MooneyRivlin.from_shore(62.5), [0.6], mu_wall="0.2")
+    with pytest.raises(InputError, match=r"^material is required by squeeze\(\)") as e3:
+        ef.squeeze(ef.BASE)
+    with pytest.raises(InputError, match=r"^bogus_mm is not a parameter of torque\(\)"):
+        ef.torque(180.0, bogus_mm=1.0)
+    assert (e1.value.param, e3.value.param) == ("log", "material")
+    # NumPy scalars are numbers; a Python int is a float
+    a = ef.torque(np.float64(180.49), arm_radius_m=np.float64(0.1))
+    b = ef.torque(180.49, arm_radius_m=0.1)
+    assert a.to_dict() == b.to_dict()
+    # array_like: lists, tuples and arrays alike (fit_gamma: the closed form on exact data)
+    p, n = [0.2, 0.4, 0.6], [10.0, 20.0, 30.0]
+    f1 = ef.fit_gamma(p, [7.0, 14.0, 21.0], tuple(p), np.array(n), ci="analytic")
+    assert f1.gamma == pytest.approx(0.7, rel=1e-12)
+    # str or Path for paths
+    io.write_json({"a": 1}, str(tmp_path / "a.json"))
+    assert io.read_json(tmp_path / "a.json") == io.read_json(str(tmp_path / "a.json"))

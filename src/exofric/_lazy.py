@@ -10,16 +10,19 @@ from __future__ import annotations
 import importlib
 import sys
 from collections.abc import Callable, Mapping, Sequence
-from types import ModuleType
+from types import FunctionType, ModuleType
 from typing import Any
 
-__all__ = ["facade"]
+__all__ = ["export_checked", "facade"]
 
 
 def facade(
     package: str, homes: Mapping[str, str], public: Sequence[str]
 ) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
     """``(__getattr__, __dir__)`` for a package whose names load from their modules on first use.
+
+    A public function is exported checked (:func:`exofric._validate.checked`): an argument of
+    the wrong kind raises :class:`~exofric.errors.InputError` naming the parameter.
 
     Parameters
     ----------
@@ -49,6 +52,10 @@ def facade(
             raise AttributeError(f"module {package!r} has no attribute {name!r}")
         path = home if "." in home else f"{package}.{home}"
         value = getattr(importlib.import_module(path), name)
+        if isinstance(value, FunctionType):   # its arguments' kinds checked (exofric._validate)
+            from exofric._validate import checked
+
+            value = checked(value, package, name)
         setattr(sys.modules[package], name, value)
         return value
 
@@ -132,3 +139,34 @@ def lazy_package(
     public = [*homes, *extra]
     getattr_, dir_ = facade(package, homes, public)
     return getattr_, dir_, public
+
+
+def export_checked(package: str) -> None:
+    """Replace each public function of an eagerly imported ``package`` by its checked wrapper.
+
+    The eager counterpart of :func:`facade`'s wrapping: call it as the last line of a stage's
+    ``__init__`` that imports its names eagerly; its ``__all__`` functions then raise
+    :class:`~exofric.errors.InputError` naming the parameter for an argument of the wrong kind
+    (:func:`exofric._validate.checked`).
+
+    Parameters
+    ----------
+    package : str
+        The package's ``__name__`` (its ``__all__`` lists the public names).
+
+    Examples
+    --------
+    >>> import exofric.material as m
+    >>> export_checked(m.__name__)   # done already by its __init__: a no-op
+    >>> m.shore_to_modulus("62")
+    Traceback (most recent call last):
+    ...
+    exofric.errors.InputError: shore must be a number, got '62' (str) in shore_to_modulus()
+    """
+    from exofric._validate import checked
+
+    mod = sys.modules[package]
+    for name in getattr(mod, "__all__", ()):
+        value = getattr(mod, name, None)
+        if isinstance(value, FunctionType):
+            setattr(mod, name, checked(value, package, name))

@@ -22,6 +22,7 @@ import typer
 
 from exofric._version import __version__
 from exofric.cli._common import WARNINGS, record_warning
+from exofric.cli._options import tidy_help
 
 if TYPE_CHECKING:
     from exofric.errors import InputError
@@ -129,6 +130,10 @@ _CLAUSE = re.compile(r"(?:(?<=; )|(?<=: )|(?<=, )|(?<=\())(?P<name>[a-z][a-z0-9_
 _UNIT_NAME = re.compile(r"(?<![#'\"=\w])(?<!# )(?P<name>[a-z][a-z0-9]*(?:_[a-z0-9]+)*?"
                         r"(?:_mpa|_mm|_nm|_n|_m|_s|_pct))(?![\w'\"])")
 
+#: A message about a file the user gave (``log.csv: ...``, ``/data/run 3.tdms: ...``): past
+#: its ``name:`` clauses (``columns:``), its words are the file's columns and header keys.
+_FILE_FIRST = re.compile(r"^[^:;,()]*\.[A-Za-z0-9]{1,6}: ")
+
 
 def _with_flags(exc: InputError, cmd: Any) -> str:
     """The core's message with Python parameter names (``pmax_mpa``) shown as CLI flags.
@@ -138,7 +143,8 @@ def _with_flags(exc: InputError, cmd: Any) -> str:
     suffix: ``pmax_mpa`` -> ``--pmax``) where the message names a parameter: its opening words
     (``mu_tube and mu_wall are required``), a clause opened by ``name:``, and an option's name
     with its unit suffix in a sentence (``needs tube_id_mm``). Other words stay as written: a
-    file's header (``# width_mm:``), a quoted column ('friction_n'), a Python name in a sentence.
+    file's header (``# width_mm:``), a quoted column ('friction_n'), a Python name in a sentence,
+    and every word of a message about a file (``s.json: pressure_mpa must be >= 0``).
     """
     msg = str(exc)
     if not exc.param:
@@ -163,8 +169,25 @@ def _with_flags(exc: InputError, cmd: Any) -> str:
         return "".join(flag_for(n) or n for n in names)
 
     msg = _CLAUSE.sub(one, msg)
+    if _FILE_FIRST.match(msg):   # about the user's file: its words are its columns and keys
+        return msg
     msg = _SUBJECT.sub(subject, msg, count=1)
     return _UNIT_NAME.sub(one, msg)
+
+
+_BUILT: list[Any] = [None, None]   # [the app, its click command tree]
+
+
+def _command() -> Any:
+    """The click command tree of ``app``, built once per app object.
+
+    Building it (typer's ``get_command`` and :func:`tidy_help`: flags without ``<bool>``, help
+    that wraps) costs about 100 ms; in-process callers (the tests, a script) run many commands.
+    A click command keeps no state between invocations: each makes its own context.
+    """
+    if _BUILT[0] is not app:
+        _BUILT[:] = [app, tidy_help(typer.main.get_command(app))]
+    return _BUILT[1]
 
 
 def run(argv: Sequence[str] | None = None) -> int:
@@ -174,7 +197,7 @@ def run(argv: Sequence[str] | None = None) -> int:
     # figures are only ever written to files: a non-interactive backend, chosen once here
     # (before anything imports matplotlib; a user's MPLBACKEND wins)
     os.environ.setdefault("MPLBACKEND", "Agg")
-    cmd = typer.main.get_command(app)
+    cmd = _command()
     try:
         rv = cmd.main(
             args=list(sys.argv[1:] if argv is None else argv),

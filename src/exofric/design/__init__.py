@@ -87,3 +87,8 @@ __all__ = [
     "SqueezeSurrogate", "SurrogateSearch", "candidate_designs", "fit_surrogate",
     "surrogate_search",
 ]
+
+# every public function checks its arguments' kinds (InputError naming the parameter)
+from exofric._lazy import export_checked  # noqa: E402
+
+export_checked(__name__)

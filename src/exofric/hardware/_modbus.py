@@ -406,6 +406,24 @@ def _in_unit(spec: RegisterSpec, value_si: float) -> float:
     return value_si / spec.to_si
 
 
+def _reason(exc: BaseException) -> str:
+    """pymodbus's message cut to its clause: no 'Modbus Error:', tags, client repr (<= 80).
+
+    >>> _reason(Exception("Modbus Error: [Input/Output] No response received after 0 "
+    ...                   "retries, continue with next request"))
+    'No response received after 0 retries'
+    """
+    import re
+
+    text = " ".join(str(exc).split())
+    text = re.sub(r"^Modbus Error:\s*", "", text)
+    text = re.sub(r"\[(Input/Output|Connection|Invalid Message|Parameter|Not implemented|"
+                  r"Modbus IO|No Such Slave|Invalid State)\]\s*", "", text)
+    text = re.sub(r"\[?\b\w*Client\b[^\]]*\]?", "", text)    # [ModbusTcpClient 1.2.3.4:502]
+    text = re.sub(r",?\s*continue with next request", "", text).strip(" .:,")
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
 class ModbusDevice(DeviceBase):
     """A rig behind a Modbus TCP or RTU slave (pymodbus sync client) and a register map.
 
@@ -465,7 +483,8 @@ class ModbusDevice(DeviceBase):
             self.read()
         except SensorStale as exc:
             self.client.close()
-            raise DeviceError(f"{self.url}: the device does not answer reads ({exc})") from None
+            why = str(exc).removeprefix(f"{self.url}: ")    # the device is named once
+            raise DeviceError(f"{self.url}: the device does not answer reads ({why})") from None
         except DeviceError:
             self.client.close()
             raise
@@ -492,14 +511,16 @@ class ModbusDevice(DeviceBase):
         try:
             rr = call(*args, device_id=self.unit_id, **kwargs)
         except ConnectionException as exc:       # closed by the peer, refused, unplugged
-            raise DeviceFault(f"{self.url}: {what}: connection lost "
-                              f"({' '.join(str(exc).split())})") from None
+            raise DeviceFault(f"{self.url}: {what}: connection lost ({_reason(exc)})"
+                              ) from None
         except ModbusException as exc:           # no answer in time, a garbled frame
-            raise SensorStale(f"{self.url}: {what}: no valid answer within {self.timeout_s:g} s "
-                              f"({' '.join(str(exc).split())})") from None
+            why = _reason(exc)
+            why = "" if why.startswith("No response received") else f" ({why})"
+            raise SensorStale(f"{self.url}: {what}: no valid answer within {self.timeout_s:g} s"
+                              f"{why}") from None
         except (OSError, ValueError, struct.error) as exc:   # the port or a frame broke
-            raise DeviceFault(f"{self.url}: {what}: {type(exc).__name__}: "
-                              f"{' '.join(str(exc).split())}") from None
+            raise DeviceFault(f"{self.url}: {what}: {type(exc).__name__}: {_reason(exc)}"
+                              ) from None
         if rr.isError():
             code = getattr(rr, "exception_code", None)
             if code == 2:

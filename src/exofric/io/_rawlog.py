@@ -629,6 +629,55 @@ def _check_gap_factor(max_gap_factor: float) -> float:
     return f
 
 
+def _memory_estimate(p: Path) -> int:
+    """Bytes of memory reading the log at ``p`` takes at its peak (an estimate, no data read).
+
+    Text/LVM/TDMS: the file's size times ``RAWLOG_MEMORY_PER_FILE_BYTE["text"]``; xlsx: times
+    ``["xlsx"]``; Parquet (compressed): rows x columns x 8 bytes x 3, from its metadata.
+    """
+    size = p.stat().st_size
+    suffix = p.suffix.lower()
+    if suffix in (".parquet", ".pq"):
+        try:
+            import pyarrow.parquet as pq
+
+            md = pq.read_metadata(p)
+            return int(md.num_rows) * int(md.num_columns) * 8 * 3
+        except Exception:  # noqa: BLE001 - a damaged file: its reader says what is wrong
+            return size * 3
+    kind = "xlsx" if suffix in (".xlsx", ".xlsm") else "text"
+    return int(size * D.RAWLOG_MEMORY_PER_FILE_BYTE[kind])
+
+
+def _physical_memory() -> int | None:
+    """The machine's physical memory in bytes (None where the OS does not say)."""
+    import os
+
+    try:
+        return int(os.sysconf("SC_PAGE_SIZE")) * int(os.sysconf("SC_PHYS_PAGES"))
+    except (ValueError, OSError, AttributeError):
+        return None
+
+
+def _check_memory(p: Path, name: str) -> None:
+    """Refuse (InputError, with the estimate) a log too large to read in this machine's memory.
+
+    The limit is ``RAWLOG_MEMORY_FRACTION`` of the physical memory: reading, checking and
+    reducing a log holds it whole (3-4 copies of its samples at the peak).
+    """
+    ram = _physical_memory()
+    if ram is None:
+        return
+    need = _memory_estimate(p)
+    if need > D.RAWLOG_MEMORY_FRACTION * ram:
+        gib = 2.0**30
+        raise InputError(
+            f"{name}: too large to read: about {need / gib:.1f} GiB of memory for this "
+            f"{p.stat().st_size / gib:.2f} GiB file, over {D.RAWLOG_MEMORY_FRACTION:.0%} of "
+            f"this machine's {ram / gib:.1f} GiB; split the log (e.g. one file per test) and "
+            "reduce the parts")
+
+
 def read_raw_log(path: str | Path, columns: Mapping[str, str] | None = None, *,
                  max_gap_factor: float = RAWLOG_MAX_GAP_FACTOR) -> pd.DataFrame:
     """Read a raw rig log (text, LVM, TDMS, Parquet, xlsx), check it, convert to s, MPa, N, mm.
@@ -678,6 +727,8 @@ def read_raw_log(path: str | Path, columns: Mapping[str, str] | None = None, *,
         ``RAWLOG_MIN_SAMPLES`` rows, a non-numeric cell (row and column), NaN/empty/infinite
         samples (the bursts and their time range), time not increasing (the two times and the
         row), a gap (its time range), TDMS without npTDMS or xlsx without openpyxl installed;
+        a file whose estimated reading memory is over ``RAWLOG_MEMORY_FRACTION`` of the
+        machine's physical memory (the estimate in GiB; nothing is read);
         ``max_gap_factor <= 1``; a ``columns`` unit contradicting the file's; a pressure above
         ``RAWLOG_MAX_PRESSURE_MPA`` or a force above ``RAWLOG_MAX_FORCE_N`` (naming the
         probable unit); a level jump by a factor between units (a unit change inside the log,
@@ -713,6 +764,7 @@ def read_raw_log(path: str | Path, columns: Mapping[str, str] | None = None, *,
     if not p.is_file():
         raise InputError(f"{path}: file not found")
     mapping = _checked_mapping(columns, name)
+    _check_memory(p, name)
     raw, grid = _read(p, name, mapping)
     out = _check(raw, name, gap)
     df = pd.DataFrame(out)

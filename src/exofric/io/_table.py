@@ -647,8 +647,11 @@ def tdms_grids(p: Path, name: str) -> list[Grid]:
     except ImportError:
         raise InputError(f"{name}: reading TDMS needs npTDMS: pip install 'exofric[tdms]'"
                          ) from None
-    try:
-        tdms = nptdms.TdmsFile.read(p)
+    from exofric.io._thirdparty import library_log_as_warning
+
+    try:  # npTDMS's own stderr log lines become one exofric warning (issue 38)
+        with library_log_as_warning("nptdms", name, "the TDMS file looks truncated or damaged"):
+            tdms = nptdms.TdmsFile.read(p)
     except Exception as exc:  # npTDMS raises ValueError, KeyError, struct.error... on bad files
         raise InputError(f"{name}: not a readable TDMS file ({exc.__class__.__name__}: "
                          f"{_one_line(exc)})") from None

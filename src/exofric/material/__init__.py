@@ -49,3 +49,8 @@ __all__ = ["CORRELATIONS", "Correlation", "HYPERELASTIC_MODELS", "HyperelasticMo
            "MaterialFit", "MaterialRangeWarning", "ModeFit", "ModeStability", "MooneyRivlin",
            "SILICONES", "SILICONE_SOURCE", "StabilityCheck", "TRELOAR_SOURCE", "fit_material",
            "material_model", "shore_to_modulus", "silicone_uniaxial", "treloar_1944"]
+
+# every public function checks its arguments' kinds (InputError naming the parameter)
+from exofric._lazy import export_checked  # noqa: E402
+
+export_checked(__name__)

@@ -43,3 +43,8 @@ __all__ = [
     "table4",
     "to_dict",
 ]
+
+# every public function checks its arguments' kinds (InputError naming the parameter)
+from exofric._lazy import export_checked  # noqa: E402
+
+export_checked(__name__)
