@@ -180,3 +180,106 @@ def test_to_dict_names_units():
     assert d["model"] == "ogden2"
     assert list(d["params"]) == ["mu1_mpa", "alpha1", "mu2_mpa", "alpha2"]
     assert d["shear_modulus_mpa"] == pytest.approx(0.51)
+
+
+# --- issue 38: Drucker-unstable parameters refused before an FE solve ------------------------
+
+#: Unstable parameter sets per family with their hand-written stresses; the FE check covers
+#: principal stretches 0.4-2.5. A neo-Hookean with mu > 0 is stable at every stretch and an
+#: Ogden-1 with mu > 0 from ~2.5 on at the nearest (planar: l^(2a) = (1 + a)/(1 - a), >= e),
+#: so Ogden-1 is the warning's case below.
+UNSTABLE = [
+    ("mooney-rivlin", [0.5, -0.3], lambda mode, lam: mr(0.5, -0.3, mode, lam)),
+    ("mooney-rivlin", [-0.1, 0.4], lambda mode, lam: mr(-0.1, 0.4, mode, lam)),
+    ("yeoh", [0.3, -0.1, 0.001], lambda mode, lam: yeoh([0.3, -0.1, 0.001], mode, lam)),
+    ("ogden2", [1.0, 2.0, -0.6, 4.0], lambda mode, lam: ogden([1.0, -0.6], [2.0, 4.0], mode,
+                                                              lam)),
+    ("ogden3", [0.5, 2.0, -0.3, 4.0, 0.01, -2.0],
+     lambda mode, lam: ogden([0.5, -0.3, 0.01], [2.0, 4.0, -2.0], mode, lam)),
+]
+FE_RANGE = {"uniaxial": (0.4, 2.5), "biaxial": (0.4**0.5, 2.5**0.5), "planar": (0.4, 2.5)}
+PATH = {"uniaxial": "uniaxial", "biaxial": "equibiaxial", "planar": "planar"}
+
+
+def unstable_runs(ref, mode):
+    """Stretch intervals of the FE range where the hand-written P falls (central
+    differences, h = 1e-6, on 20,001 stretches evenly spaced in ln l)."""
+    lam = np.geomspace(*FE_RANGE[mode], 20001)
+    bad = (ref(mode, lam + 1e-6) - ref(mode, lam - 1e-6)) <= 0.0
+    idx = np.flatnonzero(bad)
+    runs = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1) if idx.size else []
+    return [(lam[r[0]], lam[r[-1]]) for r in runs]
+
+
+@pytest.mark.parametrize("name,params,ref", UNSTABLE, ids=[f"{c[0]}-{c[1]}" for c in UNSTABLE])
+def test_fe_stability_names_parameters_and_unstable_range(name, params, ref):
+    """The refusal names the model, every parameter and, per path, the unstable stretches,
+    which agree with the hand-written forms' (3 significant digits as printed; the check's
+    801-point grid spaces stretches 0.23 % apart, so 0.5 % relative)."""
+    import re
+
+    m = material_model(name, params)
+    with pytest.raises(InputError) as e:
+        m.check_fe_stability()
+    msg = str(e.value)
+    assert e.value.param == "params" and "\n" not in msg and msg.startswith(f"params: {name} (")
+    for n in m.param_names:
+        assert (n[:-4].upper() if n.startswith("c") else n.removesuffix("_mpa")) in msg
+    for mode in MODES:
+        runs = unstable_runs(ref, mode)
+        num = r"\d+(?:\.\d+)?(?:e[+-]?\d+)?"
+        clause = re.search(rf"{PATH[mode]} at stretch ({num}-{num}(?: and {num}-{num})*)", msg)
+        assert (clause is None) == (not runs), (mode, runs, msg)
+        if runs:
+            printed = [tuple(float(v) for v in part.split("-"))
+                       for part in clause.group(1).split(" and ")]
+            assert len(printed) == len(runs), (printed, runs)
+            np.testing.assert_allclose(np.ravel(printed), np.ravel(runs), rtol=5e-3)
+
+
+def test_fe_stability_passes_stable_models_and_covers_the_fe_entry():
+    """Stable parameter sets (the published ones of this file, the paper's Mooney-Rivlin, a
+    neo-Hookean) pass; an unstable one is refused where every FE problem takes its material
+    (SqueezeSetup: no solve), and a MooneyRivlin is refused naming c10 and c01."""
+    from exofric.geometry import BASE
+    from exofric.simulate import SqueezeSetup
+
+    for name, params, _ in CASES:
+        material_model(name, params).check_fe_stability()
+    MooneyRivlin.from_shore(62.5).check_fe_stability()
+    with pytest.raises(InputError, match=r"params: ogden2 \(mu1 = 1 MPa, alpha1 = 2"):
+        SqueezeSetup(BASE, material_model("ogden2", [1.0, 2.0, -0.6, 4.0]))
+    with pytest.raises(InputError, match=r"c10, c01: mooney-rivlin \(C10 = 0.5 MPa, "
+                                         r"C01 = -0.3 MPa\).*uniaxial at stretch 0.4-0.74"):
+        SqueezeSetup(BASE, MooneyRivlin(0.5, -0.3, 0.005))
+    with pytest.raises(InputError, match="stretch_max"):
+        material_model("neo-hookean", [0.3]).check_fe_stability(stretch_max=1.0)
+
+
+def test_fe_stability_warns_beyond_the_validated_range():
+    """Ogden-1 with alpha = 0.5: planar P = 4 mu (l^-0.5 - l^-1.5) peaks at l = 3 (by hand:
+    dP/dl = 0 at l^-1 = 1/3), beyond 2.5: not refused, a warning names that stretch (or
+    1/3, the same planar state)."""
+    from exofric.errors import PlausibilityWarning
+
+    with pytest.warns(PlausibilityWarning, match=r"planar stretch (3\.0|2\.99|0\.33)"):
+        material_model("ogden1", [0.6, 0.5]).check_fe_stability()
+
+
+@pytest.mark.parametrize("args,flag", [
+    (["--model", "ogden", "--params", "1,2,-0.6,4"], "--params"),
+    (["--model", "yeoh", "--params", "0.3,-0.1,0.001"], "--params"),
+    (["--c10", "0.5", "--c01", "-0.3", "--d", "0.005"], "--c10, --c01"),
+])
+def test_cli_unstable_params_exit_2_one_line(args, flag, capsys):
+    """Issue 38: `squeeze --model ... --params ...` with Drucker-unstable constants stops at
+    once with one line naming the option and the unstable stretches (exit 2), not a Newton
+    failure."""
+    from exofric.cli import run
+
+    code = run(["squeeze", "--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire",
+                "1.6", "--accuracy", "draft", *args])
+    out, err = capsys.readouterr()
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert code == 2 and out == "" and len(lines) == 1, err
+    assert f"{flag}: " in lines[0] and "Drucker-unstable" in lines[0] and "at stretch" in lines[0]

@@ -103,8 +103,9 @@ def reference_fit(name, lam, p, n_starts, seed=0):
     return best
 
 
-def check_against_reference(name, key, n_starts):
-    """Ours is admissible by the hand-written check and no worse than the reference by 2 %."""
+def check_against_reference(name, key, n_starts, ref=None):
+    """Ours is admissible by the hand-written check and no worse than the reference by 2 %
+    (the reference's RMS ``ref`` as stored, or run here when None)."""
     lam, p = DATA[key]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", PlausibilityWarning)
@@ -118,7 +119,8 @@ def check_against_reference(name, key, n_starts):
     rms = float(np.sqrt(np.mean((p_uni(name, x, lam) - p) ** 2)))
     # the reported RMS is that of the closed form at the reported parameters (1e-9 relative)
     assert fit.modes["uniaxial"].rms_mpa == pytest.approx(rms, rel=1e-9)
-    ref = reference_fit(name, lam, p, n_starts)
+    if ref is None:
+        ref = reference_fit(name, lam, p, n_starts)
     # within 2 % of the reference's best, or better: a lower RMS is an admissible point of the
     # same problem by the checks above (Ogden-3's landscape is flat: random starts stop high)
     assert rms <= 1.02 * ref, (name, key, rms, ref)
@@ -131,21 +133,33 @@ def test_admissible_fit_matches_independent_multistart(name, key):
     check_against_reference(name, key, n_starts=4 if name != "ogden1" else 8)
 
 
-#: Ogden-3 on the three silicones costs ~70 s of the suite's 10 minutes: they run in
-#: ``make bench`` (EXOFRIC_FULL=1); the suite keeps Ogden-2 on every curve and Ogden-3 on one.
+#: The penalty reference's best admissible RMS (MPa), ``reference_fit(name, lam, p, 12)``
+#: (seed 0, this file's closed forms, scipy's least_squares with finite differences): 1-30 s
+#: per case, so stored here as a published number would be. ``make bench`` (EXOFRIC_FULL=1)
+#: runs the reference again and checks these values (1e-6 relative; the same algorithm,
+#: seed and data).
+REFERENCE_RMS_MPA = {
+    ("ogden2", "ecoflex-00-30"): 0.0028646075635008093,
+    ("ogden2", "dragon-skin-20"): 0.011204941535419951,
+    ("ogden2", "rtv615"): 0.003421154683687164,
+    ("ogden2", "treloar-uniaxial"): 0.06663735717936399,
+    ("ogden3", "ecoflex-00-30"): 0.00032500764934828607,
+    ("ogden3", "dragon-skin-20"): 0.00360610066266379,
+    ("ogden3", "rtv615"): 0.0022900073410855497,
+    ("ogden3", "treloar-uniaxial"): 0.04863015511570367,
+}
 FULL = bool(os.environ.get("EXOFRIC_FULL"))
-OGDEN_CASES = [("ogden2", k) for k in DATA] + [
-    ("ogden3", k) if FULL or k == "treloar-uniaxial" else pytest.param(
-        "ogden3", k, marks=pytest.mark.skip(reason="Ogden-3 on silicone: make bench "
-                                                   "(EXOFRIC_FULL=1), ~20 s each"))
-    for k in DATA]
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("name,key", OGDEN_CASES)
+@pytest.mark.parametrize("name,key", list(REFERENCE_RMS_MPA))
 def test_ogden_fit_matches_independent_multistart(name, key):
-    """Ogden 2 and 3: 12 random starts of the penalty reference per case (~5-20 s each)."""
-    check_against_reference(name, key, n_starts=12)
+    """Ogden 2 and 3 on every curve: admissible by this file's checks and within 2 % of the
+    stored reference's RMS or lower (issue 37: Ogden-3 fits in < 1 s, back in the suite)."""
+    stored = REFERENCE_RMS_MPA[name, key]
+    if FULL:  # the stored value is the reference's (12 random starts, ~1-30 s)
+        lam, p = DATA[key]
+        assert reference_fit(name, lam, p, 12) == pytest.approx(stored, rel=1e-6)
+    check_against_reference(name, key, n_starts=12, ref=stored)
 
 
 def test_mooney_rivlin_on_silicone_is_admissible_and_flagged():

@@ -1,8 +1,10 @@
 """Fit a hyperelastic model to uniaxial, equibiaxial and planar test data at once.
 
-Least squares (:func:`scipy.optimize.least_squares`, trust-region reflective, bounded, analytic
-Jacobians of the closed forms in :mod:`exofric.material._kernels`) on the nominal
-(engineering) stress of every data point of every mode given, stacked in one residual vector.
+Least squares with the analytic Jacobians of the closed forms in
+:mod:`exofric.material._kernels` on the nominal (engineering) stress of every data point of
+every mode given, stacked in one residual vector: :func:`scipy.optimize.least_squares`
+(trust-region reflective, bounded) for the models linear in their parameters, a vectorised
+Levenberg-Marquardt over all starts at once for Ogden.
 Data given as true (Cauchy) stress are converted first: in all three modes the loaded
 direction's ``sigma = l P``.
 
@@ -10,9 +12,13 @@ Admissible fits (issue 31): shear modulus > 0 and ``dP/dl`` above a floor along 
 mode over its data range plus ``defaults.FIT_STABILITY_MARGIN_REL``. When the best least-squares
 fit is not admissible, the constrained optimum is found with SLSQP (stability constraints on a
 grid, refined where a 401-point check fails) and reported as constrained. Ogden fits start
-from the discrete local minima of the variable-projection cost over a grid of exponents, run on
-the exponents alone (mu by bounded linear least squares, Kaufman's Jacobian), and polish the
-best on all parameters. Unmeasured modes are only reported (and warned about).
+from the discrete local minima of the variable-projection cost over a grid of exponents
+(every combination evaluated at once), run on the exponents alone (mu by bounded linear least
+squares on equilibrated columns, Kaufman's Jacobian), all starts in one batched
+Levenberg-Marquardt: first on at most ``_SCAN_POINTS`` points per mode, then the best distinct
+runs on all the data, with each exponent also tried at its bound (a term fitting the last
+points alone creeps there); the best three are polished on all parameters, again at once
+(issue 37). Unmeasured modes are only reported (and warned about).
 
 Residuals are **absolute** (MPa) by default: a rig's stress error is mostly the load cell's
 and the area's, roughly the same size at every point, and absolute residuals stay defined at
@@ -33,6 +39,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from exofric import defaults as D
+from exofric._display import DisplayMixin
 from exofric._lsq import correlation, lsq_covariance, standard_errors
 from exofric.errors import InputError, warn_implausible
 from exofric.material._hyperelastic import (
@@ -151,7 +158,7 @@ class ModeStability:
 
 
 @dataclass(frozen=True)
-class MaterialFit:
+class MaterialFit(DisplayMixin):
     """A hyperelastic model fitted to test data, with its uncertainty and stability.
 
     Attributes
@@ -389,6 +396,16 @@ _OGDEN_CLASSIC: dict[int, list[tuple[float, ...]]] = {
     2: [(1.5, 5.0), (2.0, -2.0), (3.0, -1.0)],
     3: [(1.3, 5.0, -2.0), (2.0, 4.0, -2.0), (1.0, 3.0, -1.0)]}
 _ALPHA_MAX = 30.0
+#: The polish's relative tolerance on cost decrease, step and gradient (least_squares'
+#: ftol, xtol, gtol; the exponent scan stops at 1e-9).
+_POLISH_TOL = 1e-12
+#: A Levenberg-Marquardt run checks every _SCAN_WINDOW iterations that its cost still falls
+#: (a term whose mu dies crawls along its exponent toward the bound).
+_SCAN_WINDOW = 25
+#: The exponent scan runs first on at most this many points per mode (evenly spaced in the
+#: data's order), then its best _SCAN_KEEP distinct runs continue on all of them.
+_SCAN_POINTS = 120
+_SCAN_KEEP = 8
 
 
 def _resolve_model(model: Any, terms: int | None) -> str:
@@ -439,8 +456,6 @@ class _Problem:
         self.modes = list(data)
         self._rj_key: bytes | None = None
         self._rj_val: tuple[Any, Any] = (None, None)
-        self._vp_key: bytes | None = None
-        self._vp_val: tuple[Any, Any] = (None, None)
         self.p = np.concatenate([p for _, p in data.values()])
         self.scale = scale
         self.target = self.p / scale
@@ -526,111 +541,132 @@ class _Problem:
         return ((np.concatenate(ts) - self.tau) / self.secant,
                 np.vstack(js) / self.secant)
 
-    def ogden_columns(self, a: float) -> tuple[Any, Any]:
-        """``psi(l, a)`` and ``dpsi/da`` stacked over the modes, scaled like the residuals."""
+    def subsampled(self, k: int) -> _Problem:
+        """The same problem on at most ``k`` points per mode (evenly spaced indices, ends
+        kept), with this one's bounds and constraint grids; itself when no mode has more."""
         import numpy as np
 
-        from exofric.material._kernels import stress_jac
+        if all(lam.size <= k for lam, _ in self.data.values()):
+            return self
+        keep, data = [], {}
+        off = 0
+        for m, (lam, p) in self.data.items():
+            idx = np.unique(np.round(np.linspace(0, lam.size - 1, min(k, lam.size))).astype(int))
+            data[m] = (lam[idx], p[idx])
+            keep.append(off + idx)
+            off += lam.size
+        sub = _Problem(self.name, data, self.scale[np.concatenate(keep)], 0.0)
+        sub.mu_max, sub.tau, sub.secant = self.mu_max, self.tau, self.secant
+        sub.range, sub.grid, sub.fine = self.range, self.grid, self.fine
+        return sub
 
-        j = np.vstack([stress_jac("ogden1", m, self.data[m][0], np.array([1.0, a]))[1]
-                       for m in self.modes]) / self.scale[:, None]
-        return j[:, 0], j[:, 1]
-
-    def vp_rj(self, alpha: Any) -> tuple[Any, Any]:
-        """Variable projection for Ogden: residuals at the best mu for these exponents, and
-        Kaufman's Jacobian with respect to the exponents ``P_perp (dA/da_k) mu_k``."""
+    def full_batch(self, x: Any) -> tuple[Any, Any, Any]:
+        """Ogden on all parameters, many rows of ``x`` (S x 2n) at once: half the squared
+        residual norm (S,; inf where not finite), residuals (S, N) and Jacobian (S, N, 2n)."""
         import numpy as np
 
-        key = np.asarray(alpha, dtype=float).tobytes()
-        if key == self._vp_key:
-            return self._vp_val
-        cols = [self.ogden_columns(float(a)) for a in alpha]
-        a_mat = np.column_stack([c[0] for c in cols])
-        d_mat = np.column_stack([c[1] for c in cols])
+        from exofric.material._kernels import ogden_columns
+
+        x = np.atleast_2d(np.asarray(x, dtype=float))
+        mu, alpha = x[:, 0::2], x[:, 1::2]
+        cols = [ogden_columns(m, self.data[m][0], alpha) for m in self.modes]
         with np.errstate(all="ignore"):
-            if not (np.all(np.isfinite(a_mat)) and np.all(np.isfinite(d_mat))):
-                n = alpha.size
-                return np.full(self.target.size, 1e6), np.zeros((self.target.size, n))
-            q, r_tri = np.linalg.qr(a_mat)
-            diag = np.abs(np.diag(r_tri))
-            if diag.min() > 1e-12 * diag.max():
-                mu = np.linalg.solve(r_tri, q.T @ self.target)
-            else:
-                mu = np.linalg.lstsq(a_mat, self.target, rcond=None)[0]
-            if np.any(np.abs(mu) > self.mu_max):
-                mu = self._bounded_mu(a_mat)
-            free = np.abs(mu) < self.mu_max * (1.0 - 1e-9)
-            r = a_mat @ mu - self.target
-            d = d_mat * mu
-            if free.all():
-                jac = d - q @ (q.T @ d)
-            elif free.any():
-                qf, _ = np.linalg.qr(a_mat[:, free])
-                jac = d - qf @ (qf.T @ d)
-            else:
-                jac = d
-        self._vp_key, self._vp_val = key, (r, jac)
-        return r, jac
+            psi = np.concatenate([c[0] for c in cols], axis=-2) / self.scale[:, None]
+            dpsi = np.concatenate([c[1] for c in cols], axis=-2) / self.scale[:, None]
+            res = (psi @ mu[..., None])[..., 0] - self.target
+            jac = np.empty(psi.shape[:2] + (x.shape[1],))
+            jac[..., 0::2] = psi
+            jac[..., 1::2] = dpsi * mu[:, None, :]
+            cost = 0.5 * np.einsum("sn,sn->s", res, res)
+        ok = np.isfinite(cost) & np.all(np.isfinite(jac), axis=(1, 2))
+        return np.where(ok, cost, np.inf), res, jac
 
-    def _bounded_mu(self, a_mat: Any) -> Any:
-        """Linear least squares for mu within ``|mu_i| <= mu_max``: the convex problem's
-        minimum is one of the 3^n ways of holding each mu_i free or at a bound (n <= 3),
-        solved on the normal equations."""
+    def vp_batch(self, alpha: Any) -> tuple[Any, Any, Any, Any]:
+        """Variable projection for Ogden, for many exponent vectors at once (the rows of
+        ``alpha``, S x n): half the squared residual norm (S,; inf where a column is not
+        finite), residuals (S, N), Kaufman's Jacobian ``P_perp (dA/da_k) mu_k`` (S, N, n) and
+        the best mu (S, n; MPa) by linear least squares within ``|mu_i| <= mu_max``.
+
+        The columns are equilibrated (scaled to unit norm) before the QR: a large exponent's
+        column is ~1e20 times another's at the largest stretch."""
+        import numpy as np
+
+        from exofric.material._kernels import ogden_columns
+
+        alpha = np.atleast_2d(np.asarray(alpha, dtype=float))
+        cols = [ogden_columns(m, self.data[m][0], alpha) for m in self.modes]
+        with np.errstate(all="ignore"):
+            a_mat = np.concatenate([c[0] for c in cols], axis=-2) / self.scale[:, None]
+            d_mat = np.concatenate([c[1] for c in cols], axis=-2) / self.scale[:, None]
+            norm = np.linalg.norm(a_mat, axis=1)
+            finite = (np.all(np.isfinite(a_mat), axis=(1, 2)) & np.all(np.isfinite(d_mat),
+                                                                      axis=(1, 2))
+                      & np.all(np.isfinite(norm) & (norm > 0.0), axis=1))
+            a_mat[~finite], d_mat[~finite], norm[~finite] = 1.0, 0.0, 1.0  # cost inf below
+            a_eq = a_mat / norm[:, None, :]
+            q, r_tri = np.linalg.qr(a_eq)
+            diag = np.abs(np.diagonal(r_tri, axis1=1, axis2=2))
+            well = diag.min(axis=1) > 1e-10
+            r_tri[~well] = np.eye(alpha.shape[1])
+            mu = np.linalg.solve(r_tri, (np.swapaxes(q, 1, 2) @ self.target)[..., None])[..., 0]
+            mu /= norm
+            dm = d_mat * mu[:, None, :]
+            jac = dm - q @ (np.swapaxes(q, 1, 2) @ dm)
+            over = np.any(np.abs(mu) > self.mu_max, axis=1) | ~well
+            if over.any():
+                mu[over], jac[over] = self._bounded_vp(a_eq[over], d_mat[over], norm[over])
+            res = (a_mat @ mu[..., None])[..., 0] - self.target
+            cost = 0.5 * np.einsum("sn,sn->s", res, res)
+        cost = np.where(finite & np.isfinite(cost), cost, np.inf)
+        return cost, res, jac, mu
+
+    def _bounded_vp(self, a_eq: Any, d_mat: Any, norm: Any) -> tuple[Any, Any]:
+        """Rows whose free mu passes its bound (or whose columns are nearly dependent): mu
+        (S, n; MPa) by bounded linear least squares on the equilibrated columns ``a_eq``
+        (column norms ``norm``) and the Jacobian with the bound mu held (projection on the
+        free columns only)."""
+        import numpy as np
+
+        mu = self._bounded_mu(a_eq, self.mu_max * norm) / norm
+        free = np.abs(mu) < self.mu_max * (1.0 - 1e-9)
+        a_free = a_eq * free[:, None, :]
+        dm = d_mat * mu[:, None, :]
+        # projection on the free columns by their normal equations (identity on the held
+        # ones, whose columns are zero here); the columns have unit norm
+        eye = np.eye(mu.shape[1])
+        gram = np.swapaxes(a_free, 1, 2) @ a_free + (~free)[:, :, None] * eye + 1e-13 * eye
+        with np.errstate(all="ignore"):
+            jac = dm - a_free @ np.linalg.solve(gram, np.swapaxes(a_free, 1, 2) @ dm)
+        return mu, jac
+
+    def _bounded_mu(self, a_mat: Any, bound: Any) -> Any:
+        """Linear least squares ``a_mat z ~ target`` within ``|z| <= bound`` (S x n), every
+        row of ``a_mat`` (S, N, n) at once: the convex problem's minimum is one of the 3^n
+        ways of holding each z_i free or at a bound (n <= 3), all solved at once on the normal
+        equations (a 1e-13 relative ridge keeps a singular block solvable); the feasible one
+        of lowest cost."""
         import itertools
 
         import numpy as np
 
-        m = self.mu_max
-        g_mat = a_mat.T @ a_mat
-        b = a_mat.T @ self.target
-        n = b.size
-        # an active set first (fix the worst violator at its bound, release a bound whose
-        # gradient points inside), the enumeration if it does not settle
-        side = np.zeros(n)
-        for _ in range(4 * n):
-            free = side == 0
-            mu = side * m
-            if free.any():
-                rhs = b[free] - g_mat[np.ix_(free, ~free)] @ mu[~free]
-                try:
-                    mu[free] = np.linalg.solve(g_mat[np.ix_(free, free)], rhs)
-                except np.linalg.LinAlgError:
-                    break
-            over = np.where(free, np.abs(mu) - m, -np.inf)
-            if over.max() > 0.0:
-                k = int(np.argmax(over))
-                side[k] = np.sign(mu[k])
-                continue
-            grad = g_mat @ mu - b
-            wrong = np.where(~free, side * grad, -np.inf)  # > 0: moving inside lowers cost
-            if wrong.max() > 1e-14 * max(1.0, float(np.abs(b).max())):
-                side[int(np.argmax(wrong))] = 0.0
-                continue
-            return mu
-        best, best_cost = np.clip(np.zeros(n), -m, m), np.inf
-        for state in itertools.product((0, 1, -1), repeat=n):
-            s = np.asarray(state)
-            mu = np.where(s == 0, 0.0, s * m)
-            free = s == 0
-            if free.any():
-                rhs = b[free] - g_mat[np.ix_(free, ~free)] @ mu[~free]
-                try:
-                    mu[free] = np.linalg.solve(g_mat[np.ix_(free, free)], rhs)
-                except np.linalg.LinAlgError:
-                    continue
-                if np.any(np.abs(mu[free]) > m):
-                    continue
-            c = float(mu @ g_mat @ mu - 2.0 * b @ mu)
-            if c < best_cost:
-                best, best_cost = mu, c
-        return best
-
-    def vp_mu(self, alpha: Any) -> Any:
-        """The best mu (MPa) for these exponents, within the bounds (linear least squares)."""
-        import numpy as np
-
-        a_mat = np.column_stack([self.ogden_columns(float(a))[0] for a in alpha])
-        return self._bounded_mu(a_mat)
+        g_mat = np.swapaxes(a_mat, 1, 2) @ a_mat
+        b = np.swapaxes(a_mat, 1, 2) @ self.target
+        n = b.shape[1]
+        side = np.array(list(itertools.product((0.0, 1.0, -1.0), repeat=n)))  # (T, n)
+        fixed = side != 0.0
+        eye = np.eye(n)
+        ridge = 1e-13 * np.trace(g_mat, axis1=1, axis2=2)[:, None, None, None] * eye
+        # fixed rows of each system read z_k = +-bound_k, free rows the normal equations
+        lhs = np.where(fixed[None, :, :, None], eye, g_mat[:, None] + ridge)
+        rhs = np.where(fixed[None], side[None] * bound[:, None, :], b[:, None, :])
+        with np.errstate(all="ignore"):
+            z = np.linalg.solve(lhs, rhs[..., None])[..., 0]  # (S, T, n)
+            cost = (np.einsum("stk,skl,stl->st", z, g_mat, z)
+                    - 2.0 * np.einsum("sk,stk->st", b, z))
+        feasible = (np.all(np.abs(z) <= bound[:, None, :] * (1.0 + 1e-12), axis=2)
+                    & np.isfinite(cost))
+        best = np.argmin(np.where(feasible, cost, np.inf), axis=1)
+        return np.clip(z[np.arange(z.shape[0]), best], -bound, bound)
 
     def mu(self, x: Any) -> float:
         from exofric.material._hyperelastic import _shear_modulus
@@ -658,12 +694,9 @@ def _bounds(name: str, secant: float) -> tuple[list[float], list[float]]:
 
 def _starts(prob: _Problem, g: float, n_keep: int | None) -> list[Any]:
     """Initial parameter vectors: one for the linear models, a multi-start for Ogden."""
-    import itertools
-
     import numpy as np
 
     from exofric import defaults
-    from exofric.material._kernels import stress_jac
 
     name = prob.name
     if name == "neo-hookean":
@@ -674,53 +707,44 @@ def _starts(prob: _Problem, g: float, n_keep: int | None) -> list[Any]:
         return [np.array([g / 2, -1e-2 * g, 1e-4 * g])]
     n = int(name[-1])
     keep = int(defaults.FIT_OGDEN_STARTS[n] if n_keep is None else n_keep)
-    # psi(l, a) of every exponent of the grid, stacked over the modes, scaled like the residuals
-    alphas = sorted(set(_OGDEN_GRID) | {a for pat in _OGDEN_CLASSIC[n] for a in pat})
-    cols = {}
-    for a in alphas:
-        cols[a] = np.concatenate([stress_jac("ogden1", m, prob.data[m][0],
-                                             np.array([1.0, a]))[1][:, 0]
-                                  for m in prob.modes]) / prob.scale
-    lo, hi = _bounds(name, prob.secant)
-    mu_max = hi[0]
+    patterns = _ogden_start_patterns(prob.subsampled(_SCAN_POINTS), n, keep)
+    mu = prob.vp_batch(patterns)[3]
+    return [np.ravel(np.column_stack([m, a])) for m, a in zip(mu, patterns, strict=True)]
 
-    def vp(pattern: tuple[float, ...]) -> tuple[float, Any]:
-        a = np.column_stack([cols[v] for v in pattern])
-        mu, *_ = np.linalg.lstsq(a, prob.target, rcond=None)
-        mu = np.clip(mu, -0.99 * mu_max, 0.99 * mu_max)
-        return float(np.sum((a @ mu - prob.target) ** 2)), mu
 
-    # the variable-projection cost on the grid of exponent combinations; its discrete local
-    # minima (no neighbour, one exponent one grid step away, is lower) mark the basins and
-    # start the local fits, lowest first, then the best remaining combinations
-    grid = _OGDEN_GRID
-    cost: dict[tuple[int, ...], tuple[float, Any]] = {}
-    for idx in itertools.combinations(range(len(grid)), n):
-        c, mu = vp(tuple(grid[i] for i in idx))
-        cost[idx] = (c if np.isfinite(c) else np.inf, mu)
+def _ogden_start_patterns(prob: _Problem, n: int, keep: int) -> Any:
+    """Ogden start exponents (rows, ``keep`` + up to 3): the variable-projection cost over
+    every combination of n exponents of ``_OGDEN_GRID`` (all at once); its discrete local
+    minima (no neighbour, one exponent one grid step away, is lower) mark the basins and come
+    first, lowest first, then the best other combinations; the published-style patterns
+    ``_OGDEN_CLASSIC`` are always added."""
+    import itertools
 
-    def neighbours(idx: tuple[int, ...]) -> list[tuple[int, ...]]:
-        out = []
-        for k in range(n):
-            for step in (-1, 1):
-                cand = list(idx)
-                cand[k] += step
-                if 0 <= cand[k] < len(grid) and len(set(cand)) == n:
-                    out.append(tuple(sorted(cand)))
-        return out
+    import numpy as np
 
-    ranked = sorted(cost, key=lambda idx: cost[idx][0])
-    minima = [idx for idx in ranked if np.isfinite(cost[idx][0])
-              and all(cost[idx][0] <= cost[nb][0] for nb in neighbours(idx))]
-    picks = minima[:keep] + [idx for idx in ranked if idx not in minima][:max(0, keep
-                                                                              - len(minima))]
-    chosen = [(tuple(grid[i] for i in idx), cost[idx][1]) for idx in picks]
-    seen = {tuple(sorted(pat)) for pat, _ in chosen}
-    for pattern in _OGDEN_CLASSIC[n]:  # the exponents are what a start is (mu follows)
-        if tuple(sorted(pattern)) not in seen:
-            chosen.append((pattern, vp(pattern)[1]))
-    return [np.array([v for pair in zip(mu, pattern, strict=True) for v in pair])
-            for pattern, mu in chosen]
+    grid = np.asarray(_OGDEN_GRID)
+    size = grid.size
+    combos = np.array(list(itertools.combinations(range(size), n)))
+    cost = prob.vp_batch(grid[combos])[0]
+    dense = np.full((size,) * n, np.inf)
+    dense[tuple(combos.T)] = cost
+    is_min = np.isfinite(cost)
+    for k in range(n):
+        for step in (-1, 1):
+            cand = combos.copy()
+            cand[:, k] += step
+            ok = (cand[:, k] >= 0) & (cand[:, k] < size)
+            cand = np.sort(np.clip(cand, 0, size - 1), axis=1)
+            ok &= np.all(np.diff(cand, axis=1) > 0, axis=1)
+            nb = np.where(ok, dense[tuple(cand.T)], np.inf)
+            is_min &= cost <= nb
+    ranked = np.argsort(cost, kind="stable")
+    minima = ranked[is_min[ranked]][:keep]
+    picks = np.concatenate([minima, ranked[~is_min[ranked]][:keep - minima.size]])
+    chosen = [tuple(float(v) for v in grid[combos[i]]) for i in picks]
+    seen = {tuple(sorted(pat)) for pat in chosen}
+    chosen += [pat for pat in _OGDEN_CLASSIC[n] if tuple(sorted(pat)) not in seen]
+    return np.array(chosen)
 
 
 def _feasible_start(name: str, g: float) -> Any:
@@ -748,10 +772,10 @@ def _admissible(prob: _Problem, x: Any) -> bool:
     return bool(np.all(c >= -1e-9) and prob.mu(x) > 0.0 and not prob.violations(x))
 
 
-def _solve_constrained(prob: _Problem, x0s: list[Any], lo: Any, hi: Any,
-                       xs: Any) -> tuple[Any, float] | None:
-    """SLSQP on 0.5 |r|^2 subject to the stability constraints, from several starts; the
-    lowest-cost feasible result (x, cost), or None."""
+def _slsqp(prob: _Problem, x0: Any, lo: Any, hi: Any, xs: Any) -> Any:
+    """SLSQP on 0.5 |r|^2 subject to the stability constraints from ``x0`` (the parameters
+    scaled by ``xs``); constraint stretches violated in between are added and it is run again
+    (up to 4 times). The final point, clipped to the bounds."""
     import numpy as np
     from scipy.optimize import Bounds, minimize
 
@@ -764,19 +788,36 @@ def _solve_constrained(prob: _Problem, x0s: list[Any], lo: Any, hi: Any,
     cons = {"type": "ineq", "fun": lambda z: prob.cons(z * xs)[0],
             "jac": lambda z: prob.cons(z * xs)[1] * xs}
     bounds = Bounds(lo / xs, hi / xs)
+    x = np.clip(x0, lo, hi)
+    for _ in range(4):  # a coarse grid first; stretches violated in between are added
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore")
+            res = minimize(f, x / xs, jac=True, method="SLSQP", bounds=bounds,
+                           constraints=[cons], options={"ftol": 1e-15, "maxiter": 500})
+        x = np.clip(res.x * xs, lo, hi)
+        extra = prob.violations(x) if np.all(np.isfinite(x)) else {}
+        if not extra:
+            break
+        prob.refine(extra)
+    return x
+
+
+def _solve_constrained(prob: _Problem, x0s: list[Any], lo: Any, hi: Any, xs: Any,
+                       fallback: Any) -> tuple[Any, float] | None:
+    """SLSQP on 0.5 |r|^2 subject to the stability constraints, from several starts (the
+    same start once), and from ``fallback`` (a start stable on every path) when none of them
+    ends admissible; the lowest-cost admissible result (x, cost), or None."""
+    import numpy as np
+
     best: tuple[Any, float] | None = None
+    distinct: list[Any] = []
     for x0 in x0s:
-        x = np.clip(x0, lo, hi)
-        for _ in range(4):  # a coarse grid first; stretches violated in between are added
-            with warnings.catch_warnings(), np.errstate(all="ignore"):
-                warnings.simplefilter("ignore")
-                res = minimize(f, x / xs, jac=True, method="SLSQP", bounds=bounds,
-                               constraints=[cons], options={"ftol": 1e-15, "maxiter": 500})
-            x = np.clip(res.x * xs, lo, hi)
-            extra = prob.violations(x) if np.all(np.isfinite(x)) else {}
-            if not extra:
-                break
-            prob.refine(extra)
+        if not any(np.allclose(x0, y, rtol=1e-6, atol=0.0) for y in distinct):
+            distinct.append(x0)
+    for x0 in [*distinct, fallback]:
+        if x0 is fallback and best is not None:
+            break
+        x = _slsqp(prob, x0, lo, hi, xs)
         if not np.all(np.isfinite(x)) or not _admissible(prob, x):
             continue
         r = prob.resid(x)
@@ -847,7 +888,7 @@ def fit_material(
         Ogden: how many exponent combinations start a local fit (the discrete local minima of
         the variable-projection cost over a grid of exponents, lowest first, then the best
         other combinations), besides three published-style starts (default
-        ``defaults.FIT_OGDEN_STARTS``: 6, 10, 16 for 1-3 terms).
+        ``defaults.FIT_OGDEN_STARTS``: 6, 10, 40 for 1-3 terms; they run at once).
 
     Returns
     -------
@@ -1036,36 +1077,122 @@ def _polish(setup: _Setup, x0: Any) -> tuple[float, Any] | None:
     return None
 
 
-def _exponent_scan(setup: _Setup, starts: list[Any]) -> list[tuple[float, Any]]:
-    """Ogden: each start run on the exponents alone (variable projection: mu by linear least
-    squares); ``(cost, x)`` of every converged run, lowest cost first."""
+def _lm_batch(fun: Any, x0: Any, lo: Any, hi: Any, max_iter: int = 300, tol: float = 1e-9,
+              crawl: float = 1e-6) -> tuple[Any, Any]:
+    """Levenberg-Marquardt on many starts at once (the rows of ``x0``), bounds by projection.
+
+    ``fun(X) -> (cost, res, jac)`` for the rows of X (cost half the squared norm, inf where
+    undefined). Each row keeps its own damping and stops when its cost decrease, step or
+    gradient falls below ``tol`` (relative, as least_squares' ftol/xtol/gtol), after
+    ``max_iter`` iterations, or when its cost fell by less than ``crawl`` (relative) over the
+    last ``_SCAN_WINDOW`` iterations.
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        The final rows and their costs.
+    """
     import numpy as np
-    from scipy.optimize import least_squares
+
+    x = np.clip(np.array(x0, dtype=float), lo, hi)
+    cost, res, jac = fun(x)
+    damp = np.full(x.shape[0], 1e-3)
+    active = np.isfinite(cost)
+    eye = np.eye(x.shape[1])
+    cost_then = cost.copy()
+    for it in range(1, max_iter + 1):
+        if it % _SCAN_WINDOW == 0:  # crawling rows (a dying term) stop
+            active &= cost < (1.0 - crawl) * cost_then
+            cost_then = cost.copy()
+        idx = np.flatnonzero(active)
+        if not idx.size:
+            break
+        j = jac[idx]
+        grad = np.einsum("snk,sn->sk", j, res[idx])
+        hess = np.swapaxes(j, 1, 2) @ j
+        diag = np.maximum(np.diagonal(hess, axis1=1, axis2=2), 1e-300)
+        # a variable at a bound that the descent pushes outward is held there (its row and
+        # column of the step's system decoupled, its step 0)
+        held = (((x[idx] <= lo) & (grad > 0.0)) | ((x[idx] >= hi) & (grad < 0.0)))
+        hold = held[:, :, None] | held[:, None, :]
+        system = np.where(hold, eye, hess + damp[idx, None, None] * diag[:, :, None] * eye)
+        with np.errstate(all="ignore"):
+            step = np.linalg.solve(system, np.where(held, 0.0, -grad)[..., None])[..., 0]
+        trial = np.clip(x[idx] + np.nan_to_num(step), lo, hi)
+        c_new, r_new, j_new = fun(trial)
+        ok = c_new < cost[idx]
+        done = ((ok & (cost[idx] - c_new <= tol * cost[idx]))
+                | (np.linalg.norm(trial - x[idx], axis=1)
+                   <= tol * (tol + np.linalg.norm(x[idx], axis=1)))
+                | (np.max(np.abs(grad), axis=1) <= tol * np.maximum(cost[idx], 1e-300)))
+        acc = idx[ok]
+        x[acc], cost[acc], res[acc], jac[acc] = trial[ok], c_new[ok], r_new[ok], j_new[ok]
+        damp[idx] = np.where(ok, np.maximum(damp[idx] / 3.0, 1e-12), damp[idx] * 4.0)
+        active[idx[done | (damp[idx] > 1e12)]] = False
+    return x, cost
+
+
+def _exponent_scan(setup: _Setup, starts: list[Any]) -> list[tuple[float, Any]]:
+    """Ogden: every start run on the exponents alone (variable projection: mu by linear least
+    squares), all starts at once: to convergence on at most ``_SCAN_POINTS`` points per mode,
+    then the best ``_SCAN_KEEP`` distinct runs on all the data; ``(cost, x)`` of every run
+    (cost on all the data), lowest cost first."""
+    import numpy as np
 
     prob = setup.prob
-    n_par = prob.n_par
-    n_t = n_par // 2
-    a_lo, a_hi = np.full(n_t, -_ALPHA_MAX), np.full(n_t, _ALPHA_MAX)
+    sub = prob.subsampled(_SCAN_POINTS)
+    lim = _ALPHA_MAX - 1e-9
 
-    def vp_r(a: Any) -> Any:
-        return prob.vp_rj(a)[0]
+    def on(pr: _Problem) -> Any:
+        return lambda a: pr.vp_batch(a)[:3]
 
-    def vp_j(a: Any) -> Any:
-        return prob.vp_rj(a)[1]
-
+    a, cost = _lm_batch(on(sub), np.array([x0[1::2] for x0 in starts], dtype=float), -lim, lim)
+    a = _bound_probes(sub, a, cost, lim)
+    if sub is not prob:
+        cost = prob.vp_batch(a)[0]
+        order = np.argsort(cost)
+        _, first = np.unique(np.round(np.sort(a[order], axis=1), 3), axis=0, return_index=True)
+        best = order[np.sort(first)[:_SCAN_KEEP]]
+        a[best], _ = _lm_batch(on(prob), a[best], -lim, lim)
+    cost, _, _, mu = prob.vp_batch(a)
     scanned: list[tuple[float, Any]] = []
-    for x0 in starts:
-        a0 = np.clip(x0[1::2], a_lo + 1e-9, a_hi - 1e-9)
-        with np.errstate(all="ignore"):
-            res = least_squares(vp_r, a0, jac=vp_j, bounds=(a_lo, a_hi), method="trf",
-                                xtol=1e-9, ftol=1e-9, gtol=1e-9, max_nfev=300)
-        if np.all(np.isfinite(res.x)) and np.isfinite(res.cost):
-            x_full = np.empty(n_par)
-            x_full[1::2] = res.x
-            x_full[0::2] = prob.vp_mu(res.x)
-            scanned.append((float(res.cost), x_full))
+    for i in np.flatnonzero(np.isfinite(cost) & np.all(np.isfinite(mu), axis=1)):
+        x_full = np.empty(prob.n_par)
+        x_full[1::2] = a[i]
+        x_full[0::2] = mu[i]
+        scanned.append((float(cost[i]), x_full))
     scanned.sort(key=lambda r: r[0])
     return scanned
+
+
+def _bound_probes(prob: _Problem, a: Any, cost: Any, lim: float) -> Any:
+    """A term fitting the last points alone creeps toward its exponent bound, its mu toward 0
+    (slowly: the cost falls a little per step). Every run's exponents are tried at the bound,
+    one at a time; those lower than their run are run from there and added (rows of ``a``)."""
+    import numpy as np
+
+    n_t = a.shape[1]
+    probes = np.repeat(a, n_t, axis=0)
+    rows = np.arange(probes.shape[0])
+    k = np.tile(np.arange(n_t), a.shape[0])
+    probes[rows, k] = np.copysign(lim, probes[rows, k])
+    lower = prob.vp_batch(probes)[0] < np.repeat(cost, n_t)
+    if not lower.any():
+        return a
+    more, _ = _lm_batch(lambda x: prob.vp_batch(x)[:3], probes[lower], -lim, lim)
+    return np.vstack([a, more])
+
+
+def _polish_ogden(setup: _Setup, xs: list[Any]) -> list[tuple[float, Any]]:
+    """Ogden: bounded least squares on all parameters from each of ``xs`` at once;
+    ``(cost, x)`` of the finite results."""
+    import numpy as np
+
+    if not xs:
+        return []
+    x, cost = _lm_batch(setup.prob.full_batch, np.array(xs), setup.lo, setup.hi,
+                        tol=_POLISH_TOL, crawl=0.0)
+    return [(float(c), xi) for c, xi in zip(cost, x, strict=True) if np.isfinite(c)]
 
 
 def _unconstrained_fits(setup: _Setup, n_starts: int | None) -> _Runs:
@@ -1079,10 +1206,10 @@ def _unconstrained_fits(setup: _Setup, n_starts: int | None) -> _Runs:
     if setup.name.startswith("ogden"):
         scanned = _exponent_scan(setup, starts)
         # a scanned minimum is a local minimum of the full problem too (mu is optimal for its
-        # exponents) when its mu lie inside the bounds; the best few are polished as well
+        # exponents) when its mu lie inside the bounds; the best three are polished as well
         results = [(c, xr) for c, xr in scanned
                    if np.all(xr >= setup.lo) and np.all(xr <= setup.hi)]
-        results += [f for f in (_polish(setup, xr) for _, xr in scanned[:3]) if f is not None]
+        results += _polish_ogden(setup, [xr for _, xr in scanned[:3]])
         start_costs = [c for c, _ in scanned]
     else:
         results = [f for f in (_polish(setup, x0) for x0 in starts) if f is not None]
@@ -1102,10 +1229,11 @@ def _constrained_fit(setup: _Setup, runs: _Runs, margin: float) -> Any:
     name, prob, results = setup.name, setup.prob, runs.results
     ok = [(c, xr) for c, xr in results[:8] if _admissible(prob, xr)]
     xs = np.array([setup.g0 if n.endswith("_mpa") else 1.0 for n in HYPERELASTIC_MODELS[name]])
-    x0s = [_feasible_start(name, setup.g0)] + [xr for _, xr in results[:3]]
+    x0s = [xr for _, xr in results[:3]]
     if name.startswith("ogden"):  # the exponent scan's next-best minimum too
         x0s += [xr for _, xr in runs.scanned[3:4]]
-    found = _solve_constrained(prob, x0s, setup.lo, setup.hi, xs)
+    found = _solve_constrained(prob, x0s, setup.lo, setup.hi, xs,
+                               _feasible_start(name, setup.g0))
     if ok and (found is None or ok[0][0] <= found[1]):
         found = (ok[0][1], ok[0][0])
     if found is None:

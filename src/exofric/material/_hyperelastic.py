@@ -25,6 +25,7 @@ Units: stresses and moduli in MPa, d in 1/MPa, stretches and Ogden exponents uni
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -573,6 +574,114 @@ class HyperelasticModel:
             hits = order[bad[order]]
             first[mode] = float(lam[hits[0]]) if hits.size else None
         return StabilityCheck(all(v is None for v in first.values()), lo, hi, first, n, checked)
+
+    def check_fe_stability(self, stretch_max: float | None = None) -> None:
+        """Refuse parameters that are Drucker-unstable where the FE solvers deform a tube.
+
+        The FE problems (squeeze, inflation, ring test, pull-out) need positive small-strain
+        moduli (``mu > 0``, ``K > 0``: checked when the model is made) and a material that
+        stays stable at large strain: where ``dP/dl <= 0`` Newton fails deep in the solve.
+        Checked: ``dP/dl > 0`` along the uniaxial, equibiaxial and planar paths at every state
+        whose principal stretches lie in ``[1 / stretch_max, stretch_max]`` (uniaxial and
+        planar ``l`` over that range, equibiaxial ``l`` over its square root), 801 stretches
+        per path, cached per parameter set; an instability up to twice ``stretch_max`` is a
+        :class:`~exofric.errors.PlausibilityWarning`.
+
+        Parameters
+        ----------
+        stretch_max : float, optional
+            Largest principal stretch checked (unitless, > 1); default
+            ``defaults.MR_STRETCH_LIMIT`` (2.5: the range the FE results are validated for).
+
+        Raises
+        ------
+        InputError
+            ``param="params"``: the model, its parameters and, per path, the unstable
+            stretches.
+
+        Examples
+        --------
+        >>> material_model("yeoh", [0.19, -0.0019, 4.1e-5]).check_fe_stability()  # stable
+        >>> material_model("mooney-rivlin", [-0.1, 0.4]).check_fe_stability()
+        Traceback (most recent call last):
+        ...
+        exofric.errors.InputError: params: mooney-rivlin (C10 = -0.1 MPa, C01 = 0.4 MPa) is \
+Drucker-unstable (dP/dl <= 0) within the stretches the FE reaches (principal stretches \
+0.4-2.5): uniaxial at stretch 1.71-2.5. Give parameters stable there \
+(HyperelasticModel.stability shows where)
+        """
+        _check_fe_stability(self, stretch_max)
+
+
+def _shown(name: str, value: float) -> str:
+    """A parameter as a message shows it: ``C10 = 0.5 MPa``, ``alpha1 = 2`` (not the Python
+    name, which the CLI would take for its option)."""
+    if name.endswith("_mpa"):
+        label = name[:-4]
+        return f"{label.upper() if label.startswith('c') else label} = {value:.4g} MPa"
+    return f"{name} = {value:.4g}"
+
+
+#: The paths of the FE check, as messages name them.
+_PATH_NAMES = {"uniaxial": "uniaxial", "biaxial": "equibiaxial", "planar": "planar"}
+
+
+def _fe_ranges(stretch_max: float) -> dict[str, tuple[float, float]]:
+    """Per path, the stretches (unitless) at which every principal stretch lies in
+    ``[1 / stretch_max, stretch_max]``: equibiaxial ``(l, l, l^-2)`` only to
+    ``stretch_max^(1/2)``."""
+    s = float(stretch_max)
+    return {"uniaxial": (1.0 / s, s), "biaxial": (s ** -0.5, s ** 0.5), "planar": (1.0 / s, s)}
+
+
+@functools.lru_cache(maxsize=64)
+def _fe_unstable(name: str, params: tuple[float, ...],
+                 stretch_max: float) -> dict[str, list[tuple[float, float]]]:
+    """Per path, the stretch intervals (unitless) of the FE's range where ``dP/dl <= 0``
+    (on 801 stretches evenly spaced in ln l per path, 1 included)."""
+    import numpy as np
+
+    out: dict[str, list[tuple[float, float]]] = {}
+    for mode, (lo, hi) in _fe_ranges(stretch_max).items():
+        lam = np.unique(np.concatenate([np.geomspace(lo, hi, 801), [1.0]]))
+        z = _isochoric_stress(name, params, mode, lam + 1j * 1e-30, "engineering")
+        bad = ~(np.imag(z) / 1e-30 > 0.0)
+        if not bad.any():
+            continue
+        idx = np.flatnonzero(bad)
+        runs = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
+        out[mode] = [(float(lam[r[0]]), float(lam[r[-1]])) for r in runs]
+    return out
+
+
+def _check_fe_stability(model: HyperelasticModel, stretch_max: float | None,
+                        subject: str = "params") -> None:
+    """:meth:`HyperelasticModel.check_fe_stability`; ``subject`` opens the message and is
+    the error's parameter (its first name)."""
+    smax = float(defaults.MR_STRETCH_LIMIT if stretch_max is None
+                 else check_range("stretch_max", stretch_max, 1.0, 1e3, lo_open=True))
+    params = tuple(model.params)
+    bad = _fe_unstable(model.name, params, smax)
+    values = ", ".join(_shown(n, v) for n, v in zip(model.param_names, params, strict=True))
+    if bad:
+        where = "; ".join(f"{_PATH_NAMES[m]} at stretch "
+                          + " and ".join(f"{a:.3g}-{b:.3g}" for a, b in runs)
+                          for m, runs in bad.items())
+        raise InputError(f"{subject}: {model.name} ({values}) is Drucker-unstable (dP/dl <= 0) "
+                         f"within the stretches the FE reaches (principal stretches "
+                         f"{1.0 / smax:.3g}-{smax:.3g}): {where}. Give parameters stable there "
+                         "(HyperelasticModel.stability shows where)",
+                         param=subject.split(",")[0])
+    wide = 2.0 * smax
+    later = _fe_unstable(model.name, params, wide)
+    if later:
+        # per run, its stretch nearest 1; the nearest of all
+        near = [(b if b < 1.0 else a, m) for m, runs in later.items() for a, b in runs]
+        lam, mode = min(near, key=lambda t: abs(math.log(t[0])))
+        warn_implausible(f"{model.name} ({values}) is Drucker-unstable from {_PATH_NAMES[mode]} "
+                         f"stretch {lam:.3g}, beyond the {1.0 / smax:.3g}-{smax:.3g} the FE "
+                         "results are validated for: a solve that stretches the tube that far "
+                         "fails to converge")
 
 
 def material_model(name: str, params: ArrayLike, d: float | None = None,

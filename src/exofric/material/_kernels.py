@@ -13,7 +13,8 @@ the analytic Jacobian with respect to the parameters:
   ``dpsi/da = -psi / a + (2 / a) ln l (l^(a-1) - c l^(c a - 1))``.
 
 Every expression is complex-safe, so the tangent ``dP/dl`` and its Jacobian come from the
-complex step ``Im f(l + i h) / h`` (exact to rounding). These are the same stresses as
+complex step ``Im f(l + i h) / h`` (exact to rounding); Ogden's in closed form,
+``dpsi/dl = (2 / a) ((a - 1) l^(a-2) - (c a - 1) l^(c a - 2))``. These are the same stresses as
 :meth:`HyperelasticModel.stress_mpa` (tests/test_material_real_data.py checks them against it
 and against finite differences). Units: MPa, stretch and exponents unitless.
 """
@@ -78,19 +79,49 @@ def stress_jac(name: str, mode: str, lam: Any, x: Any) -> tuple[Any, Any]:
         cols = _invariant_columns(name, mode, lam)
         return cols @ x, cols
     c = _LATERAL[mode]
-    log_l = np.log(lam)
-    n = x.size // 2
-    jac = np.empty(np.shape(lam) + (2 * n,), dtype=np.result_type(lam, float))
-    p = 0.0
-    for i in range(n):
-        mu, a = x[2 * i], x[2 * i + 1]
-        u = lam ** (a - 1.0)
-        v = lam ** (c * a - 1.0)
+    mu, a = x[0::2], x[1::2]
+    log_l = np.log(lam)[..., None]
+    u = np.exp((a - 1.0) * log_l)
+    v = np.exp((c * a - 1.0) * log_l)
+    psi = (2.0 / a) * (u - v)
+    jac = np.empty(np.shape(lam) + (x.size,), dtype=psi.dtype)
+    jac[..., 0::2] = psi
+    jac[..., 1::2] = mu * ((2.0 / a) * (log_l * (u - c * v)) - psi / a)
+    return psi @ mu, jac
+
+
+def ogden_columns(mode: str, lam: NDArray[np.float64],
+                  alpha: Any) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Ogden's per-term columns ``psi(l, a)`` and ``dpsi/da`` for many exponents at once.
+
+    ``P = sum_i mu_i psi(l, a_i)`` along the path, ``psi = (2 / a) (l^(a-1) - l^(c a - 1))``;
+    for the vectorised multi-start of the fit (every start's exponents in one call).
+
+    Parameters
+    ----------
+    mode : str
+        ``uniaxial``, ``biaxial`` or ``planar``.
+    lam : numpy.ndarray
+        Real stretches (unitless), > 0, shape ``(N,)``.
+    alpha : array_like
+        Exponents (unitless, nonzero) of any shape ``(..., n)``.
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        ``psi`` and ``dpsi/da`` of shape ``(..., N, n)`` (MPa per MPa of mu: unitless).
+    """
+    import numpy as np
+
+    c = _LATERAL[mode]
+    log_l = np.log(np.asarray(lam, dtype=float))[:, None]
+    a = np.asarray(alpha, dtype=float)[..., None, :]
+    with np.errstate(all="ignore"):
+        u = np.exp((a - 1.0) * log_l)
+        v = np.exp((c * a - 1.0) * log_l)
         psi = (2.0 / a) * (u - v)
-        jac[..., 2 * i] = psi
-        jac[..., 2 * i + 1] = mu * (-psi / a + (2.0 / a) * log_l * (u - c * v))
-        p = p + mu * psi
-    return p, jac
+        dpsi = (2.0 / a) * (log_l * (u - c * v)) - psi / a
+    return psi, dpsi
 
 
 def tangent_jac(name: str, mode: str, lam: NDArray[np.float64],
@@ -113,8 +144,33 @@ def tangent_jac(name: str, mode: str, lam: NDArray[np.float64],
     """
     import numpy as np
 
-    p, jac = stress_jac(name, mode, np.asarray(lam, dtype=float) + 1j * _H, x)
+    lam = np.asarray(lam, dtype=float)
+    x = np.asarray(x, dtype=float)
+    if name.startswith("ogden"):
+        return _ogden_tangent(mode, lam, x)
+    p, jac = stress_jac(name, mode, lam + 1j * _H, x)
     return np.imag(p) / _H, np.imag(jac) / _H
+
+
+def _ogden_tangent(mode: str, lam: NDArray[np.float64],
+                   x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Ogden's ``dP/dl = sum_i mu_i t(l, a_i)`` in closed form, ``t = dpsi/dl = (2 / a)
+    ((a - 1) l^(a-2) - (c a - 1) l^(c a - 2))``, and its Jacobian: ``t`` on mu_i,
+    ``mu_i dt/da`` on a_i (MPa)."""
+    import numpy as np
+
+    c = _LATERAL[mode]
+    mu, a = x[0::2], x[1::2]
+    log_l = np.log(lam)[:, None]
+    u2 = np.exp((a - 2.0) * log_l)
+    v2 = np.exp((c * a - 2.0) * log_l)
+    t = (2.0 / a) * ((a - 1.0) * u2 - (c * a - 1.0) * v2)
+    dt = (2.0 / a) * (u2 * (1.0 + (a - 1.0) * log_l) - c * v2 * (1.0 + (c * a - 1.0) * log_l)) \
+        - t / a
+    jac = np.empty(lam.shape + (x.size,))
+    jac[:, 0::2] = t
+    jac[:, 1::2] = mu * dt
+    return t @ mu, jac
 
 
 def shear_modulus_grad(name: str, n_params: int) -> NDArray[np.float64]:

@@ -395,6 +395,40 @@ class MooneyRivlin:
 
         return HyperelasticModel("mooney-rivlin", (self.c10_mpa, self.c01_mpa), self.d_per_mpa)
 
+    def check_fe_stability(self, stretch_max: float | None = None) -> None:
+        """Refuse constants that are Drucker-unstable where the FE solvers deform a tube.
+
+        :meth:`HyperelasticModel.check_fe_stability` of :meth:`to_model`, the error about
+        ``c10`` and ``c01`` (MPa). Constants from :meth:`from_shore` (C10, C01 > 0) always
+        pass.
+
+        Parameters
+        ----------
+        stretch_max : float, optional
+            Largest principal stretch checked (unitless, > 1); default
+            ``defaults.MR_STRETCH_LIMIT`` (2.5).
+
+        Raises
+        ------
+        InputError
+            ``param="c10"``: the constants and, per path, the unstable stretches.
+
+        Examples
+        --------
+        >>> MooneyRivlin(0.5, -0.3, 0.005).check_fe_stability()
+        Traceback (most recent call last):
+        ...
+        exofric.errors.InputError: c10, c01: mooney-rivlin (C10 = 0.5 MPa, C01 = -0.3 MPa) is \
+Drucker-unstable (dP/dl <= 0) within the stretches the FE reaches (principal stretches \
+0.4-2.5): uniaxial at stretch 0.4-0.744; equibiaxial at stretch 1.13-1.58. Give parameters \
+stable there (HyperelasticModel.stability shows where)
+        """
+        from exofric.material._hyperelastic import _check_fe_stability
+
+        if self.c10_mpa >= 0.0 and self.c01_mpa >= 0.0:
+            return  # W convex in (I1, I2) with positive weights: stable at every stretch
+        _check_fe_stability(self.to_model(), stretch_max, "c10, c01")
+
     def to_dict(self) -> dict[str, float | str | None]:
         """JSON-ready dict with unit-suffixed keys (MPa, 1/MPa)."""
         return {

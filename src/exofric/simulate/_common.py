@@ -92,11 +92,15 @@ def fe_material_of(material: Any) -> FEMaterial:
     Raises
     ------
     InputError
-        Another type.
+        Another type, or parameters Drucker-unstable within the FE's stretches
+        (:meth:`~exofric.material.HyperelasticModel.check_fe_stability`).
     """
     if isinstance(material, MooneyRivlin):
+        material.check_fe_stability()
         return material
-    return PlaneStrainMaterial(material)
+    fe = PlaneStrainMaterial(material)
+    fe.source.check_fe_stability()  # Drucker-unstable parameters: InputError (issue 38)
+    return fe
 
 
 def resolve_accuracy(accuracy: str | None, mesh: MeshSpec | None,
