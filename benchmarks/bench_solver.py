@@ -12,6 +12,10 @@ matter less), Newton attempts, failed attempts and the share of the Newton time 
 iterations and linear solves. The solve-time exponent is the least-squares slope of
 log(time) against log(dofs). Targets (issue 22): failed-attempt time < 10% on every mesh and
 an exponent <= 1.35. N(0.6 MPa) of both solvers is printed to show they reach the same answer.
+
+``--against issue37``: "before" is today's solver with a tangent assembled and factorised at
+every iterate (``chord_step`` 0: no residual-only trials where the step is short, no reuse of
+the last factorisation; issue 37), same ordering.
 """
 
 from __future__ import annotations
@@ -42,6 +46,8 @@ PRESSURES = np.linspace(0.05, 0.6, 12)
 NOW = NewtonSettings(**defaults.SQUEEZE_NEWTON)
 BEFORE = NewtonSettings(**{**defaults.SQUEEZE_NEWTON, "active_set_iterations": 0,
                            "stagnation_ratio": 0.0})
+BEFORE_37 = NewtonSettings(**{**defaults.SQUEEZE_NEWTON, "chord_step": 0.0})
+_AGAINST = {"issue22": BEFORE, "issue37": BEFORE_37}
 
 
 @contextlib.contextmanager
@@ -57,13 +63,14 @@ def _rcm_only() -> Iterator[None]:
         _inflation._line_order = keep
 
 
-def _solve(nr: int, nc: int, variant: str) -> dict[str, Any]:
+def _solve(nr: int, nc: int, variant: str, against: str = "issue22") -> dict[str, Any]:
     mat = MooneyRivlin.from_shore(62.5)
-    ctx = _rcm_only() if variant == "before" else contextlib.nullcontext()
+    old = variant == "before"
+    ctx = _rcm_only() if old and against == "issue22" else contextlib.nullcontext()
     with ctx:
         t0 = time.process_time()
         r = squeeze(BASE, mat, PRESSURES, mesh=MeshSpec(nr, nc), keep_fields=False,
-                    settings=BEFORE if variant == "before" else NOW)
+                    settings=_AGAINST[against] if old else NOW)
         cpu = time.process_time() - t0
         from exofric.fe import SqueezeProblem
 
@@ -88,6 +95,8 @@ def main() -> dict[str, Any]:
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="1 run, meshes up to 6 x 96")
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--against", choices=sorted(_AGAINST), default="issue22",
+                    help="the 'before' solver: before issue 22 or before issue 37")
     a = ap.parse_args()
     runs = 1 if a.quick else a.runs
     meshes = MESHES[:-1] if a.quick else MESHES
@@ -97,19 +106,20 @@ def main() -> dict[str, Any]:
         samples: dict[str, list[dict[str, Any]]] = {"before": [], "now": []}
         for _ in range(runs):  # interleaved
             for v in ("before", "now"):
-                samples[v].append(_solve(nr, nc, v))
+                samples[v].append(_solve(nr, nc, v, a.against))
         for v in ("before", "now"):
             row = dict(samples[v][0])
             row["cpu_s"] = statistics.median(s["cpu_s"] for s in samples[v])
             row["mesh"] = f"{nr}x{nc}"
             out[v].append(row)
-    res: dict[str, Any] = {"runs": runs, "load_avg_1min": os.getloadavg()[0], **out,
+    res: dict[str, Any] = {"runs": runs, "against": a.against,
+                           "load_avg_1min": os.getloadavg()[0], **out,
                            "exponent_before": _exponent(out["before"]),
                            "exponent_now": _exponent(out["now"])}
     hdr = (f"{'mesh':>6} {'dofs':>5} | {'band':>9} {'CPU s':>13} {'x':>5} | "
            f"{'attempts (failed)':>17} {'failed %':>13} | {'iterations':>9} | N(0.6) N")
     print(f"Newton and banded solve, base-group squeeze, CPU medians of {runs} "
-          f"(load {res['load_avg_1min']:.1f}); columns: before -> now")
+          f"(load {res['load_avg_1min']:.1f}); columns: before ({a.against}) -> now")
     print(hdr)
     for b, n in zip(out["before"], out["now"], strict=True):
         print(f"{n['mesh']:>6} {n['dofs']:>5} | {b['band']:>4}->{n['band']:<4} "

@@ -9,15 +9,16 @@ axial stretch) kept out of the band by a Schur complement.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
 from scipy.linalg import LinAlgError
-from scipy.linalg.lapack import dgbsv, dpbsv
+from scipy.linalg.lapack import dgbtrf, dgbtrs, dpbtrf, dpbtrs
 from scipy.sparse.csgraph import reverse_cuthill_mckee
-from scipy.sparse.linalg import spsolve
+from scipy.sparse.linalg import splu
 
-__all__ = ["Assembler"]
+__all__ = ["Assembler", "Factorization"]
 
 
 class Assembler:
@@ -147,13 +148,7 @@ class Assembler:
     def solve(self, K: sp.csc_matrix, rhs: np.ndarray) -> np.ndarray:
         """Solve ``K x = rhs`` for a matrix from :meth:`matrix` (banded solver after RCM).
 
-        A matrix that is symmetric to round-off (1e-12 of its largest entry) is first given
-        to LAPACK's banded Cholesky (pbsv); if it is not positive definite (or not
-        symmetric), the banded LU with partial pivoting (gbsv) solves it. Falls back to
-        SuperLU when the band is wider than 1/4 of the system. Border dofs (``border``) are
-        eliminated by their Schur complement: the banded factorisation solves for the
-        right-hand side and the border columns at once. Raises ``LinAlgError`` for a
-        singular matrix.
+        One :meth:`factorize` and one :meth:`Factorization.solve`; see there.
 
         Parameters
         ----------
@@ -166,56 +161,59 @@ class Assembler:
         -------
         ndarray (nf,)
         """
+        return self.factorize(K).solve(rhs)
+
+    def factorize(self, K: sp.csc_matrix) -> Factorization:
+        """Factorise ``K`` (a matrix from :meth:`matrix`) for repeated solves.
+
+        A matrix that is symmetric to round-off (1e-12 of its largest entry) is first given
+        to LAPACK's banded Cholesky (pbtrf); if it is not positive definite (or not
+        symmetric), the banded LU with partial pivoting (gbtrf) factorises it. Falls back to
+        SuperLU when the band is wider than 1/4 of the system. Border dofs (``border``) are
+        eliminated by their Schur complement: the interior factor is applied to the border
+        columns once here, so that each solve is two banded triangular sweeps. Raises
+        ``LinAlgError`` for a singular matrix.
+
+        Parameters
+        ----------
+        K : scipy.sparse.csc_matrix (nf, nf)
+            Matrix of the free dofs, as returned by :meth:`matrix` (same pattern).
+
+        Returns
+        -------
+        Factorization
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> a = Assembler(2, np.array([True, True]), [(np.array([0, 1]), np.array([0, 1]))])
+        >>> f = a.factorize(a.matrix([np.array([4.0, 16.0])]))
+        >>> f.solve(np.array([4.0, 8.0])).tolist(), f.solve(np.array([8.0, 16.0])).tolist()
+        ([1.0, 0.5], [2.0, 1.0])
+        """
         ni = self.ints.size
         if 4 * self.band > ni:
-            return np.asarray(spsolve(K, rhs))
+            return Factorization(self, splu(K.tocsc()), None, None)
         data = K.data
-        nb = self.border.size
-        b_rhs = rhs[self.ints][:, None]
-        if nb:
-            kib = np.zeros((ni, nb))
-            e, r, c = self._ib
-            kib[r, c] = data[e]
-            b_rhs = np.hstack([b_rhs, kib])
         sym = self.transpose_slot is not None and np.max(
             np.abs(data - data[self.transpose_slot])) <= 1e-12 * np.max(np.abs(data))
-        y = self._banded(data[self.e_ii], b_rhs, sym)
-        x = np.empty(self.nf)
+        band = _BandFactor(self, data[self.e_ii], sym)
+        nb = self.border.size
         if not nb:
-            x[self.ints] = y[:, 0]
-            return x
+            return Factorization(self, band, None, None)
+        kib = np.zeros((ni, nb))
+        e, r, c = self._ib
+        kib[r, c] = data[e]
         kbi, kbb = np.zeros((nb, ni)), np.zeros((nb, nb))
         e, r, c = self._bi
         kbi[r, c] = data[e]
         e, r, c = self._bb
         kbb[r, c] = data[e]
-        schur = kbb - kbi @ y[:, 1:]
-        xb = np.linalg.solve(schur, rhs[self.border] - kbi @ y[:, 0])
-        x[self.ints] = y[:, 0] - y[:, 1:] @ xb
-        x[self.border] = xb
-        return x
-
-    def _banded(self, data: np.ndarray, rhs: np.ndarray, sym: bool) -> np.ndarray:
-        """Solve the interior block (entries ``data``) for the columns of ``rhs`` (ni, k)."""
-        ni, b = self.ints.size, self.band
-        rp = np.ascontiguousarray(rhs[self.perm], dtype=float)
-        x = np.empty_like(rp)
-        if sym:
-            ab = np.zeros((ni, b + 1))  # the transpose of the Fortran-ordered band
-            ab.ravel()[self.chol_slot] = data[self.upper]
-            _, xp, info = dpbsv(ab.T, rp, lower=0, overwrite_ab=1, overwrite_b=0)
-            if info == 0:
-                x[self.perm] = xp
-                return x
-        ab = np.zeros((ni, 3 * b + 1))
-        ab.ravel()[self.lu_slot] = data
-        _, _, xp, info = dgbsv(b, b, ab.T, rp, overwrite_ab=1, overwrite_b=0)
-        if info > 0:
+        y = band.solve(kib)  # K_ii^-1 K_ib
+        schur = kbb - kbi @ y
+        if not np.all(np.isfinite(schur)):
             raise LinAlgError("singular matrix")
-        if info < 0:
-            raise ValueError(f"illegal value in argument {-info} of gbsv")
-        x[self.perm] = xp
-        return x
+        return Factorization(self, band, (kbi, y), np.linalg.inv(schur))  # LinAlgError if singular
 
     def add(self, K: sp.csc_matrix, pattern: int, values: np.ndarray) -> sp.csc_matrix:
         """``K`` plus values on the entries of one pattern (a new matrix; ``K`` is kept).
@@ -267,3 +265,91 @@ class Assembler:
         vals = np.concatenate([np.asarray(b).ravel() for b in blocks])[self.keep]
         data = np.bincount(self.inv, weights=vals, minlength=self.nnz)
         return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.nf, self.nf))
+
+
+class _BandFactor:
+    """Banded Cholesky (pbtrf) or, failing that, LU (gbtrf) of an Assembler's interior block."""
+
+    def __init__(self, asm: Assembler, data: np.ndarray, sym: bool) -> None:
+        ni, b = asm.ints.size, asm.band
+        self.perm = asm.perm
+        self.chol = False
+        if sym:
+            ab = np.zeros((ni, b + 1))  # the transpose of the Fortran-ordered band
+            ab.ravel()[asm.chol_slot] = data[asm.upper]
+            c, info = dpbtrf(ab.T, lower=0, overwrite_ab=1)
+            if info == 0:
+                self.chol, self.ab = True, c
+                return
+        ab = np.zeros((ni, 3 * b + 1))
+        ab.ravel()[asm.lu_slot] = data
+        lu, piv, info = dgbtrf(ab.T, b, b, overwrite_ab=1)
+        if info > 0:
+            raise LinAlgError("singular matrix")
+        if info < 0:
+            raise ValueError(f"illegal value in argument {-info} of gbtrf")
+        self.ab, self.piv, self.b = lu, piv, b
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """Solve for the columns of ``rhs`` (ni, k) or a vector (ni,)."""
+        rp = np.ascontiguousarray(rhs[self.perm], dtype=float)
+        if self.chol:
+            xp, info = dpbtrs(self.ab, rp, lower=0)
+        else:
+            xp, info = dgbtrs(self.ab, self.b, self.b, rp, self.piv)
+        if info != 0:
+            raise ValueError(f"illegal value in argument {-info} of the banded solve")
+        x = np.empty_like(xp)
+        x[self.perm] = xp
+        return x
+
+
+class Factorization:
+    """A factorised matrix of an :class:`Assembler` (from :meth:`Assembler.factorize`).
+
+    Solves reuse the factors: a Newton iteration whose tangent barely changed (the chord
+    steps of :func:`exofric.fe.solve_path`) costs two triangular sweeps instead of an
+    assembly and a factorisation.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> a = Assembler(2, np.array([True, True]), [(np.array([0, 1]), np.array([0, 1]))])
+    >>> a.factorize(a.matrix([np.array([4.0, 16.0])])).solve(np.array([4.0, 8.0])).tolist()
+    [1.0, 0.5]
+    """
+
+    def __init__(self, asm: Assembler, inner: _BandFactor | Any,
+                 border: tuple[np.ndarray, np.ndarray] | None,
+                 schur_inv: np.ndarray | None) -> None:
+        self._asm = asm
+        self._inner = inner
+        self._border = border  # (K_bi, K_ii^-1 K_ib)
+        self._schur_inv = schur_inv
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """Solve ``K x = rhs`` with the stored factors.
+
+        Parameters
+        ----------
+        rhs : ndarray (nf,)
+            Right-hand side over the free dofs.
+
+        Returns
+        -------
+        ndarray (nf,)
+        """
+        a = self._asm
+        if not isinstance(self._inner, _BandFactor):  # SuperLU (wide band)
+            return np.asarray(self._inner.solve(np.asarray(rhs, dtype=float)))
+        y = self._inner.solve(rhs[a.ints])
+        if self._border is None or self._schur_inv is None:
+            x = np.empty(a.nf)
+            x[a.ints] = y
+            return x
+        kbi, kib_y = self._border
+        xb = self._schur_inv @ (rhs[a.border] - kbi @ y)
+        x = np.empty(a.nf)
+        x[a.ints] = y - kib_y @ xb
+        x[a.border] = xb
+        return x

@@ -178,9 +178,9 @@ def evaluate_contact(
     force = (ew * phi)[:, None] * grad  # -dE/dx = eps w phi grad(g)
     blocks = np.zeros((len(x), 2, 2))
     if tangent:
-        P = np.eye(2) - np.einsum("mi,mj->mij", n, n)
+        P = np.eye(2) - n[:, :, None] * n[:, None, :]
         blocks = (
-            ew[:, None, None] * np.einsum("mi,mj->mij", grad, grad)
+            ew[:, None, None] * (grad[:, :, None] * grad[:, None, :])
             - (ew * phi * hess_sign / dist)[:, None, None] * P
         )
     return ContactState(energy, force, blocks, gap, active)
@@ -358,9 +358,9 @@ def evaluate_friction(
         H[:, 0, 1] = H[:, 1, 0] = (dy**2 - dx**2) / r4
         # F_n = eps w <-g>, so dF_n/dx = -eps w grad(g) on active nodes
         dfn = -(eps * weights * normal.active)[:, None] * _gap_grad(d, circle)
-        stick_b = (kw * rc**2)[:, None, None] * np.einsum("mi,mj->mij", gth, gth)
-        slip_b = (mu if coupled or not frozen else 0.0) * (sgn * rc)[:, None, None] * np.einsum(
-            "mi,mj->mij", gth, dfn)
+        stick_b = (kw * rc**2)[:, None, None] * (gth[:, :, None] * gth[:, None, :])
+        slip_b = (mu if coupled or not frozen else 0.0) * (sgn * rc)[:, None, None] * (
+            gth[:, :, None] * dfn[:, None, :])
         blocks = (np.where(stick[:, None, None], stick_b, 0.0)
                   + np.where(slip[:, None, None], slip_b, 0.0)
                   + (T * rc)[:, None, None] * H)
@@ -397,8 +397,15 @@ def slip_geometry(x: np.ndarray, circle: RigidCircle, anchor: np.ndarray
     d = x - np.asarray(circle.center)
     r2 = d[:, 0] ** 2 + d[:, 1] ** 2
     theta = np.arctan2(d[:, 1], d[:, 0])
-    dth = np.angle(np.exp(1j * (theta - anchor)))
+    dth = _wrap(theta - anchor)
     return theta, dth, np.column_stack([-d[:, 1], d[:, 0]]) / r2[:, None]
+
+
+def _wrap(a: np.ndarray) -> np.ndarray:
+    """Angles ``a`` (rad) wrapped to (-pi, pi] (as ``np.angle(np.exp(1j a))``, without the
+    complex exponential)."""
+    w = np.remainder(a + np.pi, 2.0 * np.pi) - np.pi
+    return np.where(w == -np.pi, np.pi, w)
 
 
 def _gap_grad(d: np.ndarray, circle: RigidCircle) -> np.ndarray:
