@@ -30,7 +30,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _fe_bench import cli_main  # noqa: E402
 
 PRESSURES_MPA = np.round(np.arange(0.05, 0.601, 0.05), 2)
-LEVELS = ("former default 2 x 24", "draft", "standard", "fine")
+LEVELS = ("former default 2 x 24", "former standard 4 x 32", "draft", "standard", "fine")
+#: The "standard" level before issue 35 (one grading toward the wire over the half tube):
+#: timed with the levels table swapped for this entry, to compare the cost before and after.
+FORMER_STANDARD = {"n_radial": 4, "n_circ": 32, "grading": 6.0, "coarsen": (2, 2)}
 REFERENCE = Path(__file__).resolve().parents[1] / "tests" / "data" / "squeeze_reference_felupe.json"
 
 
@@ -51,6 +54,9 @@ def run(runs: int = 3, felupe_runs: int = 0) -> dict[str, Any]:
     ``felupe_runs`` is unused (FElupe enters through the stored reference only).
     """
     runs = max(1, min(runs, 3))
+    from unittest import mock
+
+    from exofric import defaults
     from exofric.fe import MeshSpec
     from exofric.friction import paper_structures
     from exofric.material import MooneyRivlin
@@ -60,16 +66,21 @@ def run(runs: int = 3, felupe_runs: int = 0) -> dict[str, Any]:
     refs = _reference()
     rows: dict[str, dict[str, Any]] = {}
     for level in LEVELS:
-        kw: dict[str, Any] = ({"mesh": MeshSpec(2, 24)} if level.startswith("former")
-                              else {"accuracy": level})
+        kw: dict[str, Any] = ({"mesh": MeshSpec(2, 24)} if level.startswith("former default")
+                              else {"accuracy": level.split()[1] if level.startswith("former")
+                                    else level})
+        swap = ({"standard": FORMER_STANDARD} if level.startswith("former standard")
+                else {})
         cpu, wall = [], []
         err: list[float] = []
         for k in range(runs):
-            c0, w0 = time.process_time(), time.perf_counter()
-            results = [squeeze(s, mat, PRESSURES_MPA, keep_fields=False, **kw)
-                       for s in paper_structures()]
-            cpu.append(time.process_time() - c0)
-            wall.append(time.perf_counter() - w0)
+            with mock.patch.object(defaults, "SQUEEZE_ACCURACY",
+                                   {**defaults.SQUEEZE_ACCURACY, **swap}):
+                c0, w0 = time.process_time(), time.perf_counter()
+                results = [squeeze(s, mat, PRESSURES_MPA, keep_fields=False, **kw)
+                           for s in paper_structures()]
+                cpu.append(time.process_time() - c0)
+                wall.append(time.perf_counter() - w0)
             if k == 0:
                 for r in results:
                     ref = refs.get(r.structure.name)

@@ -52,6 +52,9 @@ from exofric.simulate import compressible_inflation  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "tests" / "data" / "squeeze_reference_felupe.json"
+#: Second file (issue 35): thick walls (ID/OD ~0.54), small and large clearances, wires of
+#: 1.1-2 mm, where the contact patch is born between two output pressures.
+OUT_ONSET = ROOT / "tests" / "data" / "squeeze_reference_felupe_onset.json"
 
 #: Output pressures (MPa): 0.05, 0.10, ..., 0.60.
 PRESSURES_MPA = np.round(0.05 * np.arange(1, 13), 2)
@@ -115,13 +118,82 @@ def structures(mat: MooneyRivlin) -> dict[str, Structure]:
     return out
 
 
+#: Issue 35's structures (hole, OD, ID, wire in mm): the Table 3 family with thick walls
+#: (ID/OD 0.54-0.55; onsets from 0.07 to 0.32 MPa), larger clearances and wires of 1.1-2 mm.
+ONSET_STRUCTURES: dict[str, tuple[float, float, float, float]] = {
+    "thick, d2 = 1.6": (10.0, 8.3, 4.5, 1.6),
+    "thick, d2 = 1.1": (10.0, 8.3, 4.5, 1.1),
+    "thick, D = 10.2": (10.2, 8.3, 4.6, 1.6),
+    "thick test 3, D = 12.6": (12.6, 10.2, 5.5, 2.0),
+    "thick test 2": (7.5, 6.2, 3.35, 1.1),
+}
+#: Onset set: the finer mesh of the mesh study is run only up to this far above the 1D
+#: onset (MPa): the first outputs after the onset are where the mesh error is largest (the
+#: first file's mesh study: <= 0.05% from 0.3 MPa) and the cost is in the later pressures.
+ONSET_STUDY_SPAN_MPA = 0.16
+
+
+#: Onset set without FElupe (``--set onset-convergence``): exofric's own mesh convergence
+#: study, meshes far finer than any accuracy level (two-sided grading as the FElupe reference
+#: mesh: elements of ~0.01 mm at the wire, ~0.05 mm at the wall) and the same with half the
+#: elements in both directions; |N_fine - N_half| bounds the fine mesh's error where the
+#: convergence is monotone of order >= 1 (order ~1.2 measured, docs/formulation.md section 6).
+CONVERGENCE_MESHES: dict[str, dict[str, Any]] = {
+    "reference": {"n_radial": 8, "n_circ": 192, "grading": 30.0, "wall_elements": 72,
+                  "wall_grading": 5.0},
+    "half": {"n_radial": 4, "n_circ": 96, "grading": 30.0 ** (2 * 59 / 119),
+             "wall_elements": 36, "wall_grading": 5.0 ** (2 * 35 / 71)},
+}
+OUT_CONVERGENCE = ROOT / "tests" / "data" / "squeeze_reference_onset_convergence.json"
+
+
+def convergence_reference(structs: dict[str, Structure], mat: MooneyRivlin,
+                          argv: list[str]) -> dict[str, Any]:
+    """exofric's mesh-convergence reference of the onset structures (N/mm, full section)."""
+    from exofric.fe import MeshSpec
+    from exofric.simulate import squeeze
+
+    doc = _header(mat, argv)
+    doc["description"] = ("Weightless, frictionless squeeze force N(P) (plane strain, full "
+                          "section, N per mm depth) of issue 35's thick-wall structures: "
+                          "exofric on a mesh far finer than its accuracy levels, with the "
+                          "nested mesh of half the elements as its mesh study.")
+    doc["model"] = {"code": "exofric.simulate.squeeze, explicit meshes, gravity 'none'",
+                    "meshes": CONVERGENCE_MESHES}
+    for n, s in structs.items():
+        out = {}
+        for key, m in CONVERGENCE_MESHES.items():
+            t0 = time.process_time()
+            r = squeeze(s, mat, PRESSURES_MPA, gravity="none", keep_fields=False,
+                        mesh=MeshSpec(**m))
+            out[key] = (r.squeeze_force_n_per_mm, time.process_time() - t0)
+            print(f"{n}|{key}: {out[key][1]:.0f} s", flush=True)
+        nref, nhalf = out["reference"][0], out["half"][0]
+        doc["structures"][n] = {
+            "hole_mm": s.hole_mm, "tube_od_mm": s.tube_od_mm, "tube_id_mm": s.tube_id_mm,
+            "wire_mm": s.wire_mm, "length_mm": s.length_mm,
+            "onset_1d_mpa": onset_1d_mpa(s, mat),
+            "squeeze_force_n_per_mm": nref.tolist(),
+            "first_significant_pressure_mpa": first_significant_mpa(nref),
+            "mesh_study": {"half_squeeze_force_n_per_mm": nhalf.tolist(),
+                           "change_to_half_pct": _rel_pct(nhalf, nref)},
+            "cpu_time_s": out["reference"][1],
+        }
+    return doc
+
+
+def onset_structures() -> dict[str, Structure]:
+    """Issue 35's thick-wall structures (:data:`ONSET_STRUCTURES`), 116 mm long."""
+    return {n: Structure(*dims, 116.0, n) for n, dims in ONSET_STRUCTURES.items()}
+
+
 def solve(task: dict[str, Any]) -> dict[str, Any]:
     """Run one FElupe squeeze (a task dict of structure + setup fields) -> results."""
     s: Structure = task["structure"]
-    settings = {k: v for k, v in task.items() if k not in ("structure", "label")}
+    settings = {k: v for k, v in task.items() if k not in ("structure", "label", "pressures")}
     setup = SqueezeSetup.from_structure(s, material(), **settings)
     t0 = time.perf_counter()
-    r = felupe_squeeze_model(PRESSURES_MPA, setup)
+    r = felupe_squeeze_model(task.get("pressures", PRESSURES_MPA), setup)
     print(f"{task['label']}: {time.perf_counter() - t0:.0f} s", flush=True)
     return {
         "label": task["label"],
@@ -134,6 +206,54 @@ def solve(task: dict[str, Any]) -> dict[str, Any]:
         "solve_time_s": r.solve_time_s,
         "setup": setup.to_dict(),
     }
+
+
+def onset_tasks(structs: dict[str, Structure], mat: MooneyRivlin) -> list[dict[str, Any]]:
+    """Onset set: reference mesh at every pressure, finer mesh near the onset only."""
+    base = {"penalty": PENALTY, "max_increment_mpa": MAX_INCREMENT_MPA,
+            "density_t_per_mm3": WEIGHTLESS_DENSITY}
+    out = []
+    for n, s in structs.items():
+        onset = onset_1d_mpa(s, mat) or 0.0
+        near = PRESSURES_MPA[PRESSURES_MPA <= onset + ONSET_STUDY_SPAN_MPA]
+        out.append({"label": f"{n}|reference", "structure": s, **base, **REFERENCE_MESH})
+        out.append({"label": f"{n}|finer", "structure": s, **base, **FINER_MESH,
+                    "pressures": near})
+    return out
+
+
+def assemble_onset(results: dict[str, dict[str, Any]], structs: dict[str, Structure],
+                   mat: MooneyRivlin, argv: list[str]) -> dict[str, Any]:
+    """The onset set's JSON document: curves, mesh study near the onset, provenance."""
+    doc = _header(mat, argv)
+    doc["description"] = doc["description"].replace(
+        "(issue 18 reference)", "(issue 35 reference: thick walls, contact onset)")
+    doc["finer_mesh_pressures"] = (f"outputs up to {ONSET_STUDY_SPAN_MPA} MPa above the 1D "
+                                   "onset; later ones are null in the mesh study")
+    for n, s in structs.items():
+        ref, fin = results[f"{n}|reference"], results[f"{n}|finer"]
+        nref = np.array(ref["squeeze_force_n_per_mm"])
+        nfin = np.full(nref.size, np.nan)
+        nfin[:len(fin["squeeze_force_n_per_mm"])] = fin["squeeze_force_n_per_mm"]
+        change = _rel_pct(nref, nfin)
+        doc["structures"][n] = {
+            "hole_mm": s.hole_mm, "tube_od_mm": s.tube_od_mm, "tube_id_mm": s.tube_id_mm,
+            "wire_mm": s.wire_mm, "length_mm": s.length_mm,
+            "onset_1d_mpa": onset_1d_mpa(s, mat),
+            "squeeze_force_n_per_mm": nref.tolist(),
+            "first_significant_pressure_mpa": first_significant_mpa(nref),
+            "mesh_study": {
+                "finer_squeeze_force_n_per_mm": [None if np.isnan(x) else float(x)
+                                                 for x in nfin],
+                "change_to_finer_pct": [None if c is None or np.isnan(c) else c
+                                        for c in change],
+                "finer_dofs": fin["dofs"], "finer_solve_time_s": fin["solve_time_s"],
+            },
+            "wall_force_n_per_mm": ref["wall_force_n_per_mm"],
+            "max_penetration_mm": ref["max_penetration_mm"],
+            "dofs": ref["dofs"], "solve_time_s": ref["solve_time_s"],
+        }
+    return doc
 
 
 def _rel_pct(a: np.ndarray, ref: np.ndarray) -> list[float | None]:
@@ -168,10 +288,9 @@ def tasks(names: list[str], structs: dict[str, Structure]) -> list[dict[str, Any
     return out
 
 
-def assemble(results: dict[str, dict[str, Any]], structs: dict[str, Structure],
-             names: list[str], mat: MooneyRivlin, argv: list[str]) -> dict[str, Any]:
-    """The JSON document: reference curves, studies and provenance."""
-    doc: dict[str, Any] = {
+def _header(mat: MooneyRivlin, argv: list[str]) -> dict[str, Any]:
+    """The JSON document's description, provenance, model and material (no curves yet)."""
+    return {
         "description": (
             "Weightless, frictionless squeeze force N(P) of the tube-wire-hole problem "
             "(plane strain, full section, N per mm depth) from the independent FElupe model "
@@ -208,6 +327,12 @@ def assemble(results: dict[str, dict[str, Any]], structs: dict[str, Structure],
         "significance_fraction": 0.01,
         "structures": {},
     }
+
+
+def assemble(results: dict[str, dict[str, Any]], structs: dict[str, Structure],
+             names: list[str], mat: MooneyRivlin, argv: list[str]) -> dict[str, Any]:
+    """The JSON document: reference curves, studies and provenance."""
+    doc = _header(mat, argv)
     for n in names:
         s = structs[n]
         ref, fin = results[f"{n}|reference"], results[f"{n}|finer"]
@@ -265,11 +390,24 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--cache", type=Path, default=None,
                     help="JSON-lines file of finished runs (reused, appended)")
     args_list = sys.argv[1:] if argv is None else argv
+    ap.add_argument("--set", choices=("table3", "onset", "onset-convergence"),
+                    default="table3",
+                    help="table3: the first file; onset: issue 35's thick walls "
+                         f"({OUT_ONSET.name})")
     args = ap.parse_args(args_list)
     mat = material()
-    structs = structures(mat)
+    onset_set = args.set != "table3"
+    structs = onset_structures() if onset_set else structures(mat)
     names = args.structures or list(structs)
-    todo = tasks(names, structs)
+    if args.set == "onset-convergence":
+        out = OUT_CONVERGENCE if args.out == OUT else args.out
+        doc = convergence_reference({n: structs[n] for n in names}, mat, args_list)
+        out.write_text(json.dumps(doc, indent=1) + "\n")
+        print(f"wrote {out}")
+        return
+    if onset_set:  # a subset: e.g. the finished ones of a cached run
+        structs = {n: structs[n] for n in names}
+    todo = onset_tasks(structs, mat) if onset_set else tasks(names, structs)
     done: dict[str, dict[str, Any]] = {}
     if args.cache is not None and args.cache.exists():
         for line in args.cache.read_text().splitlines():
@@ -282,10 +420,12 @@ def main(argv: list[str] | None = None) -> None:
             if args.cache is not None:
                 with args.cache.open("a") as f:
                     f.write(json.dumps(r) + "\n")
-    doc = assemble(done, structs, names, mat, args_list)
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text(json.dumps(doc, indent=1) + "\n")
-    print(f"wrote {args.out}")
+    doc = (assemble_onset(done, structs, mat, args_list) if onset_set
+           else assemble(done, structs, names, mat, args_list))
+    out = OUT_ONSET if onset_set and args.out == OUT else args.out
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(doc, indent=1) + "\n")
+    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

@@ -158,3 +158,98 @@ def test_felupe_reproduces_the_stored_reference() -> None:
     rel = 100.0 * np.abs(n[pos] / n_ref[pos] - 1.0)
     assert np.all(rel <= dev[pos] + 1e-3), (rel, dev[pos])
     assert np.all(n[~pos] == 0.0)
+
+
+# --- issue 35: contact onset, the estimate's reliability, the interpolated patch edge ----------
+
+# The independent FElupe reference of the thick-wall structures
+# (`benchmarks/make_squeeze_reference.py --set onset`, hours on this machine) is not generated
+# yet; the thick-wall tests run against exofric's own mesh-convergence study (below).
+
+
+def test_patch_edge_is_exact_for_a_hertz_patch() -> None:
+    """The interpolated edge recovers the half-width a of p ~ sqrt(a^2 - x^2) (closed form).
+
+    Penalty pressure = eps (-gap): a Hertz profile sampled at nodes 0.03 mm apart gives a
+    back to round-off (the p^2-linear-in-x^2 fit is exact for it), whatever a's position
+    between nodes; the last node in contact is off by up to one node spacing. Outside, a gap
+    ~ (x - a)^(3/2) with only the centre node in contact also gives a back exactly.
+    """
+    from exofric.fe import patch_edge
+
+    x = np.arange(0.0, 0.6, 0.03)
+    for a in (0.101, 0.115, 0.128, 0.29):
+        gap = np.where(x < a, -1e-5 * np.sqrt(np.maximum(a**2 - x**2, 0.0)), 1e-3)
+        assert abs(patch_edge(x, gap) - a) < 1e-12
+        last = x[gap <= 0].max()
+        assert abs(last - a) > 1e-3  # what counting nodes reports
+        one = np.where(x == 0.0, -1e-6, (np.maximum(x - 0.02, 0.0)) ** 1.5)
+        assert abs(patch_edge(x, one) - 0.02) < 1e-12
+
+
+def test_two_sided_levels_are_nested() -> None:
+    """Each level's coarse mesh's element boundaries are a subset of its fine mesh's."""
+    from exofric import defaults
+    from exofric.fe import half_boundaries
+    from exofric.simulate._common import resolve_accuracy
+
+    for level in defaults.SQUEEZE_ACCURACY:
+        _, fine, coarse = resolve_accuracy(level, None, defaults.SQUEEZE_ACCURACY)
+        assert coarse is not None and fine.wall_elements > 0
+        bf, bc = half_boundaries(fine), half_boundaries(coarse)
+        assert bf is not None and bc is not None
+        np.testing.assert_allclose(bc, bf[::2], atol=1e-13)  # every other boundary kept
+
+
+def test_reference_estimate_flags() -> None:
+    """The stored Table 3 references: wherever the estimate claims to be reliable it bounds
+    the error; the JSON carries the flags."""
+    for name in NAMES:
+        r = _exofric(name)
+        n_ref = _ref_n(name)
+        sig = _significant(n_ref)
+        assert r.estimate.reliable is not None
+        rel = r.estimate.reliable[sig]
+        err_pct = 100.0 * np.abs(r.squeeze_force_n_per_mm[sig] / n_ref[sig] - 1.0)
+        assert r.estimate.pct is not None
+        assert np.all(err_pct[rel] <= r.estimate.pct[sig][rel]), name
+        assert r.to_dict()["n_error_estimate_reliable"] == [bool(v) for v in r.estimate.reliable]
+
+
+CONVERGENCE_DATA = DATA.with_name("squeeze_reference_onset_convergence.json")
+
+
+def _onset_cases(path: Path) -> list[tuple[str, dict[str, Any]]]:
+    """(name, stored structure) of an issue-35 reference file, [] if it is not there."""
+    if not path.exists():
+        return []
+    return list(json.loads(path.read_text())["structures"].items())
+
+
+def _check_thick(name: str, d: dict[str, Any], ref_err_pct: np.ndarray) -> None:
+    """'standard' within 1% where N >= 1% of N(0.6); the estimate >= the error there."""
+    s = Structure(d["hole_mm"], d["tube_od_mm"], d["tube_id_mm"], d["wire_mm"],
+                  d["length_mm"], name)
+    n_ref = np.array(d["squeeze_force_n_per_mm"])
+    r = squeeze(s, MAT, P, gravity="none", keep_fields=False)
+    sig = _significant(n_ref)
+    np.testing.assert_allclose(r.squeeze_force_n_per_mm[sig], n_ref[sig], rtol=REL_TOL)
+    err = 100.0 * np.abs(r.squeeze_force_n_per_mm[sig] / n_ref[sig] - 1.0)
+    assert r.estimate.pct is not None and r.estimate.reliable is not None
+    # the reference's own error (its mesh study) is granted, nothing more
+    assert np.all(err <= r.estimate.pct[sig] + ref_err_pct[sig]), (name, err,
+                                                                    r.estimate.pct[sig])
+
+
+@pytest.mark.parametrize(("name", "d"), _onset_cases(CONVERGENCE_DATA),
+                         ids=[n for n, _ in _onset_cases(CONVERGENCE_DATA)])
+def test_thick_walls_against_the_convergence_reference(name: str, d: dict[str, Any]) -> None:
+    """Issue 35: thick walls (ID/OD 0.54), larger clearances, wires 1.1-2 mm, against a mesh
+    convergence study (8 x 192 two-sided graded, ~6x finer than 'standard' at the contacts;
+    its error bounded by its change from the nested 4 x 96 mesh, order >= 1)."""
+    change = np.array([np.nan if c is None else c
+                       for c in d["mesh_study"]["change_to_half_pct"]])
+    # the reference mesh's change from its nested half: <= 0.5% at the first significant
+    # pressure, <= 0.13% from the third on (order ~1.2: its own error is smaller still)
+    assert np.nanmax(change[_significant(np.array(d["squeeze_force_n_per_mm"]))]) <= 0.5
+    _check_thick(name, d, np.nan_to_num(change))

@@ -25,7 +25,9 @@ __all__ = [
     "CONTACT_PENALTY_N_PER_MM3",
     "FRICTION_PENALTY_REL",
     "ESTIMATE_FLOOR_PCT",
+    "ESTIMATE_MIN_PATCH_NODES",
     "ESTIMATE_SAFETY_FACTOR",
+    "ESTIMATE_WINDOW_MPA",
     "GRAVITY",
     "INFLATION_ACCURACY",
     "INFLATION_MESH",
@@ -55,18 +57,21 @@ SQUEEZE_MESH: Final[MappingProxyType[str, Any]] = MappingProxyType(
 #: Accuracy levels of the squeeze (``squeeze(..., accuracy=...)``, ``--accuracy``). Each names
 #: the half-tube mesh whose answer is returned and the factors (radial, circumferential) by which
 #: it is coarsened into the nested mesh whose difference from it gives the error estimate (both
-#: halved: the estimate sees the radial and the circumferential error). Largest error from the
-#: first pressure where N >= 1% of N(0.6 MPa), against 6 x 192 meshes on Table 3 structures 1, 2,
-#: 3, 5 and 7 (docs/formulation.md section 6): "draft" (2 x 24, the former default mesh) 2.2%,
-#: "standard" (4 x 32) 0.56%, "fine" (4 x 64) 0.17%; against the independent FElupe reference
-#: (tests/data/squeeze_reference_felupe.json, six structures): 2.05%, 0.63%, 0.22%.
+#: halved: the estimate sees the radial and the circumferential error). The meshes are graded
+#: toward both contacts (issue 35): ``wall_elements`` of the ``n_circ`` elements over -90..0 deg
+#: toward the hole wall (ratio ``wall_grading``), the rest toward the wire (``grading``).
+#: Largest error from the first pressure where N >= 1% of N(0.6 MPa) against the independent
+#: FElupe reference (tests/data/squeeze_reference_felupe.json, six Table 3 structures) and
+#: against the thick-wall convergence reference (squeeze_reference_onset_convergence.json, five
+#: structures, ID/OD 0.54): "draft" 0.81% / 1.56%, "standard" 0.47% / 0.50%, "fine" 0.16% /
+#: 0.45% (docs/formulation.md section 6; before issue 35 "standard" was 0.63% / 3.8%).
 SQUEEZE_ACCURACY: Final[MappingProxyType[str, MappingProxyType[str, Any]]] = MappingProxyType({
-    "draft": MappingProxyType(
-        {"n_radial": 2, "n_circ": 24, "grading": 6.0, "coarsen": (2, 2)}),
-    "standard": MappingProxyType(
-        {"n_radial": 4, "n_circ": 32, "grading": 6.0, "coarsen": (2, 2)}),
-    "fine": MappingProxyType(
-        {"n_radial": 4, "n_circ": 64, "grading": 6.0, "coarsen": (2, 2)}),
+    "draft": MappingProxyType({"n_radial": 2, "n_circ": 24, "grading": 6.0, "wall_elements": 8,
+                               "wall_grading": 4.0, "coarsen": (2, 2)}),
+    "standard": MappingProxyType({"n_radial": 4, "n_circ": 32, "grading": 6.0,
+                                  "wall_elements": 10, "wall_grading": 4.0, "coarsen": (2, 2)}),
+    "fine": MappingProxyType({"n_radial": 4, "n_circ": 64, "grading": 6.0, "wall_elements": 20,
+                              "wall_grading": 4.0, "coarsen": (2, 2)}),
 })
 
 #: Safety factor Fs of the two-mesh error estimate, Fs |f_fine - f_coarse| / (r^p - 1) with
@@ -79,6 +84,16 @@ ESTIMATE_SAFETY_FACTOR: Final = 3.0
 #: difference can cross zero at any one pressure; on mesh-converged references the error of the
 #: "standard" level at such crossings was up to 0.014% (test 7, 0.6 MPa, against FElupe).
 ESTIMATE_FLOOR_PCT: Final = 0.1
+
+#: Squeeze estimate: the two meshes' difference is taken at its largest over the outputs
+#: within this distance (MPa) of each pressure (its sign oscillates as the contact edges
+#: pass the nodes; issue 35: 3 of 167 pressures had an error above the pointwise estimate).
+ESTIMATE_WINDOW_MPA: Final = 0.05
+
+#: Squeeze estimate: reliable only where the coarse mesh's wire contact patch spans at least
+#: this many outer nodes from its centre (centre included); below, the coarse mesh cannot
+#: resolve the patch and the difference does not scale like the error (issue 35).
+ESTIMATE_MIN_PATCH_NODES: Final = 2
 
 #: Accuracy levels of the free inflation (quarter model; same meaning as SQUEEZE_ACCURACY).
 #: "standard" is the 2 x 6 mesh above (3e-5 of the 1D reference).
@@ -122,11 +137,13 @@ SILICONE_DENSITY_T_PER_MM3: Final = 1.1e-9
 #: ``active_set_iterations`` re-solves of a direction whose step would run nodes into an
 #: obstacle, see ``SqueezeProblem.refine_direction``; ``stagnation_ratio``: an attempt whose
 #: last four steps were all damped and cut the residual by less than this factor over them is
-#: abandoned at once; both measured on the base group, 2 x 24 to 8 x 128, issue 22).
+#: abandoned at once; both measured on the base group, 2 x 24 to 8 x 128, issue 22;
+#: ``chord_step``: steps at most this long, relative to the length scale, reuse the last
+#: factorisation for the next direction, issue 37).
 NEWTON: Final[MappingProxyType[str, Any]] = MappingProxyType({
     "tol_r": 1e-9, "tol_u": 1e-10, "max_iter": 15, "max_cutbacks": 12, "max_step": 0.05,
     "min_step": 1e-6, "line_search_halvings": 8, "extrapolate": True,
-    "active_set_iterations": 3, "stagnation_ratio": 0.5,
+    "active_set_iterations": 3, "stagnation_ratio": 0.5, "chord_step": 1e-5,
 })
 
 #: Newton settings of the free inflation (largest pressure step 0.05 MPa).
@@ -261,7 +278,17 @@ RAWLOG_MAX_GAP_FACTOR: Final = 10.0
 #: Fewest samples a raw log must have.
 RAWLOG_MIN_SAMPLES: Final = 20
 
-__all__ += ["RAWLOG_MAX_GAP_FACTOR", "RAWLOG_MIN_SAMPLES"]
+#: A raw log whose estimated reading memory exceeds this fraction (unitless) of the machine's
+#: physical memory is refused, naming the estimate (issue 38): split it and reduce the parts.
+RAWLOG_MEMORY_FRACTION: Final = 0.5
+#: Peak memory of reading a raw log as a multiple (unitless) of its file's size, by format:
+#: text (CSV, LVM) measured at 2.95 on a 37 MB, 500,000-row CSV (rounded up); xlsx: openpyxl
+#: documents about 50; TDMS (uncompressed samples): as text. Parquet is estimated from its
+#: metadata (rows x columns x 8 bytes x 3), not from its compressed size.
+RAWLOG_MEMORY_PER_FILE_BYTE: Final = {"text": 3.5, "xlsx": 50.0}
+
+__all__ += ["RAWLOG_MAX_GAP_FACTOR", "RAWLOG_MEMORY_FRACTION", "RAWLOG_MEMORY_PER_FILE_BYTE",
+            "RAWLOG_MIN_SAMPLES"]
 
 # --- Plausibility of what a rig log says (exofric.io.read_raw_log; issue 31) ---------------------
 
@@ -417,9 +444,9 @@ FIT_TANGENT_FLOOR_REL: Final = 1e-3
 FIT_CONSTRAINT_POINTS: Final = 41
 #: Ogden fits: local fits started for 1, 2 and 3 terms, from the discrete local minima (then the
 #: best points) of the variable-projection cost over a grid of exponent combinations, besides
-#: the published Treloar-type starts (16 for three terms: Ogden-3 on 1,000 points in < 2 s,
-#: benchmarks/bench_material_fit.py).
-FIT_OGDEN_STARTS: Final[MappingProxyType[int, int]] = MappingProxyType({1: 6, 2: 10, 3: 16})
+#: the published Treloar-type starts (40 for three terms, all run at once: Ogden-3 on 1,000
+#: points in < 2 s, benchmarks/bench_material_fit.py).
+FIT_OGDEN_STARTS: Final[MappingProxyType[int, int]] = MappingProxyType({1: 6, 2: 10, 3: 40})
 #: Ogden fits: bound on each |mu_i|, relative to the data's secant modulus max|P| / max|l - 1|
 #: (unitless; 100). Larger mu_i come in cancelling pairs of nearly equal exponents: a flat,
 #: ill-conditioned direction of the least squares, not a material property; a fit reaching the

@@ -53,7 +53,7 @@ from exofric.fe._hyperelastic import (
 )
 from exofric.fe._inflation import ENDS, InflationProblem, MeshSpec, PressurizedTube, check_ends
 from exofric.fe._loads import area_hessian, enclosed_area
-from exofric.fe._mesh import TubeMesh, graded_angles, polar_mesh
+from exofric.fe._mesh import TubeMesh, graded_angles, polar_mesh, two_sided_angles
 from exofric.fe._ring import (
     RING_MESH,
     RING_PENALTY,
@@ -68,6 +68,8 @@ from exofric.fe._squeeze import (
     MU_MAX,
     MU_WARN,
     SqueezeProblem,
+    half_boundaries,
+    patch_edge,
     wall_arc,
     wire_halfwidth,
 )
@@ -122,7 +124,15 @@ __all__ = [
     "shape_2d",
     "solve_path",
     "von_mises",
+    "half_boundaries",
+    "patch_edge",
+    "two_sided_angles",
     "wall_arc",
     "wire_halfwidth",
     "yeoh_plane_strain",
 ]
+
+# every public function checks its arguments' kinds (InputError naming the parameter)
+from exofric._lazy import export_checked  # noqa: E402
+
+export_checked(__name__)

@@ -36,6 +36,14 @@ class MeshSpec:
         squeeze's half model; the free inflation's quarter model is uniform and ignores it.
     formulation : {'mixed', 'displacement'}
         Volumetric treatment ('displacement' locks; kept for demonstration).
+    wall_elements : int
+        Squeeze's half model: how many of the ``n_circ`` elements lie on the hole wall's
+        side of the tube (-90..0 deg), graded toward the wall (ratio ``wall_grading``); the
+        others (0..90 deg) keep ``grading`` toward the wire. 0 (default): one grading toward
+        the wire over the whole half (issue 35: the wall's contact patch is ~7x wider than the
+        wire's and needs resolving at contact onset too).
+    wall_grading : float
+        Largest / smallest element on the wall's side (unitless, >= 1).
 
     Examples
     --------
@@ -49,6 +57,8 @@ class MeshSpec:
     kind: str = defaults.INFLATION_MESH["kind"]
     grading: float = defaults.INFLATION_MESH["grading"]
     formulation: str = defaults.INFLATION_MESH["formulation"]
+    wall_elements: int = 0
+    wall_grading: float = 1.0
 
     def __post_init__(self) -> None:
         """Refuse meshes that are not integers >= 1 or too large to solve (InputError)."""
@@ -80,6 +90,11 @@ class MeshSpec:
             raise InputError(
                 f"formulation must be 'mixed' or 'displacement', got {self.formulation!r}")
         check_range("grading", self.grading, 1.0, defaults.MESH_MAX_GRADING)
+        check_range("wall_grading", self.wall_grading, 1.0, defaults.MESH_MAX_GRADING)
+        if not (isinstance(self.wall_elements, numbers.Integral)
+                and 0 <= self.wall_elements < self.n_circ):
+            raise InputError(f"wall_elements must be an integer in [0, n_circ - 1 = "
+                             f"{self.n_circ - 1}], got {self.wall_elements!r}")
 
     def coarsened(self, radial: int = 1, circ: int = 2) -> MeshSpec:
         """The nested mesh with ``radial`` x ``circ`` times fewer elements.
@@ -109,9 +124,16 @@ class MeshSpec:
             raise InputError(
                 f"mesh {self.n_radial} x {self.n_circ} cannot be coarsened by {radial} x {circ}",
                 param="mesh")
-        nc = self.n_circ // circ
-        g = 1.0 if nc == 1 else self.grading ** (circ * (nc - 1) / (self.n_circ - 1))
-        return MeshSpec(self.n_radial // radial, nc, self.kind, g, self.formulation)
+        nw = self.wall_elements
+        if nw % circ:
+            raise InputError(f"wall_elements = {nw} cannot be coarsened by {circ}", param="mesh")
+
+        def merged(g: float, m: int) -> float:  # grading of m elements merged circ-wise
+            return 1.0 if m <= circ else g ** (circ * (m // circ - 1) / (m - 1))
+
+        return MeshSpec(self.n_radial // radial, self.n_circ // circ, self.kind,
+                        merged(self.grading, self.n_circ - nw), self.formulation,
+                        nw // circ, merged(self.wall_grading, nw))
 
     def to_dict(self) -> dict[str, object]:
         """JSON-ready dict."""
@@ -121,6 +143,8 @@ class MeshSpec:
             "kind": self.kind,
             "grading": self.grading,
             "formulation": self.formulation,
+            "wall_elements": self.wall_elements,
+            "wall_grading": self.wall_grading,
         }
 
 

@@ -19,7 +19,7 @@ import numpy as np
 
 from exofric.errors import InputError, check_positive
 
-__all__ = ["TubeMesh", "polar_mesh", "graded_angles"]
+__all__ = ["TubeMesh", "polar_mesh", "graded_angles", "two_sided_angles"]
 
 
 @dataclass(frozen=True)
@@ -171,6 +171,45 @@ def graded_angles(
     return np.concatenate([lo, hi[1:]])
 
 
+def two_sided_angles(
+    theta0: float, theta1: float, split: float, n: int, n0: int, grading0: float,
+    grading1: float,
+) -> np.ndarray:
+    """Element boundary angles refined toward both ends of [theta0, theta1] (rad).
+
+    ``n0`` of the ``n`` elements cover [theta0, split], graded toward ``theta0`` (largest /
+    smallest ``grading0``); the other ``n - n0`` cover [split, theta1], graded toward
+    ``theta1`` (``grading1``). Each part is geometric, so merging neighbours pairwise in
+    each part gives a nested mesh of the same kind (``MeshSpec.coarsened``).
+
+    Parameters
+    ----------
+    theta0, theta1, split : float
+        Range of angles and the angle between the two parts (rad), theta0 < split < theta1.
+    n, n0 : int
+        Elements in all (>= 2) and in the first part (1 <= n0 < n).
+    grading0, grading1 : float
+        Largest / smallest element of each part (unitless, >= 1).
+
+    Returns
+    -------
+    ndarray (n + 1,)
+        Element boundary angles (rad), increasing.
+
+    Examples
+    --------
+    >>> two_sided_angles(0.0, 2.0, 1.0, 4, 2, 2.0, 2.0).round(4).tolist()
+    [0.0, 0.3333, 1.0, 1.6667, 2.0]
+    """
+    if not (theta0 < split < theta1 and 1 <= n0 < n):
+        raise InputError(f"two-sided grading needs theta0 < split < theta1 and 1 <= n0 < n, "
+                         f"got split {split:g} rad in [{theta0:g}, {theta1:g}], n0 = {n0}, "
+                         f"n = {n}")
+    lo = graded_angles(theta0, split, n0, grading0, theta0)
+    hi = graded_angles(split, theta1, n - n0, grading1, theta1)
+    return np.concatenate([lo, hi[1:]])
+
+
 def polar_mesh(
     inner_radius_mm: float,
     outer_radius_mm: float,
@@ -184,6 +223,7 @@ def polar_mesh(
     radial_ratio: float = 1.0,
     kind: str = "quad9",
     center: tuple[float, float] = (0.0, 0.0),
+    boundaries: np.ndarray | None = None,
 ) -> TubeMesh:
     """Structured polar mesh of the sector ``theta0..theta1`` of an annulus.
 
@@ -203,6 +243,9 @@ def polar_mesh(
         Element type.
     center : (float, float)
         Centre of the annulus (mm).
+    boundaries : ndarray (n_circ + 1,), optional
+        Explicit element boundary angles (rad, increasing, from ``theta0`` to ``theta1``),
+        e.g. from :func:`two_sided_angles`; ``grading`` and ``grade_toward`` are then unused.
 
     Returns
     -------
@@ -231,7 +274,12 @@ def polar_mesh(
         q = radial_ratio ** (1.0 / (n_radial - 1))
         sz = q ** np.arange(n_radial)
         rb = a + np.concatenate([[0.0], np.cumsum(sz)]) / sz.sum() * (b - a)
-    tb = graded_angles(theta0, theta1, n_circ, grading, grade_toward)
+    if boundaries is None:
+        tb = graded_angles(theta0, theta1, n_circ, grading, grade_toward)
+    else:
+        tb = np.asarray(boundaries, dtype=float)
+        if tb.shape != (n_circ + 1,) or np.any(np.diff(tb) <= 0.0):
+            raise InputError(f"boundaries must be {n_circ + 1} increasing angles (rad)")
     if k == 2:
         radii = np.empty(2 * n_radial + 1)
         radii[0::2], radii[1::2] = rb, 0.5 * (rb[:-1] + rb[1:])

@@ -69,12 +69,12 @@ from exofric.fe._contact import (
     slip_geometry,
 )
 from exofric.fe._inflation import MeshSpec, PressurizedTube
-from exofric.fe._mesh import polar_mesh
+from exofric.fe._mesh import TubeMesh, polar_mesh, two_sided_angles
 from exofric.geometry import Structure
 from exofric.material import MooneyRivlin
 
 __all__ = ["SqueezeProblem", "GRAVITY_MM_S2", "MU_MAX", "MU_WARN", "GRAVITY_OPTIONS",
-           "ROTATION_SPRING_REL",
+           "ROTATION_SPRING_REL", "half_boundaries", "patch_edge",
            "wire_halfwidth", "wall_arc", "ring_wire_halfwidth", "ring_wall_arc"]
 
 #: Standard gravity (mm/s^2) for the tube's weight (``gravity="toward-wall"`` or
@@ -226,6 +226,7 @@ class SqueezeProblem(PressurizedTube):
             grade_toward=0.5 * np.pi,
             kind=spec.kind,
             center=center,
+            boundaries=half_boundaries(spec),
         )
         n = mesh.n_nodes
         self.outer = mesh.outer_nodes
@@ -275,9 +276,17 @@ class SqueezeProblem(PressurizedTube):
         c = -rc * e if gravity == "none" else np.array([0.0, -rc])
         tw = 0.5 * np.pi - a  # polar angle of e: from the tube (opposite the wire) to the wire
         nc = 2 * spec.n_circ
-        mesh = polar_mesh(self.A, self.B, spec.n_radial, nc, theta0=tw - np.pi,
-                          theta1=tw + np.pi, grading=spec.grading, grade_toward=tw,
-                          kind=spec.kind, center=(float(c[0]), float(c[1])))
+        half = half_boundaries(spec)
+
+        def ring(tw: float, cx: float, cy: float) -> TubeMesh:
+            # the half model's angles (turned so that the wire is at tw) and their mirror image
+            bounds = None if half is None else tw + np.concatenate(
+                [half - 0.5 * np.pi, (0.5 * np.pi - half)[::-1][1:]])
+            return polar_mesh(self.A, self.B, spec.n_radial, nc, theta0=tw - np.pi,
+                              theta1=tw + np.pi, grading=spec.grading, grade_toward=tw,
+                              kind=spec.kind, center=(cx, cy), boundaries=bounds)
+
+        mesh = ring(tw, float(c[0]), float(c[1]))
         if gravity != "none":
             # resting on the wall under its weight: turned so that a node sits at the bottom
             # (at most half an element from the wire's direction) and lowered by the penalty
@@ -285,15 +294,11 @@ class SqueezeProblem(PressurizedTube):
             ang = mesh.angles[:-1]
             j = int(np.argmin(np.abs(np.angle(np.exp(1j * (ang + 0.5 * np.pi))))))
             tw += float(np.angle(np.exp(1j * (-0.5 * np.pi - ang[j]))))
-            mesh = polar_mesh(self.A, self.B, spec.n_radial, nc, theta0=tw - np.pi,
-                              theta1=tw + np.pi, grading=spec.grading, grade_toward=tw,
-                              kind=spec.kind, center=(float(c[0]), float(c[1])))
+            mesh = ring(tw, float(c[0]), float(c[1]))
             w = nodal_weights(mesh.boundary_edges("outer"), mesh.nodes, mesh.n_nodes)
             weight = density * GRAVITY_MM_S2 * np.pi * (self.B**2 - self.A**2)
             pen = weight / (penalty * float(w[mesh.grid[-1, j]])) + 1e-12
-            mesh = polar_mesh(self.A, self.B, spec.n_radial, nc, theta0=tw - np.pi,
-                              theta1=tw + np.pi, grading=spec.grading, grade_toward=tw,
-                              kind=spec.kind, center=(float(c[0]), float(c[1]) - pen))
+            mesh = ring(tw, float(c[0]), float(c[1]) - pen)
         n = mesh.n_nodes
         self.outer = mesh.outer_nodes[:-1]  # the closed ring's last line is its first
         cd = 2 * self.outer[:, None] + np.arange(2)
@@ -742,6 +747,34 @@ class SqueezeProblem(PressurizedTube):
         return float(self.contact(u)[1].gap.min())
 
 
+def half_boundaries(spec: MeshSpec) -> np.ndarray | None:
+    """Half model's element boundary angles (rad, -90..90 deg) of a two-sided ``spec``.
+
+    None when ``spec.wall_elements`` is 0 (one grading toward the wire, as before issue 35).
+    Otherwise ``wall_elements`` elements over -90..0 deg graded toward the wall (-90 deg,
+    ``wall_grading``) and the rest over 0..90 deg graded toward the wire (``grading``).
+
+    Parameters
+    ----------
+    spec : MeshSpec
+        The half model's mesh.
+
+    Returns
+    -------
+    ndarray (n_circ + 1,) or None
+        Element boundary angles (rad), increasing, or None for the one-sided grading.
+
+    Examples
+    --------
+    >>> half_boundaries(MeshSpec(1, 4, grading=1.0, wall_elements=2)).round(4).tolist()
+    [-1.5708, -0.7854, 0.0, 0.7854, 1.5708]
+    """
+    if spec.wall_elements == 0:
+        return None
+    return two_sided_angles(-0.5 * np.pi, 0.5 * np.pi, 0.0, spec.n_circ, spec.wall_elements,
+                            spec.wall_grading, spec.grading)
+
+
 def wire_halfwidth(
     xo: np.ndarray, gap: np.ndarray, center: tuple[float, float], radius: float
 ) -> float:
@@ -769,16 +802,56 @@ def wire_halfwidth(
     >>> wire_halfwidth(np.zeros((2, 2)), np.array([0.1, 0.2]), (0.0, 4.2), 0.8)
     0.0
     """
-    act = np.flatnonzero(gap <= 0.0)
-    if act.size == 0:
+    if not np.any(gap <= 0.0):
         return 0.0
     ang = np.arctan2(xo[:, 0] - center[0], center[1] - xo[:, 1])  # 0 at the wire's bottom
-    k = int(act.min())  # nodes run from the bottom (theta = -90) to the top (+90) of the tube
-    phi = ang[k]
-    if k > 0 and gap[k - 1] > 0.0:  # interpolate to where the gap crosses zero
-        t = gap[k - 1] / (gap[k - 1] - gap[k])
-        phi = ang[k - 1] + t * (ang[k] - ang[k - 1])
-    return float(radius * abs(phi))
+    # nodes run from the bottom (theta = -90) to the top (+90, the patch centre) of the tube
+    return float(radius * patch_edge(np.abs(ang[::-1]), gap[::-1]))
+
+
+def patch_edge(phi: np.ndarray, gap: np.ndarray) -> float:
+    """Edge (rad) of a contact patch from its nodes, centre first, outward (issue 35).
+
+    Where the pressure goes to zero, interpolated from the pressure distribution rather than
+    the last node in contact. The penalty pressure at a node is eps (-gap); near the edge of
+    a Hertz-like patch p^2 is linear in x^2 (p ~ sqrt(a^2 - x^2)), so the two outermost
+    nodes in contact give a^2 = x1^2 + p1^2 (x1^2 - x2^2) / (p2^2 - p1^2). With one node in
+    contact the gap outside (~ (x - a)^(3/2)) of the first two free nodes is extrapolated to
+    zero instead. The edge is kept between the last node in contact and the first free one.
+
+    Parameters
+    ----------
+    phi : ndarray (m,)
+        Angle (rad) of each node from the patch centre, increasing (node 0 in contact).
+    gap : ndarray (m,)
+        Signed gap (mm) at those nodes, <= 0 in contact.
+
+    Returns
+    -------
+    float
+        Angle (rad) of the patch edge.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.array([0.0, 0.1, 0.2, 0.3])
+    >>> round(patch_edge(x, -np.sqrt(np.maximum(0.25**2 - x**2, 0)) + 1e-9), 4)  # Hertz
+    0.25
+    """
+    inside = np.cumprod(gap <= 0.0).astype(bool)  # the contiguous run from the centre
+    k = int(inside.sum()) - 1
+    if k + 1 >= phi.size:
+        return float(phi[-1])
+    lo, hi = float(phi[k]), float(phi[k + 1])
+    edge = lo - gap[k] / (gap[k + 1] - gap[k]) * (hi - lo)  # linear in the gap
+    p1, p2 = -gap[k], -gap[k - 1] if k >= 1 else 0.0
+    if k >= 1 and p2 > p1 >= 0.0:
+        x1, x2 = phi[k], phi[k - 1]
+        edge = float(np.sqrt(x1**2 + p1**2 * (x1**2 - x2**2) / (p2**2 - p1**2)))
+    elif k + 2 < phi.size and gap[k + 2] > gap[k + 1] > 0.0 and phi[k + 2] > hi:
+        s1, s2 = gap[k + 1] ** (2.0 / 3.0), gap[k + 2] ** (2.0 / 3.0)
+        edge = float(phi[k + 1] - s1 * (phi[k + 2] - phi[k + 1]) / (s2 - s1))
+    return float(np.clip(edge, lo, hi))
 
 
 def wall_arc(xo: np.ndarray, active: np.ndarray, radius: float) -> float:
@@ -850,17 +923,13 @@ def ring_wire_halfwidth(
     down = -c / np.hypot(c[0], c[1])  # from the wire toward the hole centre
     v = xo - c
     ang = np.arctan2(down[0] * v[:, 1] - down[1] * v[:, 0], v @ down)
-    m = len(gap)
-    ends = []
-    for k in np.flatnonzero(act):
-        for nb in ((k - 1) % m, (k + 1) % m):
-            if not act[nb]:  # the gap changes sign between k and nb
-                t = gap[nb] / (gap[nb] - gap[k])
-                ends.append(ang[nb] + t * (ang[k] - ang[nb]))
-    if not ends:  # every node in contact
+    if np.all(act):  # every node in contact
         return float(np.pi * radius)
-    ends.extend(ang[act])
-    return float(0.5 * radius * (max(ends) - min(ends)))
+    k = int(np.flatnonzero(act)[np.argmin(np.abs(ang[act]))])  # the patch centre node
+    idx = np.roll(np.arange(len(gap)), -k)  # from the centre one way round, then the other
+    sides = [idx, np.concatenate([idx[:1], idx[1:][::-1]])]
+    edges = [patch_edge(np.abs(np.unwrap(ang[i] - ang[k])), gap[i]) for i in sides]
+    return float(0.5 * radius * (edges[0] + edges[1]))
 
 
 def ring_wall_arc(xo: np.ndarray, active: np.ndarray, radius: float) -> float:

@@ -72,6 +72,9 @@ class _MeshSolution:
                                    ).reshape(-1, 6)
         self.interfaces[:, :4] *= self.per_length[:, None]
         self.profiles = [self._profiles(u, k) for k, u in enumerate(states)]
+        #: per output: nodes of the wire's contact patch from its centre to one edge, the
+        #: centre included (the half model's count; the full model's both sides folded)
+        self.patch_nodes: list[int] = []
         if prob.full:
             self._full_outputs(states)
             return
@@ -88,6 +91,7 @@ class _MeshSolution:
                 wall_arc(xo, ch.active, prob.hole.radius),
                 max(0.0, -float(ch.gap.min()), -float(cw.gap.min())),
             ))
+            self.patch_nodes.append(int(cw.active.sum()))
         self.arr = np.array(rows).reshape(-1, 5)
         self.arr[:, :2] *= self.per_length[:, None]
         self.stretch = np.array([prob.body.max_stretch(u) for u in states])
@@ -162,6 +166,7 @@ class _MeshSolution:
             ch, cw = prob.contact(u)
             on_wire.append(fw)
             on_tube.append(fh)
+            self.patch_nodes.append((int(cw.active.sum()) + 1) // 2)
             rows.append((float(np.hypot(*fw)), float(np.hypot(*fh)), *prob.contact_extent(u),
                          max(0.0, -float(ch.gap.min()), -float(cw.gap.min()))))
         self.arr = np.array(rows).reshape(-1, 5)
@@ -326,11 +331,12 @@ def _solve_levels(
     setup: SqueezeSetup, p: np.ndarray, spec: MeshSpec, coarse_spec: MeshSpec | None,
     s: NewtonSettings,
 ) -> tuple[_MeshSolution, float | None, np.ndarray | None, np.ndarray | None,
-           np.ndarray | None]:
-    """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm) of :func:`squeeze`."""
+           np.ndarray | None, np.ndarray | None]:
+    """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm, reliable?)."""
     sol = _solve_mesh(setup, p, spec, s)
     est_pct: np.ndarray | None = None
     est_abs: np.ndarray | None = None
+    reliable: np.ndarray | None = None
     coarse_n: np.ndarray | None = None
     if coarse_spec is None:
         onset = _bracket_onset(sol, s, setup.onset_tol_mpa)
@@ -344,11 +350,35 @@ def _solve_levels(
         coarse = _solve_mesh(setup, p, coarse_spec, loose, release=False)
         onset = _bracket_onset(coarse, s, setup.onset_tol_mpa)
         coarse_n = coarse.n.copy()
-        fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
-        est_abs = np.maximum(fs * np.abs(sol.n - coarse.n), 0.01 * floor * sol.n)
-        est_pct = np.minimum(fs * _relative_pct(sol.n, coarse.n), 100.0)
-        est_pct = np.where(sol.n > 0.0, np.maximum(est_pct, floor), est_pct)
-    return sol, onset, coarse_n, est_pct, est_abs
+        est_pct, reliable = _estimate(p, sol.n, coarse.n, np.array(coarse.patch_nodes))
+        est_abs = np.where(sol.n > 0.0, 0.01 * est_pct * sol.n,
+                           defaults.ESTIMATE_SAFETY_FACTOR * np.abs(sol.n - coarse.n))
+    return sol, onset, coarse_n, est_pct, est_abs, reliable
+
+
+def _estimate(p: np.ndarray, n: np.ndarray, n_coarse: np.ndarray,
+              coarse_patch: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(error estimate of N in %, reliable?) per pressure from the two meshes' N (N/mm).
+
+    Fs |N - N_coarse| / N (Fs = :data:`~exofric.defaults.ESTIMATE_SAFETY_FACTOR`), then the
+    largest of it over the outputs within :data:`~exofric.defaults.ESTIMATE_WINDOW_MPA` that
+    have contact (the difference oscillates in sign as the patch edges pass the nodes, so its
+    amplitude, not its value at one pressure, measures the error), at least
+    :data:`~exofric.defaults.ESTIMATE_FLOOR_PCT` where N > 0, at most 100. Unreliable where
+    the coarse mesh's wire patch has fewer than
+    :data:`~exofric.defaults.ESTIMATE_MIN_PATCH_NODES` nodes (it cannot resolve the patch:
+    the two meshes are not both in the range where their difference scales like the error),
+    or where one mesh has wire contact and the other not.
+    """
+    fs, floor = defaults.ESTIMATE_SAFETY_FACTOR, defaults.ESTIMATE_FLOOR_PCT
+    raw = np.minimum(fs * _relative_pct(n, n_coarse), 100.0)
+    near = np.abs(p[:, None] - p[None, :]) <= defaults.ESTIMATE_WINDOW_MPA + 1e-12
+    near &= (n > 0.0)[None, :]
+    pct = np.where(n > 0.0, np.max(np.where(near, raw[None, :], 0.0), axis=1), raw)
+    pct = np.where(n > 0.0, np.clip(pct, floor, 100.0), pct)
+    reliable = ((n > 0.0) == (n_coarse > 0.0)) & (
+        (n == 0.0) | (coarse_patch >= defaults.ESTIMATE_MIN_PATCH_NODES))
+    return pct, reliable
 
 
 def squeeze(
@@ -380,11 +410,14 @@ def squeeze(
     with the rigid hole and wire.
 
     With a named ``accuracy`` the problem is solved on two nested meshes
-    (:data:`exofric.defaults.SQUEEZE_ACCURACY`); the finer one's answer is returned and three
-    times their difference (Roache's two-grid GCI) is the error estimate
+    (:data:`exofric.defaults.SQUEEZE_ACCURACY`, graded toward both contacts); the finer
+    one's answer is returned and three times their relative difference (Roache's two-grid
+    GCI), at its largest over the outputs within 0.05 MPa, is the error estimate
     ``n_error_estimate_pct``, which bounds the returned answer's discretisation error in the
-    mesh studies of docs/formulation.md. With an explicit ``mesh`` one solve is made and no
-    estimate is given.
+    mesh studies of docs/formulation.md section 6. Where the coarse mesh does not resolve the
+    wire's contact patch (typically the first output after the onset) the estimate is
+    flagged unreliable (``estimate.reliable``). With an explicit ``mesh`` one solve is made
+    and no estimate is given.
 
     Parameters
     ----------
@@ -505,8 +538,8 @@ def solve_setup(setup: SqueezeSetup, pressures_mpa: Any) -> SqueezeResult:
     level, spec, coarse_spec = setup.levels()
     t0 = time.perf_counter()
     with collect_stats() as counted:
-        sol, onset, coarse_n, est_pct, est_abs = _solve_levels(setup, p, spec, coarse_spec,
-                                                               setup.newton)
+        sol, onset, coarse_n, est_pct, est_abs, reliable = _solve_levels(
+            setup, p, spec, coarse_spec, setup.newton)
     dt = time.perf_counter() - t0
     prob = sol.prob
     L = structure.length_mm
@@ -542,7 +575,7 @@ def solve_setup(setup: SqueezeSetup, pressures_mpa: Any) -> SqueezeResult:
         displacements=disp,
         von_mises_mpa=vm,
         estimate=ErrorEstimate(accuracy=level, mesh=coarse_spec, pct=est_pct, n_per_mm=est_abs,
-                               coarse_n_per_mm=coarse_n),
+                               coarse_n_per_mm=coarse_n, reliable=reliable),
         solver_stats=counted.stats,
         squeeze_force_direction_deg=sol.n_dir,
         wall_force_direction_deg=sol.wall_dir,

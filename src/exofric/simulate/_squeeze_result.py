@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric import defaults
+from exofric._display import DisplayMixin
 from exofric.fe import MeshSpec, SolverStats
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
@@ -128,6 +129,11 @@ class ErrorEstimate:
         The same estimate in N/mm (per depth).
     coarse_n_per_mm : ndarray or None
         N on the coarse mesh (N/mm), full section.
+    reliable : ndarray of bool or None
+        Per pressure: False where the estimate cannot be trusted to bound the error (the
+        coarse mesh does not resolve the wire's contact patch, or only one mesh has wire
+        contact: typically the first pressure or two after the contact onset); the number is
+        then indicative only (docs/formulation.md section 6). None for an explicit mesh.
 
     Examples
     --------
@@ -144,10 +150,18 @@ class ErrorEstimate:
     pct: np.ndarray | None = None
     n_per_mm: np.ndarray | None = None
     coarse_n_per_mm: np.ndarray | None = field(default=None, repr=False)
+    reliable: np.ndarray | None = None
+
+    @property
+    def unreliable_outputs(self) -> tuple[int, ...]:
+        """Indices of the outputs whose estimate is flagged unreliable (empty if none)."""
+        if self.reliable is None:
+            return ()
+        return tuple(int(i) for i in np.flatnonzero(~np.asarray(self.reliable, bool)))
 
 
 @dataclass(frozen=True)
-class SqueezeResult:
+class SqueezeResult(DisplayMixin):
     """Squeeze of the wire by the inflated tube, per pressure (paper Figs 6-7).
 
     Forces are for the full section (2 x the half model): per unit depth (N/mm)
@@ -372,6 +386,8 @@ class SqueezeResult:
             "estimate_mesh": None if e.mesh is None else e.mesh.to_dict(),
             "n_error_estimate_pct": opt_list(e.pct),
             "n_error_estimate_n_per_mm": opt_list(e.n_per_mm),
+            "n_error_estimate_reliable": (None if e.reliable is None
+                                          else [bool(x) for x in e.reliable]),
             "coarse_squeeze_force_n_per_mm": opt_list(e.coarse_n_per_mm),
             "solver_stats": self.solver_stats.to_dict(),
             "wire_angle_deg": self.wire_angle_deg,
@@ -432,6 +448,8 @@ class SqueezeResult:
             "max_stretch": self.max_stretch,
             "newton_iterations": np.asarray(self.newton_iterations, dtype=int),
             "n_error_estimate_pct": _opt_col(self.estimate.pct, p),
+            "n_error_estimate_reliable": (np.full(p.size, np.nan) if self.estimate.reliable
+                                          is None else self.estimate.reliable.astype(float)),
             "wire_pressure_integral_n_per_mm": _opt_col(c.wire_pressure_integral_n_per_mm, p),
             "wall_pressure_integral_n_per_mm": _opt_col(c.wall_pressure_integral_n_per_mm, p),
             "wire_tangential_force_n_per_mm": _opt_col(c.wire_tangential_force_n_per_mm, p),

@@ -1,0 +1,116 @@
+"""The friction force along the wire's contact arc against CalculiX (issue 35, item 3).
+
+``wire_tangential_force_n_per_mm`` (T_wire, N per mm of tube, full section) is the integral over
+the tube-wire contact arc of the magnitude of the friction traction the tube exerts on the wire
+(2 x the sum of the half model's nodal friction forces; ``benchmarks/bench_tangential.py``
+defines both codes' numbers). The reference ``tests/data/ccx_tangential_base.json`` comes from
+``benchmarks/bench_tangential.py``: CalculiX 2.20 (``ccx``), its own CPE8R meshes of the base
+group (4, 8 and 16 x 60, graded 10:1 toward the wire), node-to-surface penalty contact with
+``*FRICTION`` (mu 0.3 on the wire, the wall frictionless), stick slopes 300 .. 1e4 MPa/mm,
+increments down to 0.00625 MPa; nothing of exofric is used to make it (only the material
+constants and sizes). T_wire is the sum of the circumferential parts of the rigid wire nodes'
+reactions there, a different contact discretisation from exofric's.
+
+What the comparison has to allow for is documented in ``docs/formulation.md`` (section 13)
+and measured in the JSON: at 0.1-0.2 MPa the contact arc is 0.06-0.16 mm long, and T_wire
+there depends on the mesh under the contact (both codes), on the load steps in which the arc
+grows (exofric on fine meshes) and on the stick slope (CalculiX). The tolerances below are the
+measured agreement plus the spread of the reference's own studies, stated per test.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from exofric import defaults
+from exofric.fe import MeshSpec
+from exofric.geometry import BASE, Structure
+from exofric.material import MooneyRivlin
+from exofric.simulate import squeeze
+
+DATA = Path(__file__).parent / "data" / "ccx_tangential_base.json"
+REF = json.loads(DATA.read_text())
+P = np.asarray(REF["pressure_mpa"])
+#: CalculiX's finest mesh: 16 x 60 CPE8R, graded 10:1 toward the wire, stick slope 1e3 MPa/mm
+REF_RUN = "mesh_16x60"
+
+
+def _structure() -> Structure:
+    s = REF["structure"]
+    return Structure(s["hole_mm"], s["tube_od_mm"], s["tube_id_mm"], s["wire_mm"],
+                     BASE.length_mm)
+
+
+def _material() -> MooneyRivlin:
+    m = REF["material"]
+    return MooneyRivlin(m["c10_mpa"], m["c01_mpa"], m["d_per_mpa"])
+
+
+def _ref(name: str) -> np.ndarray:
+    return np.asarray(REF["ccx"][name]["tangential_n_per_mm"])
+
+
+#: exofric's current answer: the standard accuracy's mesh (``squeeze(accuracy="standard")``
+#: returns this mesh's T_wire; its nested coarse mesh only feeds the error estimate of N), the
+#: default penalty and load steps.
+MESH = MeshSpec(**{k: v for k, v in defaults.SQUEEZE_ACCURACY["standard"].items()
+                   if k != "coarsen"})
+
+
+@pytest.fixture(scope="module")
+def standard() -> object:
+    return squeeze(_structure(), _material(), P, mu_wall=0.0, mu_wire=REF["friction"]["mu_wire"],
+                   gravity="none", mesh=MESH)
+
+
+def test_reference_says_what_it_is() -> None:
+    """The stored reference names its code, version, meshes and penalties, and holds the runs
+    the comparison and docs/formulation.md section 13 use (no solve)."""
+    assert REF["provenance"]["ccx_version"]
+    for name in (REF_RUN, "mesh_8x60", "slope_1e3", "slope_300", "slope_3e3", "slope_1e4",
+                 "inc_0.00625"):
+        run = REF["ccx"][name]
+        assert "error" not in run, name
+        opts = run["options"]
+        assert opts["n_radial"] > 0 and opts["n_circ"] > 0 and opts["stick_slope"] > 0
+        assert len(run["tangential_n_per_mm"]) == P.size
+
+
+def test_wire_tangential_force_matches_calculix(standard: object) -> None:
+    """exofric's standard answer for T_wire against CalculiX's finest run (16 x 60).
+
+    Tolerances: 40 % for 0.2 <= P < 0.35 MPa, 10 % from 0.35 MPa, 5 % at 0.6 MPa. They are the
+    standard mesh's discretisation error, not the codes' disagreement: 4 elements through the
+    wall and 3-5 nodes on the half contact arc at 0.2-0.3 MPa. Measured on the two standard
+    meshes of issue 35: 4 x 32 graded 6:1 toward the wire (before): -9.1 / +7.4 / +12.8 % at
+    0.2 / 0.25 / 0.3 MPa, <= 5.0 % from 0.35, +1.8 % at 0.6; with 10 of the 32 elements graded
+    toward the wall (finer at the wire along the surface, not through the wall): +30.1 / +25.6
+    / +13.6 %, <= 9.2 % from 0.35, +2.5 % at 0.6. exofric's resolved run (12 x 96, steps
+    0.003125 MPa; ``benchmarks/bench_tangential.py``) is within +5.0 / +6.7 / +3.5 % of this
+    reference at 0.2 / 0.25 / 0.3 MPa and 2.3 % from 0.35 MPa; the reference itself still moves
+    by -21 % at 0.2 MPa and -1 % at 0.3 MPa from 8 to 16 elements through the wall. Below 0.2
+    MPa neither code resolves the arc (0.003-0.009 N/mm at 0.1 MPa over all runs): not
+    compared. The issue's reference (2.1x this one at 0.2 MPa) or a lost factor 2 of the half
+    model would fail. Same penalty as the reference's stick slope (1e3 N/mm^3)."""
+    r = standard
+    slope = REF["ccx"][REF_RUN]["options"]["stick_slope"]
+    assert r.contact.friction_penalty == pytest.approx(slope)
+    ours = np.asarray(r.contact.wire_tangential_force_n_per_mm)
+    ref = _ref(REF_RUN)
+    rel = ours / np.where(ref > 0, ref, np.nan) - 1.0
+    k = P >= 0.2 - 1e-12
+    assert np.max(np.abs(rel[k])) < 0.40, rel
+    k = P >= 0.35 - 1e-12
+    assert np.max(np.abs(rel[k])) < 0.10, rel
+    assert abs(rel[-1]) < 0.05, rel
+    # the normal-pressure integral on the same arc agrees far better (6:1 standard mesh: <= 0.4 %
+    # from 0.2 MPa, <= 0.15 % from 0.3 MPa): the difference is in the friction traction, not in
+    # the contact
+    s_ref = np.asarray(REF["ccx"][REF_RUN]["normal_n_per_mm"])
+    s = np.asarray(r.contact.wire_pressure_integral_n_per_mm)
+    k = P >= 0.2 - 1e-12
+    assert np.max(np.abs(s[k] / s_ref[k] - 1.0)) < 0.01
