@@ -266,39 +266,72 @@ def test_invert_at_the_papers_inputs_prints_the_papers_pressure(capsys) -> None:
     assert d["paper_pressure_mpa"] == 0.26 and abs(d["pressure_mpa"] - 0.2926) < 1e-3
 
 
-def test_predict_one_structure_with_clearance_scatter_and_tolerances(cli) -> None:
-    """predict with squeeze's flags, a clearance sd and tolerances (issue 19): per structure
-    friction_n and its 5/50/95 % bands, p05 <= p50 <= p95, the nominal inside the band."""
-    r = cli(["predict", "--gamma", "0.7168", "--hole", "10", "--tube-od", "8.3", "--tube-id",
-             "4.97", "--wire", "1.6", "--pressures", "0.5,0.6", "--clearance-sd", "0.05",
-             "--tolerance", "tube_id=0.05", "--samples", "8", "--json"])
-    assert r.code == 0, r.err
-    s = r.json()["structures"][0]
+def _slice_stand_in(st, mat, p, **kw):  # type: ignore[no-untyped-def]
+    """A closed-form squeeze of one section (N/mm), similar in G like the FE's, for the CLI's
+    plumbing: the numbers of the tolerance study are checked in tests/test_tolerance.py."""
+    from types import SimpleNamespace
+
+    g = mat.shear_modulus
+    n = g * st.wire_mm * (np.asarray(p, float) / g) ** 2 * st.wall_mm / (1 + st.clearance_mm)
+    return SimpleNamespace(squeeze_force_n_per_mm=n, squeeze_force_n=st.length_mm * n)
+
+
+ONE = ["predict", "--gamma", "0.7168", "--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97",
+       "--wire", "1.6"]
+
+
+def test_predict_one_structure_with_clearance_scatter_and_tolerances(capsys, monkeypatch
+                                                                     ) -> None:
+    """predict with a clearance sd and tolerances (issue 19): per structure friction_n and its
+    5/50/95 % bands, p05 <= p50 <= p95, the nominal inside the band, how they were computed;
+    the clearance's truncation warning once (issue 34); a repeated --tolerance, an unknown
+    name and a negative sd are one-line errors (issue 38)."""
+    monkeypatch.setattr("exofric.simulate._clearance.squeeze", _slice_stand_in)
+    code, out, err = _run(capsys, *ONE, "--pressures", "0.5,0.6", "--clearance-sd", "0.1",
+                          "--tolerance", "tube_id=0.05", "--tolerance", "shore=2",
+                          "--samples", "16", "--json")
+    assert code == 0, err
+    d = json.loads(out)
+    s = d["structures"][0]
     for k in ("friction_n", "friction_n_p05", "friction_n_p50", "friction_n_p95",
               "squeeze_force_n_p50"):
         assert len(s[k]) == 2
     assert s["friction_n_p05"][-1] <= s["friction_n_p50"][-1] <= s["friction_n_p95"][-1]
     assert s["friction_n_p05"][-1] <= s["friction_n"][-1] <= s["friction_n_p95"][-1]
-    bad = cli(["predict", "--gamma", "0.7", "--hole", "10", "--tube-od", "8.3", "--tube-id",
-               "4.97", "--wire", "1.6", "--tolerance", "colour=1"])
-    assert bad.code == 2 and "tolerance" in bad.err
-    neg = cli(["predict", "--gamma", "0.7", "--hole", "10", "--tube-od", "8.3", "--tube-id",
-               "4.97", "--wire", "1.6", "--clearance-sd", "-0.1"])
-    assert neg.code == 2 and "clearance" in neg.err
+    assert s["tolerance_method"]["method"] == "grid" and s["tolerance_method"]["solves"] == 4
+    trunc = [w for w in d["warnings"] if "below 0.001 mm" in w]
+    assert len(trunc) == 1 and err.count("below 0.001 mm") == 1, err
+    twice = _run(capsys, *ONE, "--tolerance", "shore=2", "--tolerance", "shore=3")
+    _one_line_error(twice[0], twice[2], "--tolerance", "shore is given twice (2 and 3)")
+    _one_line_error(*_run(capsys, *ONE, "--tolerance", "colour=1")[::2], "tolerance")
+    _one_line_error(*_run(capsys, *ONE, "--clearance-sd", "-0.1")[::2], "clearance")
 
 
-def test_predict_with_a_measured_clearance_profile(cli, tmp_path: Path) -> None:
+def test_predict_with_a_measured_clearance_profile(capsys, monkeypatch, tmp_path: Path
+                                                   ) -> None:
     """--clearance-profile: a CSV position_mm,clearance_mm over the tube; a profile that does
-    not cover the length is refused with one line."""
+    not cover the length, or clearances impossible in the 10 mm hole (50 mm; issue 38), are
+    refused with one line; an implausible one (2 mm against the base's 0.1 mm) warns, also in
+    --json; so does a clearance sd that puts impossible clearances in the hole."""
+    monkeypatch.setattr("exofric.simulate._clearance.squeeze", _slice_stand_in)
     prof = tmp_path / "prof.csv"
     prof.write_text("position_mm,clearance_mm\n0,0.1\n58,0.3\n116,0.1\n")
-    r = cli(["predict", "--gamma", "0.7168", "--hole", "10", "--tube-od", "8.3", "--tube-id",
-             "4.97", "--wire", "1.6", "--pressures", "0.6", "--clearance-profile", str(prof),
-             "--json"])
-    assert r.code == 0, r.err
-    assert r.json()["clearance"] == {"profile": str(prof)}
+    code, out, err = _run(capsys, *ONE, "--pressures", "0.6", "--clearance-profile", str(prof),
+                          "--json")
+    assert code == 0, err
+    assert json.loads(out)["clearance"] == {"profile": str(prof)}
     short = tmp_path / "short.csv"
     short.write_text("position_mm,clearance_mm\n0,0.1\n50,0.3\n")
-    bad = cli(["predict", "--gamma", "0.7168", "--hole", "10", "--tube-od", "8.3", "--tube-id",
-               "4.97", "--wire", "1.6", "--pressures", "0.6", "--clearance-profile", str(short)])
-    assert bad.code == 2 and "not the tube's 0-116 mm" in bad.err
+    _one_line_error(*_run(capsys, *ONE, "--clearance-profile", str(short))[::2],
+                    "not the tube's 0-116 mm")
+    huge = tmp_path / "huge.csv"
+    huge.write_text("position_mm,clearance_mm\n0,50\n116,50\n")
+    _one_line_error(*_run(capsys, *ONE, "--clearance-profile", str(huge))[::2],
+                    "100 % of the length has a clearance >= 3.43 mm", "10 mm hole")
+    _one_line_error(*_run(capsys, *ONE, "--clearance-sd", "50")[::2], "3.43 mm")
+    odd = tmp_path / "odd.csv"
+    odd.write_text("position_mm,clearance_mm\n0,2\n116,2\n")
+    code, out, err = _run(capsys, *ONE, "--pressures", "0.6", "--clearance-profile", str(odd),
+                          "--json")
+    assert code == 0, err
+    assert any("clearance above 0.932 mm" in w for w in json.loads(out)["warnings"])

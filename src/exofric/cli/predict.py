@@ -88,36 +88,36 @@ def _predict_laws(law: str, gamma: float | None, mu_tube: float | None,
     return inter, None if gamma is None else FrictionModel(gamma, f0)
 
 
-def _scatter_options(clearance_sd: float | None, clearance_profile: str | None,
-                     tolerance: list[str], samples: int) -> tuple[Any, dict[str, float]]:
-    """The squeeze to use (a clearance distribution or None) and the tolerances (sd)."""
+def _clearance_of(clearance_sd: float | None, clearance_profile: str | None) -> Any:
+    """``structure -> ClearanceDistribution`` of --clearance-sd / --clearance-profile, or
+    None (one clearance, today's squeeze)."""
     from exofric.errors import InputError
 
     if clearance_sd is not None and clearance_profile is not None:
         raise InputError("give --clearance-sd or --clearance-profile, not both",
                          param="clearance_sd")
-    solver = None
-    if clearance_sd is not None or clearance_profile is not None:
-        from exofric.simulate import ClearanceDistribution, squeeze_with_clearance
+    from exofric.simulate import ClearanceDistribution
 
-        if clearance_sd is not None:
-            sd = float(clearance_sd)
-            if not sd > 0:
-                raise InputError(f"clearance_sd must be > 0 mm, got {clearance_sd:g}",
-                                 param="clearance_sd")
+    if clearance_sd is not None:
+        sd = float(clearance_sd)
+        if not sd > 0:
+            raise InputError(f"clearance_sd must be > 0 mm, got {clearance_sd:g}",
+                             param="clearance_sd")
+        return lambda s: ClearanceDistribution.normal(max(s.clearance_mm, 1e-3), sd)
+    if clearance_profile is not None:
+        from exofric.io import read_table
 
-            def solver(s: Any, m: Any, p: Any) -> Any:
-                return squeeze_with_clearance(s, m, p, ClearanceDistribution.normal(
-                    max(s.clearance_mm, 1e-3), sd))
-        else:
-            from exofric.io import read_table
+        prof = read_table(str(clearance_profile), ["position_mm", "clearance_mm"],
+                          unique_within=("position_mm", None))
+        return lambda s: ClearanceDistribution.profile(prof["position_mm"],
+                                                       prof["clearance_mm"], s.length_mm)
+    return None
 
-            prof = read_table(str(clearance_profile), ["position_mm", "clearance_mm"],
-                              unique_within=("position_mm", None))
 
-            def solver(s: Any, m: Any, p: Any) -> Any:
-                return squeeze_with_clearance(s, m, p, ClearanceDistribution.profile(
-                    prof["position_mm"], prof["clearance_mm"], s.length_mm))
+def _tolerances(tolerance: list[str]) -> dict[str, float]:
+    """The --tolerance name=sd items as {python name: sd}; a name given twice is an error."""
+    from exofric.errors import InputError
+
     names = {"hole": "hole_mm", "tube_od": "tube_od_mm", "tube_id": "tube_id_mm",
              "wire": "wire_mm", "shore": "shore"}
     tols: dict[str, float] = {}
@@ -128,10 +128,34 @@ def _scatter_options(clearance_sd: float | None, clearance_profile: str | None,
             raise InputError(f"tolerance {item!r}: expected name=value with name one of "
                              f"{', '.join(names)}", param="tolerance")
         try:
-            tols[names[key]] = float(value)
+            v = float(value)
         except ValueError:
             raise InputError(f"tolerance {item!r}: the value must be a number (mm or Shore "
                              "A)", param="tolerance") from None
+        if names[key] in tols:
+            raise InputError(f"tolerance {key} is given twice ({tols[names[key]]:g} and "
+                             f"{v:g}): give each name once", param="tolerance")
+        tols[names[key]] = v
+    return tols
+
+
+def _scatter_options(clearance_sd: float | None, clearance_profile: str | None,
+                     tolerance: list[str], structures: tuple[Any, ...]
+                     ) -> tuple[Any, dict[str, float]]:
+    """The squeeze to use (over a clearance distribution, or None) and the tolerances (sd);
+    each structure's clearances are checked against its hole first (issue 38)."""
+    dist_of = _clearance_of(clearance_sd, clearance_profile)
+    tols = _tolerances(tolerance)
+    if dist_of is None:
+        return None, tols
+    from exofric.simulate import squeeze_with_clearance
+
+    for s in structures:
+        dist_of(s).check_fits(s)
+
+    def solver(s: Any, m: Any, p: Any) -> Any:
+        return squeeze_with_clearance(s, m, p, dist_of(s))
+
     return solver, tols
 
 
@@ -224,19 +248,109 @@ def _structures(use_paper: bool, structures: str | None, one: _OneStructure
                       float(one.wire), one.length, name="structure"),), BASE
 
 
-def _add_bands(d: dict[str, Any], res: Any, model: Any, shore: float, tols: dict[str, float],
-               samples: int, solver: Any) -> None:
-    """Tolerance bands (5/50/95 % of N and F) and sensitivities into ``d['structures']``."""
+def _progress(label: str) -> Any:
+    """``progress(done, total, stage)`` printing on stderr: the start (the solves take
+    seconds each), then once the work has taken > 2 s at most a line a second, and the last."""
+    import sys
+    import time
+
+    t0 = time.perf_counter()
+    last = [0.0]
+
+    def show(done: int, total: int, stage: str) -> None:
+        now = time.perf_counter() - t0
+        if done == 0:
+            print(f"exofric: tolerance bands of {label}: {total} solves ({stage})...",
+                  file=sys.stderr, flush=True)
+        elif now > 2.0 and (now - last[0] >= 1.0 or done == total):
+            last[0] = now
+            print(f"exofric: tolerance bands of {label}: {done}/{total} solves ({stage}, "
+                  f"{now:.0f} s)", file=sys.stderr, flush=True)
+
+    return show
+
+
+def _bands(structs: tuple[Any, ...], meas: dict[str, Any] | None, grid: list[float],
+           shore: float, tols: dict[str, float], samples: int, solver: Any) -> dict[str, Any]:
+    """Per structure name, its :class:`ToleranceResult` at predict's pressures (the grid and
+    the structure's measured pressures)."""
+    import numpy as np
+
     from exofric.simulate import squeeze_tolerances
 
+    out = {}
+    for s in structs:
+        m = (meas or {}).get(s.name)
+        p = np.asarray(grid, float) if m is None else np.union1d(grid, m.pressure_mpa)
+        out[s.name] = squeeze_tolerances(s, shore, p, tols, samples=samples, solver=solver,
+                                         progress=_progress(s.name or "the structure"))
+    return out
+
+
+def _reuse_nominal(bands: dict[str, Any], solver: Any) -> Any:
+    """predict's squeeze: the nominal N the tolerance study solved, else ``solver``."""
+    from types import SimpleNamespace
+
+    def squeeze_fn(s: Any, m: Any, p: Any) -> Any:
+        tr = bands.get(s.name)
+        if tr is not None and list(tr.pressure_mpa) == [float(x) for x in p]:
+            return SimpleNamespace(pressure_mpa=tr.pressure_mpa, squeeze_force_n=tr.nominal_n,
+                                   contact_onset_pressure_mpa=tr.nominal_onset_mpa)
+        if solver is not None:
+            return solver(s, m, p)
+        from exofric.simulate import squeeze
+
+        return squeeze(s, m, p, keep_fields=False)
+
+    return squeeze_fn
+
+
+def _add_bands(d: dict[str, Any], res: Any, model: Any, bands: dict[str, Any]) -> None:
+    """Tolerance bands (5/50/95 % of N and F) and sensitivities into ``d['structures']``."""
     for entry, pr in zip(d["structures"], res.predictions, strict=True):
-        tr = squeeze_tolerances(pr.structure, shore, pr.pressure_mpa, tols,
-                                samples=samples, solver=solver)
+        tr = bands[pr.structure.name]
         for q, v in tr.percentiles_n.items():
             entry[f"squeeze_force_n_p{q:02d}"] = list(v)
             entry[f"friction_n_p{q:02d}"] = [float(model.friction(x)) for x in v]
-        entry["sensitivity"] = tr.to_dict()["sensitivity"]
+        td = tr.to_dict()
+        entry["sensitivity"] = td["sensitivity"]
         entry["tolerance_samples_failed"] = tr.failed
+        entry["tolerance_method"] = {k: td[k] for k in ("method", "method_note",
+                                                        "held_out_error_pct_of_n", "solves")}
+
+
+def _warnings_once() -> Any:
+    """Context: the warnings raised inside it, each kind once (the first of the messages that
+    differ only in their measured numbers, not in a structure's name; issue 34), issued when
+    it ends."""
+    import re
+    import warnings
+    from contextlib import contextmanager
+
+    @contextmanager
+    def ctx() -> Any:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                yield
+            finally:
+                pending = list(caught)
+        seen: dict[Any, Any] = {}
+        for w in pending:
+            # measured numbers (with a point or an exponent) vary between samples; whole
+            # numbers name things ("test 6") and keep messages apart
+            key = re.sub(r"[-+]?\d+(?:\.\d*)?[eE][-+]?\d+|[-+]?\d+\.\d*", "#", str(w.message))
+            seen.setdefault((w.category, key), w)
+        for w in seen.values():
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, registry=None)
+
+    return ctx()
+
+
+def _tolerance_text(tols: dict[str, float]) -> str:
+    """E.g. ``tube_id +-0.1 mm, shore +-2 Shore A``."""
+    return ", ".join(f"{k.removesuffix('_mm')} +-{v:g} " + ("Shore A" if k == "shore" else "mm")
+                     for k, v in tols.items())
 
 
 def _paper_columns(use_paper: bool) -> tuple[dict[str, Any], dict[Any, Any], dict[Any, Any]]:
@@ -311,16 +425,22 @@ def _render(d: dict[str, Any], res: Any, use_paper: bool, grid: list[float], law
         console.print("laws compared, mean |relative error| over the measured points: "
                       + ", ".join(parts) + " (per structure: --json law_comparison)")
     if "clearance" in d:
-        console.print(f"clearance varies along the tube: {d['clearance']}")
+        c = d["clearance"]
+        console.print("clearance varies along the tube: " + (
+            f"normal, sd {c['normal_sd_mm']:g} mm around each structure's D - d1 - d2"
+            if "normal_sd_mm" in c else f"measured profile {c['profile']}"))
     for entry in d["structures"]:
         if "friction_n_p05" in entry:
             top = entry["sensitivity"][0]
+            how = entry["tolerance_method"]
             console.print(
                 f"{entry['name']}: F at {grid[-1]:g} MPa 5/50/95 % = "
                 f"{entry['friction_n_p05'][-1]:.1f} / {entry['friction_n_p50'][-1]:.1f}"
-                f" / {entry['friction_n_p95'][-1]:.1f} N (tolerances {dict(tols)}); "
-                f"largest share of the variance: {top['tolerance']} "
-                f"{100 * top['variance_share'][-1]:.0f} %")
+                f" / {entry['friction_n_p95'][-1]:.1f} N (tolerances, 1 sd: "
+                f"{_tolerance_text(tols)}); largest share of the variance: "
+                f"{top['tolerance'].removesuffix('_mm')} "
+                f"{100 * top['variance_share'][-1]:.0f} %; method {how['method']}: "
+                f"{how['method_note']}")
 
 
 @grouped
@@ -366,19 +486,24 @@ def predict_cmd(
                          "samples N, not S_wire)", param="tolerance")
     grid = parse_floats("--pressures", pressures)
     structs, base = _structures(use_paper, structures, one)
-    solver, tols = _scatter_options(scatter.clearance_sd, scatter.clearance_profile,
-                                    scatter.tolerance, scatter.samples)
-    meas = _measured_map(measured, [s.name for s in structs]) if measured else None
-    res = predict(structs, model, MooneyRivlin.from_shore(shore), grid, measured=meas,
-                  base=base, threshold_pct=assess.threshold, arm_radius_m=assess.arm_radius,
-                  required_torque_nm=(0.0, assess.torque_max), alpha=assess.alpha,
-                  squeeze_fn=solver, compare=other)
+    with _warnings_once():
+        solver, tols = _scatter_options(scatter.clearance_sd, scatter.clearance_profile,
+                                        scatter.tolerance, structs)
+        meas = _measured_map(measured, [s.name for s in structs]) if measured else None
+        bands = (_bands(structs, meas, grid, shore, tols, scatter.samples, solver) if tols
+                 else {})
+        res = predict(structs, model, MooneyRivlin.from_shore(shore), grid, measured=meas,
+                      base=base, threshold_pct=assess.threshold,
+                      arm_radius_m=assess.arm_radius,
+                      required_torque_nm=(0.0, assess.torque_max), alpha=assess.alpha,
+                      squeeze_fn=_reuse_nominal(bands, solver) if bands else solver,
+                      compare=other)
     d = res.to_dict()
     for entry, pr in zip(d["structures"], res.predictions, strict=True):
         entry["friction_n"] = list(pr.predicted_friction_n)
         entry["squeeze_force_n"] = list(pr.squeeze_force_n)
-    if tols:
-        _add_bands(d, res, model, shore, tols, scatter.samples, solver)
+    if bands:
+        _add_bands(d, res, model, bands)
     if scatter.clearance_sd is not None or scatter.clearance_profile is not None:
         d["clearance"] = ({"normal_sd_mm": scatter.clearance_sd}
                           if scatter.clearance_sd is not None

@@ -102,25 +102,34 @@ def plot_gamma_fit(
 
 def _one_panel(preds: Sequence[Prediction], fig: Any,
                bands: Mapping[str, tuple[Sequence[float], Sequence[float]]] | None = None) -> Any:
-    """All predicted curves on one Axes (no measured curves to compare with)."""
+    """All predicted curves on one Axes (no measured curves to compare with): each labelled
+    with its geometric deviation from the base group; dashed (and said so in the title) only
+    when some curve is outside the validated region; tolerance bands shaded (issue 34)."""
     ax = fig.subplots()
     marks = "osD^vP*Xh<>"
+    any_outside = False
     for i, pr in enumerate(preds):
         dev = pr.deviation
         ok = dev.in_validated_region
+        any_outside |= not ok
+        name = pr.structure.name or f"structure {i + 1}"
         if bands and pr.structure.name in bands:
             lo, hi = bands[pr.structure.name]
             ax.fill_between(pr.pressure_mpa, lo, hi, color=f"C{i % 10}", alpha=0.18, lw=0,
-                            label=f"{pr.structure.name}: 5-95 % band")
+                            label=f"{name}: 5-95 % band of the tolerances")
         ax.plot(pr.pressure_mpa, pr.predicted_friction_n, "-" if ok else "--",
                 marker=marks[i % len(marks)], ms=4, color=f"C{i % 10}",
-                label=f"{pr.structure.name} ({dev.deviation_pct:.1f} %"
-                      + ("" if ok else ", outside") + ")")
+                label=f"{name} (deviation {dev.deviation_pct:.1f} %"
+                      + (")" if ok else ", outside)"))
     ax.set_xlabel("pressure P (MPa)")
     ax.set_ylabel("predicted friction F (N)")
-    ax.set_title("predicted friction (deviation from the base; dashed: outside the "
-                 "validated region)", fontsize=SMALL + 1)
+    ax.set_title("predicted friction; deviation: of the geometry from the base group"
+                 + ("\n(dashed: outside the validated region)" if any_outside else ""),
+                 fontsize=SMALL + 1)
     ax.grid(alpha=0.3)
+    entries = len(ax.get_legend_handles_labels()[0])
+    y0, y1 = ax.get_ylim()
+    ax.set_ylim(y0, y1 + 0.07 * entries * (y1 - y0))   # headroom: the legend sits above the data
     ax.legend(fontsize=SMALL, loc="upper left")
     return ax
 

@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_positive, check_range, warn_implausible
 from exofric.geometry import Structure
 from exofric.simulate._squeeze import squeeze
@@ -57,6 +58,14 @@ Kind = Literal["delta", "discrete", "uniform", "normal", "profile"]
 MIN_CLEARANCE_MM = 1e-3
 #: Up to this many distinct clearances are solved directly (no interpolation in c).
 MAX_DIRECT = 9
+#: A clearance more than this share of the tube wall above the structure's own free gap
+#: D - d1 - d2 is implausible (the tube's OD or the hole would locally be off by half a wall:
+#: far beyond the +-0.1-0.3 mm of extruded silicone tubing); unitless.
+PLAUSIBLE_EXCESS_WALL = 0.5
+#: Share of the length (unitless) above which impossible clearances are an error and
+#: implausible ones a warning.
+IMPOSSIBLE_SHARE = 0.01
+IMPLAUSIBLE_SHARE = 0.05
 
 
 @dataclass(frozen=True)
@@ -264,6 +273,55 @@ class ClearanceDistribution:
             return (max(self.values_mm[0], MIN_CLEARANCE_MM), self.values_mm[1])
         return (min(self.values_mm), max(self.values_mm))
 
+    def check_fits(self, structure: Structure, n: int = 32) -> None:
+        """Check the clearances against the structure's hole (issue 38).
+
+        A clearance c at or above D - d2 - ID is impossible (the tube's OD there, D - d2 - c,
+        would be at most its ID): an error when it covers more than
+        :data:`IMPOSSIBLE_SHARE` of the length. A clearance above the structure's own free gap
+        D - d1 - d2 plus half the wall (:data:`PLAUSIBLE_EXCESS_WALL`) is implausible: a
+        warning when it covers more than :data:`IMPLAUSIBLE_SHARE` of the length.
+
+        Parameters
+        ----------
+        structure : Structure
+            The hole, tube and wire the clearance is in (mm).
+        n : int
+            Gauss points of the uniform and normal distributions (1-200, as in
+            :meth:`quadrature`).
+
+        Raises
+        ------
+        InputError
+            Clearances impossible in the hole.
+
+        Examples
+        --------
+        >>> from exofric.geometry import BASE
+        >>> try:
+        ...     ClearanceDistribution.delta(50.0).check_fits(BASE)
+        ... except ValueError as exc:
+        ...     print(str(exc)[:57])
+        clearance: 100 % of the length has a clearance >= 3.43 mm
+        """
+        s = structure
+        c, w = self.quadrature(n)
+        bound = s.hole_mm - s.wire_mm - s.tube_id_mm
+        share = float(w[c >= bound].sum())
+        if share > IMPOSSIBLE_SHARE:
+            raise InputError(
+                f"clearance: {100 * share:.0f} % of the length has a clearance >= {bound:.3g} "
+                f"mm, impossible in a {s.hole_mm:g} mm hole with a {s.wire_mm:g} mm wire and a "
+                f"{s.tube_id_mm:g} mm tube ID (the tube's OD would be at most its ID; its "
+                f"own clearance D - d1 - d2 is {s.clearance_mm:.3g} mm)", param="clearance")
+        limit = max(s.clearance_mm, 0.0) + PLAUSIBLE_EXCESS_WALL * s.wall_mm
+        share = float(w[c > limit].sum())
+        if share > IMPLAUSIBLE_SHARE:
+            warn_implausible(
+                f"clearance: {100 * share:.0f} % of the length has a clearance above "
+                f"{limit:.3g} mm (the structure's own D - d1 - d2 = {s.clearance_mm:.3g} mm "
+                f"plus half its {s.wall_mm:.3g} mm wall): check the values are mm")
+
     def quadrature(self, n: int = 32) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Clearances (mm) and weights (sum 1) that integrate over the distribution.
 
@@ -306,7 +364,7 @@ class ClearanceDistribution:
 
 
 @dataclass(frozen=True)
-class ClearanceSqueeze:
+class ClearanceSqueeze(DisplayMixin):
     """N_eff(P) over a clearance distribution, with the per-clearance solves it used.
 
     Attributes
@@ -413,7 +471,9 @@ def squeeze_with_clearance(
     Raises
     ------
     InputError
-        Bad distribution or options; ConvergenceError from a squeeze.
+        Bad distribution or options, or clearances impossible in the structure's hole
+        (:meth:`ClearanceDistribution.check_fits`; implausible ones warn); ConvergenceError
+        from a squeeze.
 
     Examples
     --------
@@ -432,6 +492,7 @@ def squeeze_with_clearance(
                          "uniform, normal or profile)")
     if not isinstance(n_solves, int) or not 3 <= n_solves <= 33:
         raise InputError(f"n_solves must be an integer in [3, 33], got {n_solves!r}")
+    distribution.check_fits(structure, n_quadrature)
     squeeze_options.setdefault("keep_fields", False)
     c_q, w_q = distribution.quadrature(n_quadrature)
     distinct = np.unique(np.round(c_q, 12))
