@@ -28,7 +28,7 @@ from scipy import stats
 from exofric.friction import IdentifiabilityWarning, PullFitSettings, fit_pullout
 from exofric.geometry import BASE
 from exofric.material import MooneyRivlin
-from exofric.simulate import SqueezeSetup, pullout
+from exofric.simulate import PulloutNumerics, PulloutSetup, SqueezeSetup, pullout
 
 MAT = MooneyRivlin.from_shore(62.5)
 CHEAP = {"n_z": 20, "n_path": 30}
@@ -41,8 +41,9 @@ def clean_curves(travel: float = 1.5, n: int = 60) -> list[tuple[float, np.ndarr
     sq = SqueezeSetup(BASE, MAT, accuracy="draft").solve(list(PRESSURES))
     out = []
     for k, p in enumerate(PRESSURES):
-        r = pullout(BASE, MAT, p, displacement_mm=travel, first_loading=True, squeeze_result=sq,
-                    squeeze_index=k, **CHEAP, **TRUTH)
+        r = pullout(PulloutSetup(BASE, MAT, numerics=PulloutNumerics(**CHEAP), **TRUTH), p,
+                    displacement_mm=travel, first_loading=True, squeeze_result=sq,
+                    squeeze_index=k)
         x = np.linspace(0.0, travel, n)
         out.append((p, x, np.interp(x, r.displacement_mm, r.force_n)))
     return out

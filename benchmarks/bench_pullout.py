@@ -14,18 +14,19 @@ def main() -> dict[str, float]:
     from exofric.friction import joint_stiffness
     from exofric.geometry import BASE
     from exofric.material import MooneyRivlin
-    from exofric.simulate import SqueezeSetup, section_pullout
+    from exofric.simulate import PulloutSetup, SqueezeSetup, section_pullout
 
     mat = MooneyRivlin.from_shore(62.5)
     mu = {"mu_wire": 0.3, "mu_wall": 0.5, "mu_wire_wall": 0.2}
     p = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]
     t0 = time.perf_counter()
-    joint_stiffness(BASE, mat, p, radius_m=0.1, displacement_mm=2.0, **mu)
+    setup = PulloutSetup(BASE, mat, **mu)
+    joint_stiffness(setup, p, radius_m=0.1, displacement_mm=2.0)
     t_curve = time.perf_counter() - t0
     sq = SqueezeSetup(BASE, mat).solve(p)
     t0 = time.perf_counter()
     for k in range(len(p)):
-        section_pullout(BASE, mat, p[k], squeeze_result=sq, squeeze_index=k, **mu)
+        section_pullout(setup, p[k], squeeze_result=sq, squeeze_index=k)
     t_sec = (time.perf_counter() - t0) / len(p)
     out = {"k_of_p_curve_s": t_curve, "section_per_pressure_s": t_sec}
     print(f"K(P) curve, 6 pressures: {t_curve:.2f} s (target < 10 s); section solve per "

@@ -4,7 +4,8 @@ Run: ``python benchmarks/bench_pullout_ccx.py [--quick] [--json] [--out PATH]`` 
 studies, ~35 min on the shared machine; ``--quick``: two coarse slices, ~2 min),
 ``--tubes-only`` (the held tubes, ~15 min), ``--compare-only`` (no CalculiX). Writes
 ``tests/data/ccx_pullout.json`` atomically after every run (``complete`` false until the end;
-not with ``--quick`` unless ``--out`` is given) and ``tests/data/ccx_pullout_tube.json``, and
+not with ``--quick`` unless ``--out`` is given) and ``tests/data/ccx_pullout_tube.json``
+(``--tubes-only --tube-z-study``: also the 5 mm tube with 0.5 mm elements along z), and
 prints reference (CalculiX) vs exofric with relative errors.
 
 Problem (units mm, N, MPa, s): the base group (``exofric.geometry.BASE``, Table 3 test 1) and
@@ -59,8 +60,10 @@ and +2.18 / -2.35 / +0.32 % (exofric's own k0 moves by up to 2.4 % between its s
 fine meshes). With ends "fixed" k0 is 1-9 % higher (the fittings' foundation of a 116 mm tube,
 not in a periodic slice). Held tubes (base, 0.6 MPa, 5 / 10 mm; 165 / 426 s CPU): sliding force
 +0.63 / +0.59 %; secant to 0.2 mm 10.54 / 14.34 N/mm against 3-D 11.57 / 17.28 N/mm (-8.9 /
--17 %: the reduced model's smeared end-fitting foundation misses the held ends' stiffening;
-the 3-D tubes' convergence along z is not studied).
+-17 % with the smeared end-fitting foundation). With the held end zones solved in 3-D
+(scalar, E_z = 3 G; docs/formulation.md section 12): 12.33 / 18.32 N/mm, +5.6 % against the
+5 mm tube refined along z (0.5 mm elements: 11.68 N/mm, +0.9 % over the 1 mm run; the end rows'
+jump at 1e-3 mm halves, 0.24 -> 0.14 N; 284 s CPU) and +6.1 % for 10 mm.
 """
 
 from __future__ import annotations
@@ -188,15 +191,16 @@ def solve(name: str, pressure: float, *, mesh: str = REFERENCE_MESH, kind: str =
 # ------------------------------------------------------------------------------ exofric
 def exofric_side(name: str, pressures: tuple[float, ...]) -> dict[str, Any]:
     """exofric's section (ends free and fixed) at the pressures (MPa)."""
-    from exofric.simulate import section_pullout, squeeze
+    from exofric.simulate import PulloutSetup, section_pullout, squeeze
 
     st = structure(name)
     mat = material()
     sq = squeeze(st, mat, list(pressures), gravity="none", keep_fields=True)
     out: dict[str, Any] = {"pressure_mpa": list(pressures)}
     for ends in ("free", "fixed"):
-        rows = [section_pullout(st, mat, p, mu_wire=MU_WIRE, mu_wall=MU_WALL, mu_wire_wall=0.0,
-                                ends=ends, squeeze_result=sq, squeeze_index=i)
+        setup = PulloutSetup(st, mat, mu_wire=MU_WIRE, mu_wall=MU_WALL, mu_wire_wall=0.0,
+                             ends=ends)
+        rows = [section_pullout(setup, p, squeeze_result=sq, squeeze_index=i)
                 for i, p in enumerate(pressures)]
         out[ends] = {"initial_stiffness_n_per_mm2": [s.initial_stiffness_n_per_mm2 for s in rows],
                      "sliding_force_n_per_mm": [s.sliding_force_n_per_mm for s in rows],
@@ -207,13 +211,14 @@ def exofric_side(name: str, pressures: tuple[float, ...]) -> dict[str, Any]:
 
 def exofric_tube(name: str, pressure: float, length_mm: float) -> dict[str, Any]:
     """exofric's pull through a tube of ``length_mm`` held by its fittings, rigid cable."""
-    from exofric.simulate import pullout, squeeze
+    from exofric.simulate import PulloutSetup, pullout, squeeze
 
     st = dataclasses.replace(structure(name), length_mm=length_mm)
     sq = squeeze(st, material(), [pressure], gravity="none", keep_fields=True)
-    r = pullout(st, material(), pressure, mu_wire=MU_WIRE, mu_wall=MU_WALL, mu_wire_wall=0.0,
-                ends="fixed", cable_ea_n=CABLE_EA_N, displacement_mm=delta_max(pressure),
-                cycles=0, squeeze_result=sq)
+    setup = PulloutSetup(st, material(), mu_wire=MU_WIRE, mu_wall=MU_WALL, mu_wire_wall=0.0,
+                         ends="fixed", cable_ea_n=CABLE_EA_N)
+    r = pullout(setup, pressure, displacement_mm=delta_max(pressure), cycles=0,
+                squeeze_result=sq)
     return {"length_mm": length_mm,
             "initial_stiffness_n_per_mm": length_mm * r.section.initial_stiffness_n_per_mm2,
             "sliding_force_n": float(r.force_n[-1]), "static_force_n": r.static_force_n,
@@ -309,6 +314,36 @@ def run_tubes(out: dict[str, Any], ccx: str = "ccx", note: Any = None,
                     out.setdefault("tube_failures", []).append(
                         {"structure": name, "pressure_mpa": p, "length_mm": length,
                          "error": str(exc)[-2000:]})
+
+
+#: the 5 mm held tube's z-mesh study: elements along z (uniform) against the 5 of the reference
+TUBE_Z_STUDY = (10,)
+
+
+def run_tube_z_study(out: dict[str, Any], ccx: str = "ccx", note: Any = None,
+                     n_z: tuple[int, ...] = TUBE_Z_STUDY) -> None:
+    """Into ``out["z_convergence"]``: the 5 mm held tube (base group, 0.6 MPa) with ``n_z``
+    elements along z, against the stored 5-element run: is the reference converged along z?
+    (The held faces' end rows slide at once; their share of the early force scales with the
+    first element's length.)"""
+    base = next(r for r in out["tubes"]["test 1"] if r["options"]["depth_mm"] == 5.0)
+    rows = out.setdefault("z_convergence", [])
+    have = {r["options"]["n_z"] for r in rows}
+    for nz in n_z:
+        if nz in have:
+            continue
+        if note is not None:
+            note(f"[pullout-ccx] tube test 1 5 mm 0.6 MPa, n_z = {nz} ...")
+        r = solve("test 1", 0.6, mesh=TUBE_MESH, kind="tube", ccx=ccx, depth_mm=5.0, n_z=nz)
+        rows.append({**r, "secant_mm": SECANT_MM,
+                     "secant_n_per_mm": _secant(r), "baseline_secant_n_per_mm": _secant(base),
+                     "secant_change": _rel(_secant(r), _secant(base)),
+                     "sliding_change": _rel(r["sliding_force"], base["sliding_force"])})
+
+
+def _secant(r: dict[str, Any]) -> float:
+    """F / delta at ``SECANT_MM`` (N/mm) of a stored tube run."""
+    return float(np.interp(SECANT_MM, r["delta_mm"], r["force"])) / SECANT_MM
 
 
 def _row(r: dict[str, Any], base: dict[str, Any]) -> dict[str, Any]:
@@ -411,6 +446,8 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     ap.add_argument("--json", action="store_true", help="print the JSON")
     ap.add_argument("--out", type=Path, default=None)
     ap.add_argument("--ccx", default="ccx")
+    ap.add_argument("--tube-z-study", action="store_true",
+                    help="with --tubes-only: also the 5 mm tube with 10 elements along z")
     ap.add_argument("--tubes-only", action="store_true",
                     help="run only the held tube; writes tests/data/ccx_pullout_tube.json")
     ap.add_argument("--compare-only", action="store_true",
@@ -424,6 +461,8 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
                                 {"description": "CalculiX 3-D pull-out of short tubes held at "
                                                 "their ends (see bench_pullout_ccx.py)"})
         run_tubes(tube, args.ccx, lambda m: print(m, file=sys.stderr, flush=True))
+        if args.tube_z_study:
+            run_tube_z_study(tube, args.ccx, lambda m: print(m, file=sys.stderr, flush=True))
         tube["provenance"] = {
             "created_utc": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
             "script": "benchmarks/bench_pullout_ccx.py --tubes-only",

@@ -63,6 +63,10 @@ nitpick_ignore_regex = [(r"py:.*", r"(?!exofric\b).*")]
 # internal to the solver; not part of the API): the one exception to nitpicky references.
 nitpick_ignore: list[tuple[str, str]] = [
     ("py:class", "exofric.fe._hyperelastic.ElementState"),
+    # Assembler.factorize's result (a solver's factorisation, used by the Newton solver only)
+    ("py:class", "exofric.fe._assembly.Factorization"),
+    # SectionPullout.held_ends: the held end zones' law, carried for the length model
+    ("py:class", "exofric.simulate._shear_lag.HeldEnds"),
 ]
 
 # --- autodoc / numpydoc ----------------------------------------------------------------------

@@ -22,7 +22,7 @@ import numpy as np
 from exofric.friction import PullFitSettings, fit_pullout
 from exofric.geometry import BASE
 from exofric.material import MooneyRivlin
-from exofric.simulate import SqueezeSetup, pullout
+from exofric.simulate import PulloutNumerics, PulloutSetup, SqueezeSetup, pullout
 
 MAT = MooneyRivlin.from_shore(62.5)
 TRUTH = {"mu_wire": 0.3, "mu_wall": 0.5, "mu_wire_wall": 0.15}
@@ -38,8 +38,9 @@ rng = np.random.default_rng(7)
 squeeze = SqueezeSetup(BASE, MAT, accuracy="draft").solve(list(PRESSURES))
 pulls = []
 for k, p in enumerate(PRESSURES):
-    r = pullout(BASE, MAT, p, displacement_mm=TRAVEL_MM, first_loading=True,
-                squeeze_result=squeeze, squeeze_index=k, n_z=20, n_path=30, **TRUTH)
+    r = pullout(PulloutSetup(BASE, MAT, numerics=PulloutNumerics(n_z=20, n_path=30), **TRUTH),
+                p, displacement_mm=TRAVEL_MM, first_loading=True, squeeze_result=squeeze,
+                squeeze_index=k)
     x = np.linspace(0.0, TRAVEL_MM, 160)
     clean = np.interp(x, r.displacement_mm, r.force_n)
     for rep in range(3):

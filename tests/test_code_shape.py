@@ -67,21 +67,11 @@ MANY_PARAMETERS: dict[str, str] = {
         "a model and three optional test modes (uniaxial, biaxial, planar), then keyword-only "
         "fit options with defaults, each a flag of `exofric material fit`"),
     "exofric.calibration.calibrate_material": (
-        "three optional data sets (inflation with the tube sizes, tensile, ring) that a joint "
-        "fit combines, a hardness prior, per-set noise levels and numerics, all keyword-only "
-        "with defaults; each a flag of `exofric calibrate --material`"),
-    # Not yet grouped (issue 32 stays open for them): the pull-out family wants a PulloutSetup
-    # (structure, material, the four coefficients, ends, cable EA, numerics) as the squeeze has
-    # SqueezeSetup; until then each parameter is one flag of `exofric pullout`/`stiffness`.
-    "exofric.simulate.pullout": (
-        "NOT YET GROUPED: to become the keyword front of a PulloutSetup (issue 32 open); "
-        "every parameter is one flag of `exofric pullout`"),
-    "exofric.simulate.section_pullout": (
-        "NOT YET GROUPED: to become PulloutSetup.section (issue 32 open); every parameter is "
-        "one flag of `exofric pullout --section`"),
-    "exofric.friction.joint_stiffness": (
-        "NOT YET GROUPED: to take a PulloutSetup (issue 32 open); every parameter is one flag "
-        "of `exofric stiffness`"),
+        "a joint fit over three optional data sets: each keyword belongs to one of them "
+        "(inflation with the tube sizes and ends, tensile with its stress kind, ring), to the "
+        "hardness prior, or to that set's noise level, so a setup object would only re-spell "
+        "the data sets; all but the model are keyword-only with defaults, each one flag of "
+        "`exofric calibrate --material`, and a user passes two to five of them"),
     "exofric.control.identify_charge": (
         "a measured charge (time, pressure, command) and keyword-only physical constants of "
         "the gas and the valve (supply, volume, conductance, critical ratio, polytropic "

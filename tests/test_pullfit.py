@@ -28,7 +28,7 @@ from exofric.friction import (
 from exofric.friction._pullfit import PullFitSettings, fit_pullout, pulls_from_reduction
 from exofric.geometry import BASE
 from exofric.material import MooneyRivlin
-from exofric.simulate import SqueezeSetup, pullout
+from exofric.simulate import PulloutNumerics, PulloutSetup, SqueezeSetup, pullout
 
 MAT = MooneyRivlin.from_shore(62.5)
 CHEAP = {"n_z": 20, "n_path": 30}                 # the cheap forward model of these tests
@@ -55,8 +55,9 @@ def planted_pulls(truth: dict, pressures: tuple[float, ...], reps: int, seed: in
     sq = SqueezeSetup(BASE, MAT, accuracy="draft").solve(list(pressures))
     out = []
     for k, p in enumerate(pressures):
-        r = pullout(BASE, MAT, p, displacement_mm=travel, first_loading=True, squeeze_result=sq,
-                    squeeze_index=k, **CHEAP, **truth)
+        r = pullout(PulloutSetup(BASE, MAT, numerics=PulloutNumerics(**CHEAP), **truth), p,
+                    displacement_mm=travel, first_loading=True, squeeze_result=sq,
+                    squeeze_index=k)
         x = np.linspace(0.0, travel, n)
         clean = np.interp(x, r.displacement_mm, r.force_n)
         for j in range(reps):
@@ -254,8 +255,8 @@ def _raw_log(path: Path, truth: dict, pressures=(0.3, 0.6), reps: int = 2,
         now += n / fs
 
     for k, p in enumerate(pressures):
-        r = pullout(BASE, MAT, p, displacement_mm=travel, first_loading=True,
-                    squeeze_result=sq, squeeze_index=k, **truth)
+        r = pullout(PulloutSetup(BASE, MAT, **truth), p, displacement_mm=travel,
+                    first_loading=True, squeeze_result=sq, squeeze_index=k)
         seg(2.0, p, 0.0, x0)
         for _ in range(reps):
             s = np.arange(int(travel / v * fs)) / fs * v

@@ -14,7 +14,13 @@ from exofric.fe import polar_mesh
 from exofric.friction import joint_stiffness
 from exofric.geometry import BASE
 from exofric.material import MooneyRivlin
-from exofric.simulate import SqueezeSetup, pullout, section_pullout
+from exofric.simulate import (
+    PulloutNumerics,
+    PulloutSetup,
+    SqueezeSetup,
+    pullout,
+    section_pullout,
+)
 from exofric.simulate._antiplane import (
     CondensedSection,
     antiplane_stiffness,
@@ -25,6 +31,11 @@ from exofric.simulate._pullout import _Iwan, _shear_lag
 
 MAT = MooneyRivlin.from_shore(62.5)
 MU = {"mu_wire": 0.3, "mu_wall": 0.5, "mu_wire_wall": 0.2}
+
+
+def setup(structure=BASE, **kw):
+    """The base pull-out (MU) with ``kw`` replacing coefficients or options."""
+    return PulloutSetup(structure, MAT, **{**MU, **kw})
 
 
 @pytest.fixture(scope="module")
@@ -66,14 +77,59 @@ def test_whole_length_sliding_force_is_length_times_section_plateau(ea):
 
     st = replace(BASE, length_mm=30.0)
     sq30 = SqueezeSetup(st, MAT, accuracy="draft").solve([0.6])
-    sec = section_pullout(st, MAT, 0.6, **MU, squeeze_result=sq30)
-    r = pullout(st, MAT, 0.6, **MU, cable_ea_n=ea, displacement_mm=3.0, cycles=0,
+    sec = section_pullout(setup(st), 0.6, squeeze_result=sq30)
+    r = pullout(setup(st, cable_ea_n=ea), 0.6, displacement_mm=3.0, cycles=0,
                 squeeze_result=sq30)
     assert r.force_n[-1] == pytest.approx(st.length_mm * sec.sliding_force_n_per_mm, rel=1e-6)
 
 
+def test_held_zone_modes_match_bessel_closed_form():
+    # The held end zones' 3-D scalar model (section x z, E_z d2w/dz2, modal assembly) on a
+    # concentric annulus, held at both end faces: the wire surface displaced by sin(pi z / L),
+    # the outer surface held. w = sin(pi z / L) R(r), R'' + R'/r = kappa^2 R, kappa = (pi / L)
+    # sqrt(E_z / G): R from I0, K0, force per length -2 pi r_i G R'(r_i) at every station.
+    # Error: the linear z elements' O((pi h / L)^2) (measured 9.5e-4 with h = L/16, 1.4e-4
+    # with L/32; the section's quad9 error is ~1e-5): tolerance 2e-3.
+    from scipy.special import i0, i1, k0, k1
+
+    from exofric.simulate._shear_lag import HeldEnds, zone_stiffness
+
+    ri, ro, g, ez, L, n = 1.0, 2.5, 1.3, 3.9, 4.0, 16
+    m = polar_mesh(ri, ro, 4, 16, theta1=2 * np.pi)
+    K, area = antiplane_stiffness(m.nodes, m.elements, g)
+    inner, outer = np.unique(m.inner_nodes), np.unique(m.outer_nodes)
+    c = np.concatenate([inner, outer])
+    on = np.r_[np.ones(len(inner), bool), np.zeros(len(outer), bool)]
+    sec = CondensedSection(np.zeros((0, 0)), on, np.ones(len(c)), np.ones(len(c)))
+    zs = zone_stiffness(HeldEnds(K.tocsr(), area, sec, c, 1.0, ez), np.full(n, L / n),
+                        (True, True))
+    zm = np.arange(1, n) * L / n
+    f = (zs.K @ np.kron(np.sin(np.pi * zm / L), on)).reshape(n - 1, len(c))[:, on].sum(axis=1)
+    kap = math.pi / L * math.sqrt(ez / g)
+    D = i0(kap * ri) * k0(kap * ro) - k0(kap * ri) * i0(kap * ro)
+    dR = kap * (i1(kap * ri) * k0(kap * ro) + k1(kap * ri) * i0(kap * ro)) / D
+    per_mm = f / (L / n * np.sin(np.pi * zm / L))
+    assert per_mm == pytest.approx(np.full(n - 1, -2 * math.pi * ri * g * dR), rel=2e-3)
+
+
+def test_short_held_tube_slides_at_length_times_plateau():
+    # A 5 mm tube held at both end faces: the held zones' law replaces the section's on every
+    # station; once the whole length slides the force is L q_slide (the held faces' end rows
+    # carry their Coulomb capacity, the zones' stations theirs: together the section's), 1e-6.
+    # The zones make the tube stiffer than the section law alone (the end faces hold it).
+    from dataclasses import replace
+
+    st = replace(BASE, length_mm=5.0)
+    sq5 = SqueezeSetup(st, MAT, accuracy="draft").solve([0.6])
+    r = pullout(setup(st, mu_wire_wall=0.0), 0.6, displacement_mm=2.0, cycles=0,
+                squeeze_result=sq5)
+    assert r.force_n[-1] == pytest.approx(5.0 * r.section.sliding_force_n_per_mm, rel=1e-6)
+    k_sec = 5.0 * r.section.initial_stiffness_n_per_mm2
+    assert r.force_n[1] / r.displacement_mm[1] > k_sec
+
+
 def test_zero_friction_gives_zero_force(sq):
-    s = section_pullout(BASE, MAT, 0.6, mu_wire=0.0, mu_wall=0.0, mu_wire_wall=0.0,
+    s = section_pullout(setup(mu_wire=0.0, mu_wall=0.0, mu_wire_wall=0.0), 0.6,
                         squeeze_result=sq)
     assert np.all(s.force_n_per_mm == 0.0)
 
@@ -82,7 +138,7 @@ def test_full_sliding_equals_coulomb_sum(sq):
     # at full sliding q = mu_wire S_wire + mu_wire_wall N with S_wire and N as the squeeze
     # reports them (its own integrals of the contact forces, not our nodal reconstruction):
     # agreement to 1e-6 relative (the reconstruction differs only by round-off).
-    s = section_pullout(BASE, MAT, 0.6, squeeze_result=sq, **MU)
+    s = section_pullout(setup(), 0.6, squeeze_result=sq)
     ref = (0.3 * sq.contact.wire_pressure_integral_n_per_mm[-1]
            + 0.2 * sq.squeeze_force_n_per_mm[-1])
     assert math.isfinite(s.slip_displacement_mm)
@@ -96,8 +152,8 @@ def test_full_sliding_equals_coulomb_sum(sq):
 def test_free_ends_weak_wall_plateau_is_wall_capacity(sq):
     # the tube slides on the wall first when mu_wall S_wall < mu_wire S_wire: then the plateau
     # is mu_wall S_wall + mu_ww N (Coulomb on the wall arc, the squeeze's S_wall)
-    s = section_pullout(BASE, MAT, 0.6, mu_wire=0.8, mu_wall=0.05, mu_wire_wall=0.0,
-                        ends="free", squeeze_result=sq)
+    s = section_pullout(setup(mu_wire=0.8, mu_wall=0.05, mu_wire_wall=0.0, ends="free"), 0.6,
+                        squeeze_result=sq)
     assert s.sliding_force_n_per_mm == pytest.approx(
         0.05 * sq.contact.wall_pressure_integral_n_per_mm[-1], rel=1e-6)
     # the last step: the wall capacity plus the free tube's regularising foundation
@@ -109,11 +165,11 @@ def test_free_ends_weak_wall_plateau_is_wall_capacity(sq):
 def test_converged_in_steps_and_penalty(sq):
     # the force at a fixed displacement does not depend on the load steps (monotone path,
     # exact return mapping) nor on the stick penalty (augmented Lagrangian): 1e-6 relative
-    base = section_pullout(BASE, MAT, 0.6, squeeze_result=sq, **MU)
+    base = section_pullout(setup(), 0.6, squeeze_result=sq)
     d = 0.5 * base.slip_displacement_mm
     q0 = np.interp(d, base.displacement_mm, base.force_n_per_mm)
     for kw in ({"n_steps": 80}, {"stick_penalty": 1e5}, {"stick_penalty": 30.0}):
-        s = section_pullout(BASE, MAT, 0.6, squeeze_result=sq, **MU, **kw)
+        s = section_pullout(setup(numerics=PulloutNumerics(**kw)), 0.6, squeeze_result=sq)
         q = np.interp(d, s.displacement_mm, s.force_n_per_mm)
         if "n_steps" in kw:  # linear interpolation between steps of a curved law
             assert q == pytest.approx(q0, rel=5e-3)
@@ -124,8 +180,8 @@ def test_converged_in_steps_and_penalty(sq):
 def test_mesh_convergence_initial_stiffness():
     # draft (2 x 24) vs standard (4 x 32) squeeze meshes: section stiffness and plateau
     # within 5% (measured: see the report); the plateau is the squeeze's S_wire's
-    a = section_pullout(BASE, MAT, 0.6, accuracy="draft", **MU)
-    b = section_pullout(BASE, MAT, 0.6, accuracy="standard", **MU)
+    a = section_pullout(setup(accuracy="draft"), 0.6)
+    b = section_pullout(setup(accuracy="standard"), 0.6)
     assert a.initial_stiffness_n_per_mm2 == pytest.approx(b.initial_stiffness_n_per_mm2,
                                                           rel=0.05)
     assert a.sliding_force_n_per_mm == pytest.approx(b.sliding_force_n_per_mm, rel=0.05)
@@ -141,7 +197,7 @@ def test_zero_creep_under_held_load():
 
 
 def test_zero_creep_held_section(sq):
-    s = section_pullout(BASE, MAT, 0.6, squeeze_result=sq, **MU)
+    s = section_pullout(setup(), 0.6, squeeze_result=sq)
     d = 0.5 * s.slip_displacement_mm
     from exofric.simulate._pullout import _build_section
 
@@ -151,9 +207,9 @@ def test_zero_creep_held_section(sq):
 
 
 def test_static_peak_and_hysteresis(sq):
-    kw = dict(squeeze_result=sq, displacement_mm=3.0, cycles=1, **MU)
-    r = pullout(BASE, MAT, 0.6, mu_static=0.36, **kw)
-    k = pullout(BASE, MAT, 0.6, **kw)
+    kw = dict(squeeze_result=sq, displacement_mm=3.0, cycles=1)
+    r = pullout(setup(mu_static=0.36), 0.6, **kw)
+    k = pullout(setup(), 0.6, **kw)
     L = BASE.length_mm
     # whole length sliding: F = L q_slide (every station on its plateau), 0.5%
     assert k.force_n[60] == pytest.approx(L * k.section.sliding_force_n_per_mm, rel=5e-3)
@@ -169,7 +225,7 @@ def test_line_stick_penalty_convergence(sq):
     # the joint's secant stiffness converges as the wire-wall stick spring stiffens: 2%
     from exofric.simulate._pullout import _length_from_section
 
-    s = section_pullout(BASE, MAT, 0.6, squeeze_result=sq, **MU)
+    s = section_pullout(setup(), 0.6, squeeze_result=sq)
     a = _length_from_section(s, BASE.length_mm, 1.3e5, 1.0, 2.0, 0, 232, 60, 1e3, 0.3)
     b = _length_from_section(s, BASE.length_mm, 1.3e5, 1.0, 2.0, 0, 232, 60, 1e4, 0.3)
     fa = np.interp(0.5, a.displacement_mm, a.force_n)
@@ -178,23 +234,39 @@ def test_line_stick_penalty_convergence(sq):
 
 
 def test_joint_stiffness_torque_is_force_times_radius():
-    j = joint_stiffness(BASE, MAT, [0.3, 0.6], radius_m=0.1, accuracy="draft", **MU)
+    j = joint_stiffness(setup(accuracy="draft"), [0.3, 0.6], radius_m=0.1)
     assert np.all(j.breakaway_torque_nm == pytest.approx(j.breakaway_force_n * 0.1))
     assert np.all(np.diff(j.stiffness_nm_per_rad) > 0)
     assert j.to_frame().shape == (2, 5)
 
 
 @pytest.mark.parametrize("kw", [{"mu_wire": -0.1}, {"mu_wall": float("nan")},
-                                {"mu_static": 0.1}, {"displacement_mm": 500.0},
-                                {"ends": "glued"}])
-def test_bad_input(kw):
-    args = {**MU, **kw}
-    with pytest.raises(InputError):
-        pullout(BASE, MAT, 0.6, accuracy="draft", **args)
+                                {"mu_static": 0.1}, {"ends": "glued"}, {"cable_ea_n": 0.0},
+                                {"numerics": {"n_z": 10}}])
+def test_bad_setup(kw):
+    with pytest.raises(InputError) as exc:
+        setup(accuracy="draft", **kw)
+    assert exc.value.param == next(iter(kw))
+
+
+@pytest.mark.parametrize("kw", [{"displacement_mm": 500.0}, {"displacement_mm": "far"},
+                                {"cycles": -1}, {"cycles": 1.5}])
+def test_bad_path(kw):
+    # checked before any solve: a travel beyond the tube (116 mm), a non-integer cycle count
+    with pytest.raises(InputError) as exc:
+        pullout(setup(accuracy="draft"), 0.6, **kw)
+    assert exc.value.param == next(iter(kw))
+
+
+def test_not_a_setup():
+    with pytest.raises(InputError, match="PulloutSetup"):
+        pullout(BASE, 0.6)  # type: ignore[arg-type]
+    with pytest.raises(InputError, match="PulloutSetup"):
+        joint_stiffness(MU, [0.6], radius_m=0.1)  # type: ignore[arg-type]
 
 
 def test_below_onset_zero_force():
-    s = section_pullout(BASE, MAT, 0.02, accuracy="draft", **MU)
+    s = section_pullout(setup(accuracy="draft"), 0.02)
     assert np.all(s.force_n_per_mm == 0.0) and s.notes
 
 
@@ -286,11 +358,14 @@ def test_mooney_rivlin_modulus_is_the_energy_hessian():
 def test_joint_stiffness_converged_in_path_steps(sq):
     # K (secant at half the breakaway) and T_break with 60 and 240 steps on the first
     # loading: measured 0.7% and 0.3% apart (first order in the step); tolerance 2%
-    kw = dict(radius_m=0.1, mu_static=0.36, accuracy="draft", **MU)
-    a = joint_stiffness(BASE, MAT, [0.6], n_path=60, **kw)
-    b = joint_stiffness(BASE, MAT, [0.6], n_path=240, **kw)
+    def knee(n_path, **kw):
+        s = setup(mu_static=0.36, accuracy="draft", numerics=PulloutNumerics(n_path=n_path))
+        return joint_stiffness(s, [0.6], radius_m=0.1, **kw)
+
+    a = knee(60)
+    b = knee(240)
     assert a.stiffness_nm_per_rad[0] == pytest.approx(b.stiffness_nm_per_rad[0], rel=0.02)
     assert a.breakaway_torque_nm[0] == pytest.approx(b.breakaway_torque_nm[0], rel=0.02)
     # the travel does not matter once it passes the breakaway
-    c = joint_stiffness(BASE, MAT, [0.6], n_path=60, displacement_mm=5.0, **kw)
+    c = knee(60, displacement_mm=5.0)
     assert c.stiffness_nm_per_rad[0] == pytest.approx(a.stiffness_nm_per_rad[0], rel=1e-9)

@@ -53,6 +53,7 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     from exofric.reproduction import ReproduceConfig, ReproduceResult, reproduce
     from exofric.simulate import (
         InflationResult,
+        PulloutSetup,
         SqueezeResult,
         inflate,
         pullout,

@@ -1,5 +1,6 @@
-"""Inputs the friction commands share (fit-friction, predict, invert, rig, torque may): squeeze
-curve files, the interface law's FE curves and choice checks. Units: MPa, N.
+"""Inputs the friction commands share (fit-friction, predict, invert, rig, torque, pullout,
+stiffness): squeeze curve files, the interface law's FE curves, choice checks and the pull-out
+setup of the pull-out flags. Units: MPa, N.
 
 Files are read by :mod:`exofric.io`: squeeze curves (``exofric squeeze --json`` output or a
 ``pressure_mpa,squeeze_force_n`` CSV).
@@ -13,7 +14,11 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     import numpy as np
 
-__all__ = ["both_mus", "choice", "interface_curves", "squeeze_curve"]
+    from exofric.cli._options import ContactFrictionOptions, MaterialOptions
+    from exofric.geometry import Structure
+    from exofric.simulate import PulloutSetup
+
+__all__ = ["both_mus", "choice", "interface_curves", "pullout_setup", "squeeze_curve"]
 
 
 def squeeze_curve(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
@@ -70,3 +75,16 @@ def both_mus(mu_tube: float | None, mu_wall: float | None) -> None:
         missing = "mu_wall" if mu_wall is None else "mu_tube"
         raise InputError(f"{missing} is needed too: the interface law takes both --mu-tube "
                          "and --mu-wall", param=missing)
+
+
+def pullout_setup(structure: Structure, material: MaterialOptions,
+                  friction: ContactFrictionOptions, cable_ea: float, ends: str,
+                  accuracy: str | None) -> PulloutSetup:
+    """The :class:`~exofric.simulate.PulloutSetup` of the pull-out flags (shared with
+    ``stiffness``): coefficients unitless, EA in N."""
+    from exofric.simulate import PulloutSetup
+
+    return PulloutSetup(structure, material.material(), mu_wire=friction.mu_wire,
+                        mu_wall=friction.mu_wall, mu_wire_wall=friction.mu_wire_wall,
+                        mu_static=friction.mu_static, cable_ea_n=cable_ea, ends=ends,
+                        accuracy=accuracy)

@@ -8,6 +8,7 @@ import typer
 
 from exofric import defaults
 from exofric.cli._common import console, emit, plot_path, save_figure
+from exofric.cli._friction_inputs import pullout_setup
 from exofric.cli._options import (
     PULLOUT_ENDS_HELP,
     ContactFrictionOptions,
@@ -54,12 +55,9 @@ def pullout_cmd(
     from exofric.simulate import pullout
 
     plot = None if out.plot is None else plot_path(out.plot)
-    mat = material.material()
-    st = structure.structure(length)
-    res = pullout(st, mat, pressure, mu_wire=friction.mu_wire, mu_wall=friction.mu_wall,
-                  mu_wire_wall=friction.mu_wire_wall, mu_static=friction.mu_static,
-                  cable_ea_n=cable_ea, ends=ends, displacement_mm=displacement, cycles=cycles,
-                  section=section, accuracy=accuracy)
+    setup = pullout_setup(structure.structure(length), material, friction, cable_ea, ends,
+                          accuracy)
+    res = pullout(setup, pressure, displacement_mm=displacement, cycles=cycles, section=section)
     d = res.to_dict()
     if plot is not None:
         d["plot"] = str(save_figure(res.plot().figure, plot))

@@ -9,6 +9,7 @@ import typer
 
 from exofric import defaults
 from exofric.cli._common import console, emit, parse_floats, plot_path, save_figure
+from exofric.cli._friction_inputs import pullout_setup
 from exofric.cli._options import (
     PULLOUT_ENDS_HELP,
     ContactFrictionOptions,
@@ -51,14 +52,11 @@ def stiffness_cmd(
     from exofric.friction import joint_stiffness
 
     plot = None if out.plot is None else plot_path(out.plot)
-    mat = material.material()
-    st = structure.structure(length)
     p = parse_floats("--pressures", pressures)
-    res = joint_stiffness(st, mat, p, radius_m=radius, wrap_deg=wrap_deg, mu_arc=mu_arc,
-                          mu_wire=friction.mu_wire, mu_wall=friction.mu_wall,
-                          mu_wire_wall=friction.mu_wire_wall, mu_static=friction.mu_static,
-                          cable_ea_n=cable_ea, ends=ends, displacement_mm=displacement,
-                          accuracy=accuracy)
+    setup = pullout_setup(structure.structure(length), material, friction, cable_ea, ends,
+                          accuracy)
+    res = joint_stiffness(setup, p, radius_m=radius, wrap_deg=wrap_deg, mu_arc=mu_arc,
+                          displacement_mm=displacement)
     d = res.to_dict()
     if plot is not None:
         d["plot"] = str(save_figure(res.plot().figure, plot))

@@ -55,6 +55,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from exofric import defaults
+from exofric._display import DisplayMixin
 from exofric._lsq import lsq_covariance, residual_variance, standard_errors
 from exofric.errors import (
     ConvergenceError,
@@ -138,7 +139,7 @@ class PullFitSettings:
 
 
 @dataclass(frozen=True)
-class PulloutFit:
+class PulloutFit(DisplayMixin):
     """Friction coefficients fitted to measured pulls, with intervals (unitless; N, mm, MPa).
 
     Attributes
@@ -196,10 +197,11 @@ class PulloutFit:
     >>> import numpy as np
     >>> from exofric.geometry import BASE
     >>> from exofric.material import MooneyRivlin
-    >>> from exofric.simulate import pullout
+    >>> from exofric.simulate import PulloutNumerics, PulloutSetup, pullout
     >>> mat = MooneyRivlin.from_shore(62.5)
-    >>> r = pullout(BASE, mat, 0.6, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.15,
-    ...             displacement_mm=1.5, first_loading=True, accuracy="draft", n_z=20, n_path=20)
+    >>> setup = PulloutSetup(BASE, mat, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.15,
+    ...                      accuracy="draft", numerics=PulloutNumerics(n_z=20, n_path=20))
+    >>> r = pullout(setup, 0.6, displacement_mm=1.5, first_loading=True)
     >>> rng = np.random.default_rng(0)
     >>> pulls = [{"pressure_mpa": 0.6, "displacement_mm": r.displacement_mm,
     ...           "force_n": r.force_n * (1 + 0.02 * rng.standard_normal())} for _ in range(3)]
@@ -527,7 +529,7 @@ class _Problem:
 
     def predict(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
         """Model force (N) at every sample for the search vector ``z``."""
-        from exofric.simulate import pullout
+        from exofric.simulate import PulloutNumerics, PulloutSetup, pullout
 
         key = tuple(float(v) for v in z)
         if key in self.cache:
@@ -539,13 +541,14 @@ class _Problem:
         self.notes = []
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
+            setup = PulloutSetup(self.structure, self.material, mu_wire=c["mu_wire"],
+                                 mu_wall=c["mu_wall"], mu_wire_wall=c["mu_wire_wall"],
+                                 mu_static=c["mu_static"], cable_ea_n=self.ea, ends=self.ends,
+                                 accuracy=s.accuracy, mesh=s.mesh,
+                                 numerics=PulloutNumerics(n_z=s.n_z, n_path=s.n_path))
             for g, p in enumerate(self.pressures):
-                r = pullout(self.structure, self.material, float(p), mu_wire=c["mu_wire"],
-                            mu_wall=c["mu_wall"], mu_wire_wall=c["mu_wire_wall"],
-                            mu_static=c["mu_static"], cable_ea_n=self.ea, ends=self.ends,
-                            displacement_mm=float(self.travel[g]), n_z=s.n_z,
-                            n_path=s.n_path, squeeze_result=self.squeeze, squeeze_index=g,
-                            first_loading=True)
+                r = pullout(setup, float(p), displacement_mm=float(self.travel[g]),
+                            squeeze_result=self.squeeze, squeeze_index=g, first_loading=True)
                 xm = r.displacement_mm + self.compliance * r.force_n
                 if np.any(np.diff(xm) <= 0):
                     self._note("the rig compliance makes the model's travel go back after the "
@@ -781,18 +784,43 @@ def _start(prob: _Problem) -> NDArray[np.float64]:
         if k in user:
             start[k] = float(user[k])
     if "mu_wall" in prob.names and "mu_wall" not in user:
-        best = math.inf
-        for f in (2.0, 0.6, 0.25):
-            start["mu_wall"] = float(np.clip(f * start["mu_wire"], _MU_MIN, 2.0))
+        s_h = np.array([sec.wall_pressure_integral_n_per_mm for sec in prob.sections]) * L
+        rest = plat - float(start["mu_wire_wall"]) * n_w[g]
+        col = s_h[g]
+        slip = float(col @ rest / (col @ col)) if col @ col > 0 else math.nan
+        _best_wall_start(prob, start, "mu_wire" not in user, slip, lo, hi)
+    return np.clip(np.array([start[n] for n in prob.names]), lo, hi)
+
+
+def _best_wall_start(prob: _Problem, start: dict[str, float], vary_wire: bool,
+                     wall_slip: float, lo: NDArray[np.float64],
+                     hi: NDArray[np.float64]) -> None:
+    """mu_wall (and mu_wire) start: the best of a small grid, in place.
+
+    mu_wall at 2, 0.6 and 0.25 x mu_wire: the tube-wall arc sticking, or slipping first
+    (regimes a local search does not cross). When the wall slips first, the plateau is the
+    wall's (``wall_slip``: mu_wall from the plateaus against S_wall; the held ends add a rise,
+    so 0.7 x it too) and says little about mu_wire, which the plateau then under-estimates:
+    1.5 x the plateau's mu_wire is tried too (a weak wall with the wire at the plateau's value
+    is a separate local minimum with a barrier between).
+    """
+    base_wire = start["mu_wire"]
+    best, keep = math.inf, (base_wire, _START["mu_wall"])
+    for fw in ((1.0, 1.5) if vary_wire else (1.0,)):
+        start["mu_wire"] = float(np.clip(fw * base_wire, 0.02, 1.9))
+        walls = [f * start["mu_wire"] for f in (2.0, 0.6, 0.25)]
+        if math.isfinite(wall_slip) and wall_slip > 0:
+            walls += [wall_slip, 0.7 * wall_slip]
+        for w in walls:
+            start["mu_wall"] = float(np.clip(w, _MU_MIN, 2.0))
             z = np.clip(np.array([start[n] for n in prob.names]), lo, hi)
             try:
                 cost = float(np.sum(prob.residuals(z) ** 2))
             except (ConvergenceError, InputError):
                 continue
             if cost < best:
-                best, keep = cost, start["mu_wall"]
-        start["mu_wall"] = keep if math.isfinite(best) else _START["mu_wall"]
-    return np.clip(np.array([start[n] for n in prob.names]), lo, hi)
+                best, keep = cost, (start["mu_wire"], start["mu_wall"])
+    start["mu_wire"], start["mu_wall"] = keep
 
 
 def _solve(prob: _Problem) -> PulloutFit:

@@ -12,21 +12,20 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from exofric import defaults
-from exofric.errors import InputError, check_positive, check_pressures
+from exofric._display import DisplayMixin
+from exofric.errors import InputError, check_pressures, check_range, warn_implausible
 from exofric.friction._torque import capstan_factor
 
 if TYPE_CHECKING:
     import pandas as pd
 
-    from exofric.geometry import Structure
-    from exofric.material import HyperelasticModel, MooneyRivlin
+    from exofric.simulate import PulloutSetup
 
 __all__ = ["JointStiffness", "joint_stiffness"]
 
 
 @dataclass(frozen=True)
-class JointStiffness:
+class JointStiffness(DisplayMixin):
     """The locked knee: stiffness K(P) (Nm/rad) and breakaway torque T_break(P) (Nm).
 
     Attributes
@@ -52,8 +51,10 @@ class JointStiffness:
     --------
     >>> from exofric.geometry import BASE
     >>> from exofric.material import MooneyRivlin
-    >>> j = joint_stiffness(BASE, MooneyRivlin.from_shore(62.5), [0.3, 0.6], radius_m=0.1,
-    ...                     mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.2, accuracy="draft")
+    >>> from exofric.simulate import PulloutSetup
+    >>> setup = PulloutSetup(BASE, MooneyRivlin.from_shore(62.5), mu_wire=0.3, mu_wall=0.5,
+    ...                      mu_wire_wall=0.2, accuracy="draft")
+    >>> j = joint_stiffness(setup, [0.3, 0.6], radius_m=0.1)
     >>> bool(j.breakaway_torque_nm[1] > j.breakaway_torque_nm[0] > 0)
     True
     """
@@ -113,24 +114,13 @@ class JointStiffness:
 
 
 def joint_stiffness(
-    structure: Structure,
-    material: MooneyRivlin | HyperelasticModel,
+    setup: PulloutSetup,
     pressures_mpa: Any,
     *,
     radius_m: float,
-    mu_wire: float,
-    mu_wall: float,
-    mu_wire_wall: float,
-    mu_static: float | None = None,
     wrap_deg: float = 0.0,
     mu_arc: float = 0.0,
-    cable_ea_n: float = defaults.CABLE_EA_N,
-    ends: str = "fixed",
     displacement_mm: float = 3.0,
-    accuracy: str | None = None,
-    mesh: Any = None,
-    n_z: int = defaults.PULLOUT_Z_ELEMENTS,
-    n_path: int = defaults.PULLOUT_PATH_STEPS,
 ) -> JointStiffness:
     """The locked knee over pressures: K(P) (Nm/rad) and T_break(P) (Nm).
 
@@ -140,29 +130,19 @@ def joint_stiffness(
 
     Parameters
     ----------
-    structure, material
-        As :func:`exofric.simulate.pullout` (mm; MPa).
+    setup : PulloutSetup
+        The pull-out problem (:class:`exofric.simulate.PulloutSetup`: structure in mm,
+        material, the three interfaces' coefficients and ``mu_static``, the cable's EA in N,
+        the ends, the squeeze's accuracy, the numerics).
     pressures_mpa : array_like
         Strictly increasing pressures (MPa).
     radius_m : float
-        Pulley radius / lever arm R (m).
-    mu_wire, mu_wall, mu_wire_wall : float
-        Kinetic Coulomb coefficients (unitless, [0, 2]) tube-wire, tube-wall, wire-wall.
-    mu_static : float, optional
-        Static coefficient of the wire's interfaces (unitless, >= ``mu_wire``).
+        Pulley radius / lever arm R (m, in (0, 1]; a warning above 0.3).
     wrap_deg, mu_arc : float
         Wrap of the wire on the knee arc (deg) and its coefficient (unitless).
-    cable_ea_n : float
-        Cable axial stiffness EA (N).
-    ends : {'fixed', 'free'}
-        The tube's end fittings (see :func:`exofric.simulate.section_pullout`).
     displacement_mm : float
         Pulled-end travel of each pull (mm), in (0, L], default 3: must pass the breakaway
         (a note says when it does not).
-    accuracy, mesh
-        The squeeze's accuracy level or explicit mesh.
-    n_z, n_path : int
-        Cable elements along L (count); steps over ``displacement_mm`` (count).
 
     Returns
     -------
@@ -172,30 +152,35 @@ def joint_stiffness(
     --------
     >>> from exofric.geometry import BASE
     >>> from exofric.material import MooneyRivlin
-    >>> j = joint_stiffness(BASE, MooneyRivlin.from_shore(62.5), [0.6], radius_m=0.1,
-    ...                     mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.2, accuracy="draft")
+    >>> from exofric.simulate import PulloutSetup
+    >>> setup = PulloutSetup(BASE, MooneyRivlin.from_shore(62.5), mu_wire=0.3, mu_wall=0.5,
+    ...                      mu_wire_wall=0.2, accuracy="draft")
+    >>> j = joint_stiffness(setup, [0.6], radius_m=0.1)
     >>> round(float(j.breakaway_torque_nm[0]), 1)   # L q_slide (N) x 0.1 m: no static peak
     12.5
     """
-    from exofric.simulate import SqueezeSetup, check_pullout_friction, pullout
+    from exofric.simulate import PulloutSetup, SqueezeSetup, pullout
 
+    if not isinstance(setup, PulloutSetup):
+        raise InputError(f"setup must be a PulloutSetup, got {type(setup).__name__}",
+                         param="setup")
     p = check_pressures("pressures_mpa", pressures_mpa, max_mpa=2.0)
-    r_m = check_positive("radius_m", radius_m, "m")
+    # a lever arm at a knee: centimetres; over 1 m cannot be a wearable joint's, over 0.3 m is
+    # implausible (K scales with R^2, so a unit slip of m for mm would be 1e6 off)
+    r_m = check_range("radius_m", radius_m, 0.0, 1.0, lo_open=True, unit="m")
+    if r_m > 0.3:
+        warn_implausible(f"radius_m = {r_m:g} m: a knee's lever arm is a few centimetres")
     cap = capstan_factor(wrap_deg, mu_arc, "locking")
-    mw, mwall, mww, ms = check_pullout_friction(mu_wire, mu_wall, mu_wire_wall, ends, mu_static)
-    ea = check_positive("cable_ea_n", cable_ea_n, "N")
-    L = structure.length_mm
+    L = setup.structure.length_mm
     if not (0.0 < float(displacement_mm) <= L):
         raise InputError(f"displacement_mm must be in (0, {L:g}] mm, got {displacement_mm!r}",
                          param="displacement_mm")
-    res = SqueezeSetup(structure, material, accuracy=accuracy, mesh=mesh,
-                       keep_fields=True).solve(list(p))
+    res = SqueezeSetup(setup.structure, setup.material, accuracy=setup.accuracy,
+                       mesh=setup.mesh, keep_fields=True).solve(list(p))
     K, Tb, Ts, Fb, angs, tqs = [], [], [], [], [], []
     notes: list[str] = []
     for k in range(len(p)):
-        r = pullout(structure, material, float(p[k]), mu_wire=mw, mu_wall=mwall,
-                    mu_wire_wall=mww, mu_static=ms, cable_ea_n=ea, ends=ends,
-                    displacement_mm=float(displacement_mm), n_z=n_z, n_path=n_path,
+        r = pullout(setup, float(p[k]), displacement_mm=float(displacement_mm),
                     squeeze_result=res, squeeze_index=k, first_loading=True)
         notes += [f"P = {p[k]:g} MPa: {n}" for n in r.notes]
         if r.section.initial_stiffness_n_per_mm2 > 0 and r.slip_length_mm[-1] < L:

@@ -11,6 +11,10 @@
   references for the free inflation; :func:`tube_inflation` -> :class:`TubeInflationCurve` --
   the incompressible thick tube with closed or open ends (generalised plane strain).
 * :func:`check_stretch`, :class:`StretchWarning` -- the paper's validated stretch range.
+* :class:`PulloutSetup` (with :class:`PulloutNumerics`) -- a pull-out but its pressure and
+  path; :func:`section_pullout` -> :class:`SectionPullout` (per unit length) and
+  :func:`pullout` -> :class:`PulloutResult` (the whole length) -- the wire pulled through
+  the inflated tube.
 * :func:`squeeze_with_clearance` -> :class:`ClearanceSqueeze` -- N(P) with the clearance
   distributed along the tube (:class:`ClearanceDistribution`);
   :func:`squeeze_tolerances` -> :class:`ToleranceResult` -- percentile bands of N(P) under size
@@ -50,12 +54,11 @@ if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
     )
     from exofric.simulate._common import check_friction
     from exofric.simulate._inflate import InflationResult, inflate
-    from exofric.simulate._pullout import (
-        PulloutResult,
-        SectionPullout,
+    from exofric.simulate._pullout import PulloutResult, SectionPullout, pullout, section_pullout
+    from exofric.simulate._pullout_setup import (
+        PulloutNumerics,
+        PulloutSetup,
         check_pullout_friction,
-        pullout,
-        section_pullout,
     )
     from exofric.simulate._ring import RingResult, ring_test
     from exofric.simulate._setup import SqueezeSetup

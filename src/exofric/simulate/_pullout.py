@@ -25,8 +25,8 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 
-from exofric import defaults
-from exofric.errors import ConvergenceError, InputError, check_positive, warn_implausible
+from exofric._display import DisplayMixin
+from exofric.errors import ConvergenceError, InputError, warn_implausible
 from exofric.fe import nodal_weights
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
@@ -39,17 +39,21 @@ from exofric.simulate._antiplane import (
     recover,
     solve_friction_steps,
 )
-from exofric.simulate._common import check_friction
+from exofric.simulate._pullout_setup import PulloutSetup
+from exofric.simulate._shear_lag import (
+    EZ_OVER_G,
+    HELD_GRID_MM,
+    HELD_ZONE_MM,
+    HeldEnds,
+    zone_curve,
+)
 
 if TYPE_CHECKING:
     import pandas as pd
 
     from exofric.simulate._squeeze_result import SqueezeResult
 
-__all__ = ["PulloutResult", "SectionPullout", "check_pullout_friction", "pullout",
-           "section_pullout"]
-
-PULLOUT_ENDS = ("fixed", "free")
+__all__ = ["PulloutResult", "SectionPullout", "pullout", "section_pullout"]
 
 
 # ----------------------------------------------------------------------------------------------
@@ -106,13 +110,16 @@ class SectionPullout:
         G |g|^2 (MPa): the order of the in-plane stress change the axial shear would cause
         (neglected: the squeeze's contact pressures are held), to compare with the contact
         pressures.
+    held_ends : HeldEnds or None
+        What the length model needs to solve the zones next to held end faces (the section's
+        stiffness without the fittings' foundation, its contact nodes; N/mm^2, mm).
 
     Examples
     --------
     >>> from exofric.geometry import BASE
     >>> from exofric.material import MooneyRivlin
-    >>> s = section_pullout(BASE, MooneyRivlin.from_shore(62.5), 0.6, mu_wire=0.3, mu_wall=0.5,
-    ...                     mu_wire_wall=0.2, accuracy="draft")
+    >>> s = section_pullout(PulloutSetup(BASE, MooneyRivlin.from_shore(62.5), mu_wire=0.3,
+    ...                                  mu_wall=0.5, mu_wire_wall=0.2, accuracy="draft"), 0.6)
     >>> bool(abs(s.force_n_per_mm[-1] - s.sliding_force_n_per_mm) < 1e-6)
     True
     """
@@ -140,6 +147,7 @@ class SectionPullout:
     notes: tuple[str, ...] = ()
     axial_shear_max: float = 0.0
     in_plane_coupling_mpa: float = 0.0
+    held_ends: HeldEnds | None = field(default=None, repr=False, compare=False)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (unit-suffixed keys; per-step lists)."""
@@ -196,7 +204,7 @@ class SectionPullout:
 
 
 @dataclass(frozen=True)
-class PulloutResult:
+class PulloutResult(DisplayMixin):
     """Pull of the wire through the whole tube length: F(delta) at the pulled end (N, mm).
 
     Attributes
@@ -222,8 +230,8 @@ class PulloutResult:
     --------
     >>> from exofric.geometry import BASE
     >>> from exofric.material import MooneyRivlin
-    >>> r = pullout(BASE, MooneyRivlin.from_shore(62.5), 0.6, mu_wire=0.3, mu_wall=0.5,
-    ...             mu_wire_wall=0.2, displacement_mm=3.0, accuracy="draft")
+    >>> r = pullout(PulloutSetup(BASE, MooneyRivlin.from_shore(62.5), mu_wire=0.3, mu_wall=0.5,
+    ...                          mu_wire_wall=0.2, accuracy="draft"), 0.6, displacement_mm=3.0)
     >>> bool(abs(r.static_force_n - r.sliding_force_n) < 0.01 * r.sliding_force_n)
     True
     """
@@ -281,57 +289,6 @@ def _nan_none(a: np.ndarray) -> list[float | None]:
 
 
 # ----------------------------------------------------------------------------------------------
-# checks
-
-
-def check_pullout_friction(mu_wire: float, mu_wall: float, mu_wire_wall: float, ends: str,
-                           mu_static: float | None = None) -> tuple[float, float, float, float]:
-    """(mu_wire, mu_wall, mu_wire_wall, mu_static) of a pull, checked (unitless).
-
-    Parameters
-    ----------
-    mu_wire, mu_wall, mu_wire_wall : float
-        Kinetic Coulomb coefficients tube-wire, tube-wall, wire-wall (unitless, [0, 2]).
-    ends : {'fixed', 'free'}
-        The tube's end fittings.
-    mu_static : float or None
-        Static coefficient of the wire's interfaces (unitless, >= ``mu_wire``; None: mu_wire).
-
-    Returns
-    -------
-    tuple of float
-
-    Examples
-    --------
-    >>> check_pullout_friction(0.3, 0.5, 0.2, "fixed", 0.36)
-    (0.3, 0.5, 0.2, 0.36)
-    """
-    mw, mh, mww = _check_pull(mu_wire, mu_wall, mu_wire_wall, ends)
-    return mw, mh, mww, _check_static(mu_static, mw, mww)
-
-
-def _check_pull(mu_wire: float, mu_wall: float, mu_wire_wall: float, ends: str) -> tuple[
-        float, float, float]:
-    mw = check_friction("mu_wire", mu_wire)
-    mh = check_friction("mu_wall", mu_wall)
-    mww = check_friction("mu_wire_wall", mu_wire_wall)
-    if ends not in PULLOUT_ENDS:
-        raise InputError(f"ends must be one of {', '.join(PULLOUT_ENDS)}, got {ends!r}",
-                         param="ends")
-    return mw, mh, mww
-
-
-def _check_static(mu_static: float | None, mu_wire: float, mu_wire_wall: float) -> float:
-    if mu_static is None:
-        return mu_wire
-    ms = check_friction("mu_static", mu_static)
-    if ms < mu_wire:
-        raise InputError(f"mu_static must be >= the kinetic mu_wire ({mu_wire:g}), got {ms:g}",
-                         param="mu_static")
-    return ms
-
-
-# ----------------------------------------------------------------------------------------------
 # section
 
 
@@ -361,11 +318,24 @@ def _outer_edges(nodes: np.ndarray, elements: np.ndarray, center: tuple[float, f
     return e[np.all(np.abs(r - r_out) < 1e-6 * r_out, axis=1)]
 
 
+@dataclass(frozen=True)
+class _Section(CondensedSection):
+    """The condensed section and what the length model's held end zones need."""
+
+    coupling: HeldEnds | None = None
+
+
 def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float,
-                   ends: str) -> tuple[CondensedSection, float, float, float, float, str, float,
+                   ends: str) -> tuple[_Section, float, float, float, float, str, float,
                                        Any, np.ndarray]:
     """(condensed section, factor to full section, G, S_wire, S_wall, note, in-plane ratio,
-    full stiffness, contact node indices)."""
+    full stiffness, contact node indices).
+
+    The end fittings hold the tube as a rod (E_t A_t = 3 G A) fixed at both ends under a
+    uniform load: midspan stiffness 8 E_t A_t / L^2 per mm, spread over the section by area
+    (``free``: 1e-4 G). The length model solves the zones next to held end faces itself
+    (:mod:`exofric.simulate._shear_lag`) from the stiffness without that foundation.
+    """
     st = res.structure
     nodes, elements = res.nodes, res.elements
     disp = res.displacements[k]
@@ -373,10 +343,9 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float,
     fac = 2.0 if half else 1.0
     a, g, note = _modulus(res.material, nodes, elements, disp)
     K, area = antiplane_stiffness(nodes, elements, a)
-    # end fittings: the tube as a rod of E_t A_t = 3 G A held at both ends, under a uniform
-    # load: midspan stiffness 8 E_t A_t / L^2 per mm, spread over the section by area
     a_t = 0.25 * math.pi * (st.tube_od_mm ** 2 - st.tube_id_mm ** 2)
     k_anchor = (8.0 * 3.0 * g * a_t / st.length_mm ** 2 if ends == "fixed" else 1e-4 * g)
+    K_free = K.tocsr()
     K = K + _diag(k_anchor / fac * area / area.sum())
     edges = _outer_edges(nodes, elements, st.tube_center_mm, 0.5 * st.tube_od_mm)
     x_now = nodes + disp
@@ -402,9 +371,10 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float,
             ratio = float(np.max(tq / np.maximum(mu * p, 1e-300))) if mu > 0 else 0.0
     c_idx = np.concatenate(idx)
     K = K.tocsr()
-    Kc = condense(K, c_idx)
-    sec = CondensedSection(Kc, np.concatenate(on_wire), np.concatenate(cap),
-                           np.concatenate(length))
+    wire, caps, lengths = np.concatenate(on_wire), np.concatenate(cap), np.concatenate(length)
+    held = HeldEnds(K_free, area, CondensedSection(np.zeros((0, 0)), wire, caps, lengths),
+                    c_idx, fac, EZ_OVER_G * g)
+    sec = _Section(condense(K, c_idx), wire, caps, lengths, held)
     return sec, fac, g, s["wire"], s["wall"], note, ratio, K, c_idx
 
 
@@ -412,6 +382,13 @@ def _diag(v: np.ndarray) -> Any:
     import scipy.sparse as sp
 
     return sp.diags(v)
+
+
+def _check_setup(setup: Any) -> None:
+    if not isinstance(setup, PulloutSetup):
+        raise InputError("setup must be a PulloutSetup (exofric.simulate.PulloutSetup(structure, "
+                         f"material, mu_wire=..., mu_wall=..., mu_wire_wall=...)), got "
+                         f"{type(setup).__name__}", param="setup")
 
 
 def _squeeze_for(structure: Structure, material: Any, pressures: list[float],
@@ -422,53 +399,29 @@ def _squeeze_for(structure: Structure, material: Any, pressures: list[float],
                         keep_fields=True).solve(pressures)
 
 
-def section_pullout(
-    structure: Structure,
-    material: MooneyRivlin | HyperelasticModel,
-    pressure_mpa: float,
-    *,
-    mu_wire: float,
-    mu_wall: float,
-    mu_wire_wall: float,
-    ends: str = "fixed",
-    accuracy: str | None = None,
-    mesh: Any = None,
-    n_steps: int = defaults.PULLOUT_SECTION_STEPS,
-    stick_penalty: float = defaults.PULLOUT_STICK_PENALTY_N_PER_MM3,
-    creep_tol_mm: float = defaults.PULLOUT_CREEP_TOL_MM,
-    squeeze_result: SqueezeResult | None = None,
-    squeeze_index: int = -1,
-) -> SectionPullout:
+def section_pullout(setup: PulloutSetup, pressure_mpa: float, *,
+                    squeeze_result: SqueezeResult | None = None,
+                    squeeze_index: int = -1) -> SectionPullout:
     """Axial pull of the wire through a unit length of the squeezed tube (N/mm vs mm).
 
-    The squeeze at ``pressure_mpa`` is solved (frictionless, plane strain; or pass a
-    ``squeeze_result`` with fields kept), then the anti-plane problem with Coulomb friction
-    (module docstring) is driven by the wire displacement until the whole tube-wire arc slides.
+    The squeeze at ``pressure_mpa`` is solved (frictionless, plane strain, at the setup's
+    accuracy; or pass a ``squeeze_result`` with fields kept), then the anti-plane problem with
+    Coulomb friction (module docstring) is driven by the wire displacement until the whole
+    tube-wire arc slides.
 
     Parameters
     ----------
-    structure : Structure
-        Hole, tube, wire (mm) and tube length (mm).
-    material : MooneyRivlin or HyperelasticModel
-        Tube material.
+    setup : PulloutSetup
+        Structure, material, the three interfaces' coefficients (``mu_static`` is not used
+        here: the section law is kinetic), the ends (``fixed``: the tube held axially by its
+        end fittings, a rod of E = 3 G to both ends as a soft foundation; ``free``: it may
+        slide on the wall once the wall arc slides), the squeeze's accuracy and the numerics
+        (``n_steps``, ``stick_penalty``, ``creep_tol_mm``).
     pressure_mpa : float
         Pressure (MPa).
-    mu_wire, mu_wall, mu_wire_wall : float
-        Kinetic Coulomb coefficients (unitless, [0, 2]) tube-wire, tube-wall, wire-wall.
-    ends : {'fixed', 'free'}
-        Tube held axially by its end fittings (a rod of E = 3 G to both ends, as a soft
-        foundation) or free to slide on the wall once the wall arc slides.
-    accuracy, mesh
-        The squeeze's accuracy or explicit mesh (see :func:`~exofric.simulate.squeeze`).
-    n_steps : int
-        Load steps to 3x the estimated slip displacement (more are added until full sliding).
-    stick_penalty : float
-        Stick penalty (N/mm^3) of the augmented Lagrangian.
-    creep_tol_mm : float
-        Largest elastic slip of a sticking node (mm).
     squeeze_result : SqueezeResult, optional
         A solved squeeze (fields kept) to start from instead; ``squeeze_index`` picks the
-        pressure.
+        pressure (``pressure_mpa`` is then that pressure).
     squeeze_index : int
         Index into ``squeeze_result``'s pressures.
 
@@ -479,23 +432,25 @@ def section_pullout(
     Raises
     ------
     InputError
-        Bad coefficients or ends, or a squeeze result without fields.
+        Not a PulloutSetup, or a squeeze result without fields.
 
     Examples
     --------
     >>> from exofric.geometry import BASE
     >>> from exofric.material import MooneyRivlin
-    >>> s = section_pullout(BASE, MooneyRivlin.from_shore(62.5), 0.6, mu_wire=0.3,
-    ...                     mu_wall=0.5, mu_wire_wall=0.0, accuracy="draft")
+    >>> setup = PulloutSetup(BASE, MooneyRivlin.from_shore(62.5), mu_wire=0.3, mu_wall=0.5,
+    ...                      mu_wire_wall=0.0, accuracy="draft")
+    >>> s = section_pullout(setup, 0.6)
     >>> round(s.sliding_force_n_per_mm / s.wire_pressure_integral_n_per_mm, 6)
     0.3
     """
-    mw, mh, mww = _check_pull(mu_wire, mu_wall, mu_wire_wall, ends)
-    check_positive("stick_penalty", stick_penalty, "N/mm^3")
-    if int(n_steps) < 2:
-        raise InputError(f"n_steps must be >= 2, got {n_steps}", param="n_steps")
+    _check_setup(setup)
+    mw, mh, mww, _ = setup.friction
+    ends, num = setup.ends, setup.numerics
+    stick_penalty, creep_tol_mm, n_steps = num.stick_penalty, num.creep_tol_mm, num.n_steps
     if squeeze_result is None:
-        squeeze_result = _squeeze_for(structure, material, [float(pressure_mpa)], accuracy, mesh)
+        squeeze_result = _squeeze_for(setup.structure, setup.material, [float(pressure_mpa)],
+                                      setup.accuracy, setup.mesh)
         squeeze_index = -1
     res = squeeze_result
     if not res.displacements:
@@ -568,7 +523,7 @@ def section_pullout(
     return SectionPullout(p, deltas, force, q_tube, k0, slip_d, plateau_tube + q_line,
                           s_wire, s_wall, n_sq, stick_wire, stick_wall, mw, mh, mww, ends, g,
                           note, ratio, float(stick_penalty), tuple(notes), g_max,
-                          g * g_max ** 2)
+                          g * g_max ** 2, sec.coupling)
 
 
 def _continue(sec: CondensedSection, out: dict[str, np.ndarray], deltas: np.ndarray,
@@ -584,12 +539,18 @@ def _continue(sec: CondensedSection, out: dict[str, np.ndarray], deltas: np.ndar
 
 @dataclass(frozen=True)
 class _Iwan:
-    """Parallel Jenkins elements (stiffness N/mm^2, kinetic capacity N/mm) plus a spring."""
+    """Parallel Jenkins elements (stiffness N/mm^2, kinetic capacity N/mm) plus a spring.
+
+    ``weight`` (nodes x elements, unitless) puts two laws along z (the held end zones and the
+    section); ``tube`` flags the tube's sliders (default: the first ``n_tube``).
+    """
 
     k: np.ndarray
     f: np.ndarray
-    spring: float
+    spring: float | np.ndarray
     n_tube: int
+    weight: np.ndarray | None = None
+    tube: np.ndarray | None = None
 
 
 def _iwan(delta: np.ndarray, q: np.ndarray, line_cap: float, line_k: float) -> _Iwan:
@@ -642,18 +603,24 @@ def _shear_lag(law: _Iwan, ea: float, length: float, path: np.ndarray, ratio: fl
     full = np.zeros((len(path), n + 1), bool)
     us = np.zeros((len(path), n + 1))
 
+    # per-node weights of the elements (held end zones: two laws along z), and tube sliders
+    w8 = np.ones((n + 1, ne)) if law.weight is None else law.weight
+    tube = ((np.arange(ne) < law.n_tube) if law.tube is None else law.tube) & (w8 > 0)
+    spring = law.spring
+
     def q_of(u: np.ndarray, cap: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         tr = law.k * (u[:, None] - pos)
         st = np.abs(tr) <= cap
         fe = np.where(st, tr, np.sign(tr) * cap)
-        return fe.sum(axis=1) + law.spring * u, (law.k * st).sum(axis=1) + law.spring, st
+        return ((w8 * fe).sum(axis=1) + spring * u, (w8 * law.k * st).sum(axis=1) + spring,
+                st)
 
     def energy(u: np.ndarray, cap: np.ndarray) -> float:
         x = u[:, None] - pos
         kx = law.k * np.abs(x)
         psi = np.where(kx <= cap, 0.5 * law.k * x * x, cap * np.abs(x) - 0.5 * cap ** 2 / law.k)
         return float(0.5 * kE * (np.diff(u) ** 2).sum()
-                     + (hl * (psi.sum(axis=1) + 0.5 * law.spring * u * u)).sum())
+                     + (hl * ((w8 * psi).sum(axis=1) + 0.5 * spring * u * u)).sum())
 
     def ku(u: np.ndarray) -> np.ndarray:
         r = np.zeros(n + 1)
@@ -708,8 +675,7 @@ def _shear_lag(law: _Iwan, ea: float, length: float, path: np.ndarray, ratio: fl
         slid = sl
         r = ku(u) + hl * q
         forces[i] = r[0]
-        nt = law.n_tube
-        full[i] = np.all(sl[:, :nt], axis=1) if nt else np.all(sl, axis=1)
+        full[i] = np.all(sl | ~tube, axis=1) if law.n_tube else np.all(sl, axis=1)
         us[i] = u
     return forces, us, full
 
@@ -724,92 +690,60 @@ def _path(d: float, cycles: int, steps: int) -> np.ndarray:
 
 
 @overload
-def pullout(structure: Structure, material: MooneyRivlin | HyperelasticModel,
-            pressure_mpa: float, *, mu_wire: float, mu_wall: float, mu_wire_wall: float,
-            mu_static: float | None = ..., cable_ea_n: float = ..., ends: str = ...,
-            displacement_mm: float = ..., cycles: int = ..., section: Literal[False] = ...,
-            accuracy: str | None = ..., mesh: Any = ..., n_z: int = ..., n_path: int = ...,
-            line_stick_rel: float = ..., squeeze_result: SqueezeResult | None = ...,
-            squeeze_index: int = ..., first_loading: bool = ...) -> PulloutResult: ...
+def pullout(setup: PulloutSetup, pressure_mpa: float, *, displacement_mm: float = ...,
+            cycles: int = ..., section: Literal[False] = ..., first_loading: bool = ...,
+            squeeze_result: SqueezeResult | None = ..., squeeze_index: int = ...
+            ) -> PulloutResult: ...
 
 
 @overload
-def pullout(structure: Structure, material: MooneyRivlin | HyperelasticModel,
-            pressure_mpa: float, *, mu_wire: float, mu_wall: float, mu_wire_wall: float,
-            mu_static: float | None = ..., cable_ea_n: float = ..., ends: str = ...,
-            displacement_mm: float = ..., cycles: int = ..., section: Literal[True],
-            accuracy: str | None = ..., mesh: Any = ..., n_z: int = ..., n_path: int = ...,
-            line_stick_rel: float = ..., squeeze_result: SqueezeResult | None = ...,
-            squeeze_index: int = ..., first_loading: bool = ...) -> SectionPullout: ...
+def pullout(setup: PulloutSetup, pressure_mpa: float, *, displacement_mm: float = ...,
+            cycles: int = ..., section: Literal[True], first_loading: bool = ...,
+            squeeze_result: SqueezeResult | None = ..., squeeze_index: int = ...
+            ) -> SectionPullout: ...
 
 
 @overload
-def pullout(structure: Structure, material: MooneyRivlin | HyperelasticModel,
-            pressure_mpa: float, *, mu_wire: float, mu_wall: float, mu_wire_wall: float,
-            mu_static: float | None = ..., cable_ea_n: float = ..., ends: str = ...,
-            displacement_mm: float = ..., cycles: int = ..., section: bool = ...,
-            accuracy: str | None = ..., mesh: Any = ..., n_z: int = ..., n_path: int = ...,
-            line_stick_rel: float = ..., squeeze_result: SqueezeResult | None = ...,
-            squeeze_index: int = ..., first_loading: bool = ...
+def pullout(setup: PulloutSetup, pressure_mpa: float, *, displacement_mm: float = ...,
+            cycles: int = ..., section: bool = ..., first_loading: bool = ...,
+            squeeze_result: SqueezeResult | None = ..., squeeze_index: int = ...
             ) -> PulloutResult | SectionPullout: ...
 
 
 def pullout(
-    structure: Structure,
-    material: MooneyRivlin | HyperelasticModel,
+    setup: PulloutSetup,
     pressure_mpa: float,
     *,
-    mu_wire: float,
-    mu_wall: float,
-    mu_wire_wall: float,
-    mu_static: float | None = None,
-    cable_ea_n: float = defaults.CABLE_EA_N,
-    ends: str = "fixed",
     displacement_mm: float = 1.0,
     cycles: int = 1,
     section: bool = False,
-    accuracy: str | None = None,
-    mesh: Any = None,
-    n_z: int = defaults.PULLOUT_Z_ELEMENTS,
-    n_path: int = defaults.PULLOUT_PATH_STEPS,
-    line_stick_rel: float = defaults.PULLOUT_LINE_STICK_REL,
+    first_loading: bool = False,
     squeeze_result: SqueezeResult | None = None,
     squeeze_index: int = -1,
-    first_loading: bool = False,
 ) -> PulloutResult | SectionPullout:
     """Pull the wire through the tube: F(delta) at the pulled end, breakaway, sliding (N, mm).
 
     Parameters
     ----------
-    structure, material, pressure_mpa, ends
-        As :func:`section_pullout` (mm, MPa).
-    mu_wire, mu_wall, mu_wire_wall : float
-        Kinetic Coulomb coefficients (unitless, [0, 2]) tube-wire, tube-wall, wire-wall.
-    mu_static : float, optional
-        Static coefficient of the wire's interfaces (unitless, >= ``mu_wire``); every slider
-        of the section law holds ``mu_static / mu_wire`` x its kinetic capacity until it
-        slides. Default: ``mu_wire`` (no static peak).
-    cable_ea_n : float
-        Cable axial stiffness EA (N), default :data:`exofric.defaults.CABLE_EA_N`.
+    setup : PulloutSetup
+        Structure, material, the coefficients (``mu_static`` gives the static peak: every
+        slider of the section law holds ``mu_static / mu_wire`` x its kinetic capacity until
+        it slides), the cable's EA (N), the ends, the squeeze's accuracy and the numerics
+        (``n_z`` cable elements along L, ``n_path`` steps per amplitude, ``line_stick_rel``).
+    pressure_mpa : float
+        Pressure (MPa).
     displacement_mm : float
         Amplitude D of the pulled end (mm), 0 < D <= L: path 0 -> D, then ``cycles`` x
         (D -> -D -> D).
     cycles : int
-        Back-and-forth cycles (>= 0).
+        Back-and-forth cycles ([0, 100]).
     section : bool
         Return the per-unit-length :class:`SectionPullout` only.
-    accuracy, mesh
-        The squeeze's accuracy level or explicit mesh.
-    n_z, n_path : int
-        Cable elements along L; steps per displacement D of the path.
-    line_stick_rel : float
-        Stick spring of the wire-wall line contact relative to the section's initial
-        stiffness (unitless; the rigid limit as it grows).
-    squeeze_result, squeeze_index
-        A solved squeeze (fields kept) to start from.
     first_loading : bool
         Only the first leg 0 -> ``displacement_mm``, finely stepped up to past the estimated
         breakaway (``cycles`` ignored): what the knee's stiffness is read on.
+    squeeze_result, squeeze_index
+        A solved squeeze (fields kept) to start from, and the index of the pressure in it.
 
     Returns
     -------
@@ -818,37 +752,47 @@ def pullout(
     Raises
     ------
     InputError
-        Bad coefficients, ``mu_static < mu_wire``, a displacement outside (0, L], EA <= 0.
+        Not a PulloutSetup, a displacement outside (0, L], negative cycles.
 
     Examples
     --------
     >>> from exofric.geometry import BASE
     >>> from exofric.material import MooneyRivlin
-    >>> r = pullout(BASE, MooneyRivlin.from_shore(62.5), 0.6, mu_wire=0.3, mu_wall=0.5,
-    ...             mu_wire_wall=0.2, mu_static=0.36, displacement_mm=3.0, accuracy="draft")
+    >>> setup = PulloutSetup(BASE, MooneyRivlin.from_shore(62.5), mu_wire=0.3, mu_wall=0.5,
+    ...                      mu_wire_wall=0.2, mu_static=0.36, accuracy="draft")
+    >>> r = pullout(setup, 0.6, displacement_mm=3.0)
     >>> bool(r.static_force_n > r.sliding_force_n)
     True
     """
-    mw, _, mww, ms = check_pullout_friction(mu_wire, mu_wall, mu_wire_wall, ends, mu_static)
-    ea = check_positive("cable_ea_n", cable_ea_n, "N")
-    L = structure.length_mm
-    dmax = float(displacement_mm)
-    if not (math.isfinite(dmax) and 0.0 < dmax <= L):
-        raise InputError(f"displacement_mm must be in (0, {L:g}] mm (the tube length), got "
-                         f"{displacement_mm!r}", param="displacement_mm")
-    if int(cycles) < 0:
-        raise InputError(f"cycles must be >= 0, got {cycles}", param="cycles")
+    _check_setup(setup)
+    L = setup.structure.length_mm
+    dmax = _check_travel(displacement_mm, L)
+    if isinstance(cycles, bool) or not isinstance(cycles, int) or not 0 <= cycles <= 100:
+        raise InputError(f"cycles must be an integer in [0, 100], got {cycles!r}",
+                         param="cycles")
+    sec = section_pullout(setup, pressure_mpa, squeeze_result=squeeze_result,
+                          squeeze_index=squeeze_index)
+    if section:
+        return sec
+    num, ea, ms = setup.numerics, float(setup.cable_ea_n), setup.friction[3]
+    path = _first_loading(sec, L, ea, dmax, num.n_path) if first_loading else None
+    return _length_from_section(sec, L, ea, setup.static_ratio, dmax, int(cycles),
+                                num.n_z, num.n_path, num.line_stick_rel, ms, path)
+
+
+def _check_travel(displacement_mm: Any, length_mm: float) -> float:
+    """The pulled end's amplitude (mm) in (0, L]; a warning above 10 mm."""
+    try:
+        dmax = float(displacement_mm)
+    except (TypeError, ValueError):
+        dmax = float("nan")
+    if not (math.isfinite(dmax) and 0.0 < dmax <= length_mm):
+        raise InputError(f"displacement_mm must be in (0, {length_mm:g}] mm (the tube length), "
+                         f"got {displacement_mm!r}", param="displacement_mm")
     if dmax > 10.0:
         warn_implausible(f"displacement_mm = {dmax:g} mm: the squeeze state is held, which "
                          "assumes the wire's travel is small against the tube's length")
-    sec = section_pullout(structure, material, pressure_mpa, mu_wire=mw, mu_wall=mu_wall,
-                          mu_wire_wall=mww, ends=ends, accuracy=accuracy, mesh=mesh,
-                          squeeze_result=squeeze_result, squeeze_index=squeeze_index)
-    if section:
-        return sec
-    path = _first_loading(sec, L, ea, dmax, int(n_path)) if first_loading else None
-    return _length_from_section(sec, L, ea, ms / mw if mw > 0 else 1.0, dmax, int(cycles),
-                                int(n_z), int(n_path), line_stick_rel, ms, path)
+    return dmax
 
 
 def _first_loading(sec: SectionPullout, L: float, ea: float, dmax: float, n: int) -> np.ndarray:
@@ -869,6 +813,8 @@ def _first_loading(sec: SectionPullout, L: float, ea: float, dmax: float, n: int
 def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float, dmax: float,
                          cycles: int, n_z: int, n_path: int, line_rel: float,
                          ms: float, path: np.ndarray | None = None) -> PulloutResult:
+    """The pull along the length: the cable on the section law, and with ``ends='fixed'`` the
+    zones next to the held end faces on their own law (section 12, "Tube ends")."""
     line_cap = sec.mu_wire_wall * sec.squeeze_force_n_per_mm
     k0 = sec.initial_stiffness_n_per_mm2
     law = _iwan(sec.displacement_mm, sec.tube_force_n_per_mm, line_cap,
@@ -879,6 +825,9 @@ def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float,
     if law.k.size == 0:
         return PulloutResult(path, np.zeros_like(path), 0.0, 0.0, np.zeros_like(path), L, ea,
                              ms, sec, tuple(notes))
+    if sec.ends == "fixed" and sec.held_ends is not None:
+        law = _held_zones(sec, law, (L, float(np.abs(path).max())), (n_z, n_path),
+                          (line_cap, line_rel * max(k0, 1e-12)))
     forces, us, full = _shear_lag(law, ea, L, path, ratio, n_z)
     z = np.linspace(0.0, L, n_z + 1)
     slip_len = np.array([float(z[f].max()) + L / n_z / 2 if np.any(f) else 0.0 for f in full])
@@ -887,3 +836,44 @@ def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float,
     return PulloutResult(path, forces, float(np.max(forces[first])),
                          float(L * sec.sliding_force_n_per_mm), slip_len, L, ea, ms, sec,
                          tuple(notes))
+
+
+def _held_zones(sec: SectionPullout, law: _Iwan, lengths: tuple[float, float],
+                counts: tuple[int, int], line: tuple[float, float]) -> _Iwan:
+    """The section law with the held end zones' law on the stations within ``HELD_ZONE_MM``
+    of either end (weights by the share of each station's tributary length in a zone).
+
+    Each zone is the 3-D scalar problem of :mod:`exofric.simulate._shear_lag` (held face,
+    symmetry face at the zone's end; a tube of at most 2 ``HELD_ZONE_MM`` is two zones of half
+    its length), its force per unit length an Iwan law like the section's; the held faces'
+    end rows (sliding at once) join the line contact's rigid-plastic element. ``lengths``:
+    the tube's length and the path's largest displacement (mm); ``counts``: n_z, n_path.
+    """
+    held = sec.held_ends
+    if held is None:
+        return law
+    L, top = lengths
+    n, n_path = counts
+    # a tube of at most two zones: half of it, held face to the (symmetric) middle
+    short = L <= 2.0 * HELD_ZONE_MM
+    lz = 0.5 * L if short else HELD_ZONE_MM
+    # the zone's law on a fixed grid (smooth in the coefficients, the same points whatever
+    # the travel), quadratic (fine where the law bends most) to HELD_GRID_MM in n_path / 2
+    # steps, continued to the travel: force at 0.2 mm 0.35 % below 121 points; 61: 0.01 %
+    m = min(max(n_path // 2, 12), 40)
+    k = np.arange(int(np.ceil(m * math.sqrt(max(top, 1e-9) / HELD_GRID_MM))) + 1)
+    deltas = HELD_GRID_MM * (k / m) ** 2
+    f, end = zone_curve(held, lz, (True, False), deltas)
+    zlaw = _iwan(deltas, (f - np.where(deltas > 0, end, 0.0)) / lz, line[0] + end / lz,
+                 line[1])
+    z = np.linspace(0.0, L, n + 1)
+    a, b = np.clip(z - 0.5 * L / n, 0.0, L), np.clip(z + 0.5 * L / n, 0.0, L)
+    inside = (np.clip(np.minimum(b, lz) - a, 0.0, None)
+              + np.clip(b - np.maximum(a, L - lz), 0.0, None))
+    frac = np.ones(n + 1) if short else np.clip(inside / (b - a), 0.0, 1.0)
+    ones = np.ones(len(law.k))
+    weight = np.hstack([np.outer(1.0 - frac, ones), np.outer(frac, np.ones(len(zlaw.k)))])
+    tube = np.r_[np.arange(len(law.k)) < law.n_tube, np.arange(len(zlaw.k)) < zlaw.n_tube]
+    spring = (1.0 - frac) * law.spring + frac * zlaw.spring
+    return _Iwan(np.r_[law.k, zlaw.k], np.r_[law.f, zlaw.f], spring, law.n_tube + zlaw.n_tube,
+                 weight, tube)
