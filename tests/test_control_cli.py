@@ -183,3 +183,43 @@ def test_identify_reads_other_headers_through_columns(cli, tmp_path):
     assert d["time_constant_s"] == pytest.approx(0.4, rel=1e-3)
     assert d["delay_s"] == pytest.approx(0.1, rel=1e-3)
     assert d["step_mpa"] == pytest.approx(0.4, rel=1e-3)
+
+
+def test_compare_says_the_feedforward_does_the_work(capsys) -> None:
+    """Issue 34: PD, PI and PID with the model settle alike on an exact model; the output says
+    why (the 2-DOF feedforward gives 100 % of the final pressure: P_ff / P_final, both from the
+    same map, so exactly 100 up to the settled tail's 0.05 % ripple) and which rows are the
+    feedback-only comparison."""
+    assert run(["control", "compare", "--duration", "8", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    shares = [c["feedforward_share_pct"] for c in d["cases"] if c["feedforward"]]
+    assert all(abs(s - 100.0) < 0.1 for s in shares)
+    assert all(c["feedforward_share_pct"] is None for c in d["cases"] if not c["feedforward"])
+    assert any("settle alike" in n and "feedforward" in n for n in d["notes"])
+
+
+def test_control_run_takes_target_friction_and_the_old_target_flag(capsys) -> None:
+    """One flag name for the set-point in `control` and `control run` (--target-friction);
+    the old --target still works, hidden, with a deprecation warning."""
+    base = ["control", "run", "--device", "sim://?speed=0", "--duration", "0.5", "--json"]
+    assert run([*base, "--target-friction", "20"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["target_n"] == 20.0 and not any("deprecated" in w for w in d["warnings"])
+    assert run([*base, "--target", "20"]) == 0
+    captured = capsys.readouterr()
+    d = json.loads(captured.out)
+    assert d["target_n"] == 20.0 and any("--target is deprecated" in w for w in d["warnings"])
+
+
+def test_fig12_titles_read_as_sentences(tmp_path) -> None:
+    """The Fig 12 panel title of a loop that never settles reads 'never settles' (it read
+    'exofric without not settled')."""
+    from matplotlib.figure import Figure
+
+    from exofric.plots import plot_control_cases
+
+    setup = ControlSetup.default(duration_s=4.0)
+    cases = [run_case(setup, "pd", feedforward=ff) for ff in (False, True)]
+    title = plot_control_cases(cases, Figure()).axes[0].get_title()
+    assert title.startswith("PD, exofric: without model never settles, with ")
+    assert "not settled" not in title

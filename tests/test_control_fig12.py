@@ -106,3 +106,81 @@ def test_tight_tuning_reverses_the_benefit_documented_finding():
     res = compare(ControlSetup.default(tau_c_s=0.2))
     red = res.reduction_pct("pi")
     assert red is not None and red < 0.0
+
+
+# --- the one-call closed loop (issue 34) ----------------------------------------------------
+
+def _linear_map(slope_n_per_mpa: float):
+    """F = slope x P exactly (a straight N(P) is interpolated exactly by the map's PCHIP)."""
+    import numpy as np
+
+    from exofric.control import CurveFrictionMap
+
+    p = np.linspace(0.0, 1.0, 11)
+    return CurveFrictionMap(tuple(p), tuple(2.0 * slope_n_per_mpa * p), 0.5)
+
+
+def test_closed_loop_pi_matches_python_control_on_a_linear_plant():
+    """Independent reference: python-control's continuous step response of the PI loop
+    C(s) G(s) / (1 + C G), G = K/(tau s + 1), with the gains closed_loop chose. Our loop is
+    discrete (dt 2 ms): the trajectories agree to 0.05 % of the 60 N step (measured 0.034 %,
+    the discretisation), the 2 % settling time to one sample of python-control's 10 ms grid
+    (its step_info)."""
+    import control as ct
+    import numpy as np
+
+    from exofric.control import PlantParams, closed_loop
+
+    k, tau = 300.0, 0.8
+    plant = PlantParams(time_constant_s=tau, delay_s=0.0, p_max_mpa=1.0)
+    r = closed_loop(_linear_map(k), 60.0, "pi", None, plant=plant, duration_s=5.0, dt_s=0.002)
+    g = r.tuning.gains
+    s = ct.tf("s")
+    loop = ct.feedback((g.kp + g.ki / s) * k / (tau * s + 1), 1)
+    t = r.simulation.time_s[::5]                     # python-control on a 10 ms grid
+    _, y = ct.step_response(60.0 * loop, T=t)
+    assert np.max(np.abs(y - r.simulation.friction_n[::5])) < 0.0005 * 60.0
+    info = ct.step_info(60.0 * loop, T=t, SettlingTimeThreshold=0.02)
+    assert abs(info["SettlingTime"] - r.settling_time_s) <= 0.01   # one sample of its grid
+    assert r.to_dict()["controller"] == "pi" and r.feedforward is None
+
+
+def test_closed_loop_2dof_with_an_exact_model_follows_the_plant_step_closed_form():
+    """With an exact linear model the 2-DOF loop's friction is the model's own FOPDT response,
+    F(t) = F* (1 - exp(-(t - theta)/tau)) for t > theta (closed form; the feedback has nothing
+    to correct), so it settles at theta + tau ln(50) for a 2 % band. Tolerance: 1e-9 N
+    (round-off; measured 1e-12) and one sample (2 ms)."""
+    import numpy as np
+
+    from exofric.control import PlantParams, closed_loop
+
+    tau, theta = 0.8, 0.2
+    plant = PlantParams(time_constant_s=tau, delay_s=theta, p_max_mpa=1.0)
+    r = closed_loop(_linear_map(300.0), 60.0, "pid", "2dof", plant=plant, duration_s=5.0,
+                    dt_s=0.002)
+    t = r.simulation.time_s
+    ref = np.where(t > theta, 60.0 * (1.0 - np.exp(-(t - theta) / tau)), 0.0)
+    assert np.max(np.abs(ref - r.simulation.friction_n)) < 1e-9
+    assert abs(r.settling_time_s - (theta + tau * np.log(50.0))) <= 0.002
+
+
+def test_closed_loop_takes_a_squeeze_curve_and_plots(tmp_path):
+    """The natural objects: a squeeze result (here a SqueezeCurve of Eq 9's N) and gamma; bad
+    arguments are InputErrors naming the parameter."""
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    from exofric.control import closed_loop
+    from exofric.errors import InputError
+    from exofric.friction import SqueezeCurve
+
+    p = np.linspace(0.05, 0.6, 12)
+    curve = SqueezeCurve(p, 400.0 * p**2)
+    r = closed_loop(curve, 40.0, gamma=0.5, duration_s=6.0)
+    assert abs(r.feedforward_pressure_mpa - np.sqrt(40.0 / 200.0)) < 1e-3   # F = 200 P^2
+    ax = r.plot(Figure().subplots())
+    assert "settles in" in ax.get_title()
+    with pytest.raises(InputError, match="controller"):
+        closed_loop(curve, 40.0, "pii")
+    with pytest.raises(InputError, match="feedforward"):
+        closed_loop(curve, 40.0, feedforward="dynamic")  # type: ignore[arg-type]

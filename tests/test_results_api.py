@@ -34,11 +34,28 @@ from exofric.simulate import inflate, squeeze
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "exofric"
 
+
+def assert_display(obj) -> None:
+    """A result's notebook display (issue 34): ``_repr_html_`` is one small table of its
+    ``to_dict()`` (name, value, unit; at most 40 rows plus a count of the rest), long arrays
+    summarised (no more than a screen: < 12000 characters); ``summary()``, where the class has
+    it, the same as text."""
+    from exofric._display import MAX_ROWS
+
+    page = obj._repr_html_()
+    assert page.startswith("<div><strong>" + type(obj).__name__)
+    assert "<table>" in page and "unavailable" not in page, page[:300]
+    assert page.count("<tr>") <= MAX_ROWS + 2 and len(page) < 12_000, len(page)
+    summary = getattr(obj, "summary", None)
+    if callable(summary) and isinstance(text := summary(), str):
+        assert text.splitlines()[0].startswith(type(obj).__name__)
+        assert len(text.splitlines()) <= MAX_ROWS + 2
+
 UNIT_SUFFIXES = ("_mpa", "_per_mpa", "_n", "_n_per_mm", "_mm", "_s", "_pct", "_nm", "_m")
 # numeric columns that carry no unit (ratios, counts, indices, hardness, coefficients)
 UNITLESS = {"group", "n_measured", "max_stretch", "axial_stretch", "newton_iterations", "trial",
-            "shore", "gamma", "design_index", "dofs", "stick_fraction_wire",
-            "stick_fraction_wall"}
+            "shore", "gamma", "design_index", "dofs", "n_error_estimate_reliable",
+            "stick_fraction_wire", "stick_fraction_wall"}
 
 MAT = MooneyRivlin.from_shore(62.5)
 
@@ -88,6 +105,7 @@ def inflated():
 
 
 def test_squeeze_frame_and_plot(squeezed, same_backend) -> None:
+    assert_display(squeezed)
     r = squeezed
     df = r.to_frame()
     assert len(df) == r.pressure_mpa.size
@@ -109,6 +127,7 @@ def test_squeeze_frame_and_plot(squeezed, same_backend) -> None:
 
 
 def test_inflation_frame_and_plot(inflated, same_backend) -> None:
+    assert_display(inflated)
     r = inflated
     df = r.to_frame()
     assert_unit_columns(df)
@@ -137,6 +156,7 @@ def test_plot_draws_on_a_given_axes_or_figure(squeezed, same_backend) -> None:
 
 def test_calibration_frame_and_plot(same_backend) -> None:
     r = calibrate(InflationData.paper_test(), 8.3, tube_id_mm=4.97, model="paper-table1")
+    assert_display(r)
     df = r.to_frame()
     assert len(df) == len(r.history)
     assert_unit_columns(df)
@@ -161,6 +181,7 @@ def _fake_squeeze(structure, material, p):
 def test_gamma_fit_frame_and_plot(same_backend) -> None:
     fit = fit_gamma([0.2, 0.4, 0.6], [70.0, 140.0, 190.0], [0.2, 0.4, 0.6],
                     [100.0, 200.0, 268.55])
+    assert_display(fit)
     df = fit.to_frame()
     assert len(df) == fit.n_points
     assert_unit_columns(df)
@@ -177,6 +198,8 @@ def test_predictions_frame_and_plot(same_backend) -> None:
     meas = {structs[0].name: MeasuredCurve.of([0.25, 0.5], [40.0, 81.0])}
     res = predict(structs, 0.5, None, [0.2, 0.4, 0.6], squeeze_fn=_fake_squeeze, measured=meas)
     one = res.predictions[0]
+    assert_display(res)
+    assert_display(one)
     df1 = one.to_frame()
     assert_unit_columns(df1)
     assert len(df1) == len(one.pressure_mpa) == 5          # grid + the measured pressures
@@ -202,6 +225,8 @@ def test_predictions_frame_and_plot(same_backend) -> None:
 def test_simulation_frame_and_plot(same_backend) -> None:
     sim = simulate(Controller(PIDGains(0.002, 0.01, 0.0), u_max=0.6), PlantParams(),
                    lambda p: 200.0 * p, 50.0, duration_s=1.0, dt=0.01)
+    assert_display(sim)
+    assert "101 values" in sim.summary()           # a long trajectory: its size and range
     df = sim.to_frame()
     assert len(df) == sim.time_s.size
     assert_unit_columns(df)
@@ -215,6 +240,7 @@ def test_simulation_frame_and_plot(same_backend) -> None:
 def test_fig12_case_and_compare(same_backend) -> None:
     setup = ControlSetup.default(duration_s=3.0)
     case = run_case(setup, "pid", feedforward=False)
+    assert_display(case)
     df = case.to_frame()
     assert_unit_columns(df)
     assert_columns_equal(df, {"time_s": case.simulation.time_s,
@@ -224,6 +250,7 @@ def test_fig12_case_and_compare(same_backend) -> None:
     assert len(fig.axes[0].lines) == 1 + 1       # response and the target line
     assert len(fig.axes[1].lines) == 2           # pressure and command
     cmp = compare(setup)
+    assert_display(cmp)
     big = cmp.to_frame()
     assert len(big) == 6 * case.simulation.time_s.size
     assert_unit_columns(big)
@@ -240,12 +267,15 @@ def test_design_search_and_sweep_frames(tmp_path, same_backend) -> None:
     spec = parse_sweep({"pressures_mpa": [0.3, 0.6], "grid": {"tube_od_mm": [7.8, 8.3]},
                         "solver": {"n_radial": 1, "n_circ": 12}})
     run = run_sweep(spec, tmp_path / "sweep", serial=True)
+    assert_display(run)
+    assert_display(run.summary)
     rows = run.to_frame()
     pd.testing.assert_frame_equal(rows, run.frame)
     assert rows is not run.frame                       # a copy: editing it leaves the run
     assert len(rows) == 2 * 2                          # one row per design and pressure
     assert_unit_columns(rows)
     s = search_designs(run.frame, 5.0, 0.1, 0.6, gamma=0.7168)
+    assert_display(s)
     t = s.to_frame()
     pd.testing.assert_frame_equal(t, s.table)
     assert len(t) == 2
@@ -283,3 +313,125 @@ def test_cli_selects_agg_without_importing_matplotlib() -> None:
                          timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout.split()[-2:] == ["Agg", "False"]
+
+
+# ----------------------------------------------------------------------------- issue 34
+
+#: Every public result class (what a computation returns) and its notebook display.
+RESULT_CLASSES = {
+    "exofric.simulate": "InflationResult PulloutResult RingResult SqueezeResult ToleranceResult "
+                        "ClearanceSqueeze",
+    "exofric.friction": "GammaFit InterfaceFit Prediction PredictionSet PulloutFit RigReduction "
+                        "RigRun AnovaResult JointStiffness TorqueCheck RawRigLog InterfaceRigRun "
+                        "CubicFit",
+    "exofric.calibration": "CalibrationResult MaterialCalibration",
+    "exofric.control": "GaitResult GaitComparison IdentifiedPlant StepMetrics ChargeFit "
+                       "SimulationResult TuningResult StrategyTable ClosedLoopResult",
+    "exofric.material": "MaterialFit",
+    "exofric.design": "SweepRun SweepSummary DesignSearch SurrogateSearch",
+    "exofric.reproduction": "CaseResult CompareResult ReproduceResult",
+    "exofric.hardware": "LoopResult",
+}
+
+
+def test_every_result_class_has_a_notebook_display() -> None:
+    """Each result class mixes in the display (``_repr_html_``; ``summary()`` except where a
+    field or method of that name came first: SweepRun.summary, GaitResult.summary), and every
+    public dataclass named ``*Result`` is in the list above."""
+    import dataclasses
+    import importlib
+
+    from exofric._display import DisplayMixin, HtmlReprMixin
+
+    for pkg, names in RESULT_CLASSES.items():
+        mod = importlib.import_module(pkg)
+        for name in names.split():
+            cls = getattr(mod, name)
+            assert issubclass(cls, HtmlReprMixin), name
+            assert issubclass(cls, DisplayMixin) or name in ("SweepRun", "GaitResult"), name
+        for name in mod.__all__:
+            obj = getattr(mod, name)
+            if isinstance(obj, type) and dataclasses.is_dataclass(obj) and \
+                    name.endswith("Result"):
+                assert name in names.split(), f"{pkg}.{name}: add it to RESULT_CLASSES"
+
+
+def test_an_unnamed_structure_is_labelled_by_its_diameters() -> None:
+    """predict(...).to_frame() of a Structure without a name: its diameters, not ''."""
+    from exofric.geometry import Structure
+
+    res = predict([Structure(10.0, 8.3, 4.97, 1.6)], 0.5, None, [0.3, 0.6],
+                  squeeze_fn=_fake_squeeze)
+    assert res.to_frame()["structure"].unique().tolist() == ["D 10 / d1 8.3 / ID 4.97 / d2 1.6 mm"]
+
+
+def test_fit_gamma_takes_the_natural_objects() -> None:
+    """fit_gamma(data, squeeze_result) gives exactly the four-array fit: a squeeze result and
+    rig data (attributes), a DataFrame of pulls (clustered by its plateau column, as the CLI
+    does) and a mapping. Reference: the same fit with the arrays (and groups) given by hand."""
+    from exofric.friction import simulate_rig
+
+    sq = squeeze(BASE, MAT, [0.2, 0.4, 0.6], mesh=MeshSpec(1, 12))
+    run = simulate_rig(sq.pressure_mpa, sq.squeeze_force_n, 0.7, seed=2, repeats=3)
+    by_hand = fit_gamma(run.pressure_mpa, run.friction_n, sq.pressure_mpa, sq.squeeze_force_n)
+    assert fit_gamma(run, sq).gamma == by_hand.gamma
+    pulls = pd.DataFrame({"pressure_mpa": run.pressure_mpa, "kinetic_n": run.friction_n,
+                          "plateau": np.repeat([1, 2, 3, 4, 5, 6, 7, 8, 9], 1)[: len(run.test)]})
+    groups = pulls["plateau"].to_numpy()
+    ref = fit_gamma(run.pressure_mpa, run.friction_n, sq.pressure_mpa, sq.squeeze_force_n,
+                    groups=groups)
+    nat = fit_gamma(pulls, {"pressure_mpa": sq.pressure_mpa,
+                            "squeeze_force_n": sq.squeeze_force_n})
+    assert (nat.gamma, nat.gamma_ci95) == (ref.gamma, ref.gamma_ci95)
+    from exofric.errors import InputError
+
+    with pytest.raises(InputError, match="friction_n"):
+        fit_gamma({"pressure_mpa": [0.3]}, sq)
+    with pytest.raises(InputError, match="squeeze_pressure_mpa"):
+        fit_gamma([0.3, 0.4], [1.0, 2.0], [0.3, 0.4])
+
+
+def test_design_map_panels_show_ticks_and_the_star_leaves_the_number(same_backend) -> None:
+    """Four panels on a 2 x 3 grid: each panel with an axis label also has tick values (the
+    top-row panels above the gap had none); the best design's star sits at its marker's corner,
+    not on the torque number (issue 34)."""
+    from matplotlib.figure import Figure
+
+    p = [0.2, 0.4, 0.6]
+    designs = [(h, ln, od, w) for h in (10.0, 10.5) for ln in (116.0, 300.0)
+               for od in (8.3, 8.8) for w in (1.1, 1.6) if not (h == 10.5 and ln == 300.0)]
+    rows = pd.DataFrame([
+        {"key": f"k{i}", "design_index": i, "name": f"d{i}", "family": "", "status": "ok",
+         "pressure_mpa": pi, "squeeze_force_n": (100.0 + 20 * i) * pi / 0.6, "hole_mm": h,
+         "tube_od_mm": od, "tube_id_mm": od - 3.3, "wire_mm": w, "length_mm": ln,
+         "shore": 62.5, "deviation_pct": 0.0, "in_validated_region": True,
+         "contact_onset_pressure_mpa": 0.0}
+        for i, (h, ln, od, w) in enumerate(designs) for pi in p])
+    search = search_designs(rows, 15.0, 0.1, 0.6, gamma=1.0)
+    best = search.best
+    assert best is not None
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = Figure(figsize=(10, 7))
+    FigureCanvasAgg(fig)
+    plots.plot_design_map(search, fig.subplots())
+    fig.canvas.draw()
+    panels = [a for a in fig.axes if a.get_label() != "<colorbar>"]
+    assert len(panels) == 3   # 3 panels (the fourth combination is missing)
+    for a in panels:
+        if a.get_xlabel():
+            assert any(t.get_visible() and t.get_text() for t in a.get_xticklabels()), a
+        if a.get_ylabel():
+            assert any(t.get_visible() and t.get_text() for t in a.get_yticklabels()), a
+    star_panel = next(a for a in panels if any(
+        getattr(c, "get_sizes", lambda: [])() is not None and len(c.get_offsets()) == 1
+        and c.get_sizes()[0] == 170 for c in a.collections))
+    star = next(c for c in star_panel.collections if len(c.get_offsets()) == 1
+                and c.get_sizes()[0] == 170)
+    number = next(t for t in star_panel.texts if t.get_text() == f"{best['torque_at_pmax_nm']:.0f}")
+    box = number.get_window_extent(fig.canvas.get_renderer())           # display pixels
+    cx, cy = star.get_offset_transform().transform(star.get_offsets())[0]
+    half = 0.5 * np.sqrt(170.0) * fig.dpi / 72.0                        # the star's half size
+    gap_x = max(box.x0 - cx, cx - box.x1, 0.0)
+    gap_y = max(box.y0 - cy, cy - box.y1, 0.0)
+    assert np.hypot(gap_x, gap_y) > 0.5 * half, (box, cx, cy)   # the star leaves the number

@@ -267,9 +267,22 @@ class CliDirective(SphinxDirective):
                     if sub is not None and not getattr(sub, "hidden", False):
                         yield from walk(sub, [*path, name])
 
+        import typer.testing
+
+        from exofric.cli._options import tidy_help
+
+        # the pages as `exofric ... --help` prints them: flags without <bool>, prose wrapped
+        # by the width (exofric.cli.run builds its command tree the same way)
+        cmd = tidy_help(typer.main.get_command(app))
         lines: list[str] = []
-        for path in walk(typer.main.get_command(app), []):
-            result = runner.invoke(app, [*path, "--help"], env=env)
+        get = typer.testing._get_command
+        typer.testing._get_command = lambda _app: cmd
+        try:
+            pages = [(path, runner.invoke(app, [*path, "--help"], env=env))
+                     for path in walk(cmd, [])]
+        finally:
+            typer.testing._get_command = get
+        for path, result in pages:
             if result.exit_code != 0:
                 logger.warning("exofric CLI: 'exofric %s --help' exited %d",
                                " ".join(path), result.exit_code,

@@ -51,6 +51,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from exofric import defaults as D
+from exofric._display import DisplayMixin
 from exofric._lsq import correlation as correlation_matrix
 from exofric._lsq import lsq_covariance, standard_errors
 from exofric.errors import (
@@ -451,7 +452,7 @@ class Identifiability:
 
 
 @dataclass(frozen=True)
-class MaterialCalibration:
+class MaterialCalibration(DisplayMixin):
     """A hyperelastic model (and tube ID) calibrated jointly to several tests.
 
     Attributes

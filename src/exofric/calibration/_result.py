@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric import defaults
+from exofric._display import DisplayMixin
 from exofric._json import jsonable
 from exofric.errors import InputError, warn_implausible
 from exofric.material import MooneyRivlin
@@ -260,7 +261,7 @@ class Trial:
 
 
 @dataclass(frozen=True)
-class CalibrationResult:
+class CalibrationResult(DisplayMixin):
     """Identified Shore hardness and/or tube inner diameter, with errors and history.
 
     Attributes

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import functools
 import inspect
+import re
 import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
@@ -359,3 +360,57 @@ class TensileSpecimenOptions(OptionGroup):
         "thickness_mm": typer.Option(
             None, "--thickness", help="Specimen thickness (mm); area = width x thickness."),
     }
+
+
+# --- Help that reads at any width (issue 34) --------------------------------------------------
+_SINGLE_NEWLINE = re.compile(r"(?<=\S)[ \t]*\n[ \t]*(?=\S)")
+
+
+def tidy_help(cmd: Any) -> Any:
+    """Make the help of the click command tree ``cmd`` read well at any width; return ``cmd``.
+
+    Flags (``--json``, ``--feedforward``) show no ``<bool>`` metavar: they take no value. Help
+    text hard-wrapped in the docstrings (single newlines) is joined, so rich wraps it to the
+    terminal instead of breaking lines at the source's 100 columns; paragraphs (blank lines) and
+    click's ``\\b`` verbatim blocks are kept.
+
+    Examples
+    --------
+    >>> import typer
+    >>> app = typer.Typer()
+    >>> @app.command()
+    ... def hello(loud: bool = typer.Option(False, "--loud")) -> None:
+    ...     '''Say hello,
+    ...     wrapped by hand.'''
+    >>> cmd = tidy_help(typer.main.get_command(app))
+    >>> cmd.help, [p.metavar for p in cmd.params if p.name == 'loud']
+    ('Say hello, wrapped by hand.', [''])
+    """
+    def unwrap(text: str | None) -> str | None:
+        if not text:
+            return text
+        paras = inspect.cleandoc(text).split("\n\n")
+        return "\n\n".join(p if p.startswith("\b") else _SINGLE_NEWLINE.sub(" ", p)
+                           for p in paras)
+
+    for param in getattr(cmd, "params", ()):
+        if getattr(param, "is_flag", False) and getattr(param, "metavar", None) is None:
+            param.metavar = ""
+        if getattr(param, "help", None):
+            param.help = unwrap(param.help)
+    if callable(getattr(cmd, "get_help_option", None)):   # --help is made per context
+        cmd.get_help_option = functools.partial(_quiet_help_option, cmd.get_help_option)
+    if getattr(cmd, "help", None):
+        cmd.help = unwrap(cmd.help)
+    if getattr(cmd, "short_help", None):
+        cmd.short_help = unwrap(cmd.short_help)
+    for sub in getattr(cmd, "commands", {}).values():
+        tidy_help(sub)
+    return cmd
+
+
+def _quiet_help_option(make: Callable[[Any], Any], ctx: Any) -> Any:
+    opt = make(ctx)
+    if opt is not None and getattr(opt, "metavar", None) is None:
+        opt.metavar = ""
+    return opt

@@ -21,6 +21,8 @@ def register(app: typer.Typer) -> None:
             raw = paper.load()["scalars"]
             t = narrow_table("Ma et al. 2021: reported scalars", ["quantity", "value", "unit",
                                                                     "where"])
+            t.columns[0].no_wrap = True    # a key is one word: never split over two lines
+            t.columns[3].justify = "left"
             for k, v in raw.items():
                 t.add_row(k, f"{v['value']:g}", v["unit"], v["provenance"])
             console.print(t)

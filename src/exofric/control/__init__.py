@@ -10,6 +10,9 @@
   ISO 6358 valve ports, regulator, line and tube volume (:func:`tube_volume_table` from the FE),
   gas law; :func:`simulate_charge` and :func:`identify_charge` (:class:`ChargeFit`) -- sonic
   conductance and volume from charge/discharge transients.
+* :func:`closed_loop` -- the one call: a friction step with tuned gains, the model
+  feedforward and the plant, from a structure, a squeeze result or a friction map
+  (:class:`ClosedLoopResult`, with ``.plot()``).
 * :func:`simulate` -- the closed loop at a fixed sample time (any :class:`PlantLike` plant).
 * :class:`ScheduledController` (gains scheduled on dF/dP), :class:`HysteresisInverse`
   (branch-aware feedforward), :class:`HystereticFrictionMap` (two-branch friction for a
@@ -37,6 +40,7 @@ from typing import TYPE_CHECKING
 from exofric._lazy import lazy_package
 
 if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.control._closed_loop import ClosedLoopResult, closed_loop
     from exofric.control._gait import (
         GAIT_CONTROLLERS,
         GaitComparison,

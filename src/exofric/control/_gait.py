@@ -46,6 +46,7 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import NDArray
 
+from exofric._display import DisplayMixin, HtmlReprMixin
 from exofric.control._gait_controllers import (
     IterativeLearning,
     PlantModel,
@@ -752,7 +753,7 @@ def _metrics(ctx: _Context, tr: _Trace) -> tuple[StrideMetrics, ...]:
 
 
 @dataclass(frozen=True)
-class GaitResult:
+class GaitResult(HtmlReprMixin):
     """One controller through ``strides`` strides (built by :func:`simulate_gait`).
 
     Attributes
@@ -985,7 +986,7 @@ def simulate_gait(
 
 
 @dataclass(frozen=True)
-class GaitComparison:
+class GaitComparison(DisplayMixin):
     """Every controller on one scenario (built by :func:`compare_gait`).
 
     Attributes

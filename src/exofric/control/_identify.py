@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric import defaults
+from exofric._display import DisplayMixin
 from exofric._lsq import lsq_covariance, residual_variance, standard_errors
 from exofric.control._plant import PlantParams
 from exofric.errors import InputError, check_series, warn_implausible
@@ -36,7 +37,7 @@ __all__ = ["IdentifiedPlant", "identify_step", "fopdt_response"]
 
 
 @dataclass(frozen=True)
-class IdentifiedPlant:
+class IdentifiedPlant(DisplayMixin):
     """A fitted first-order-plus-dead-time pressure supply and its fit quality.
 
     Attributes

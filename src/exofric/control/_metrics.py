@@ -23,13 +23,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_range, check_series
 
 __all__ = ["StepMetrics", "step_metrics", "itae"]
 
 
 @dataclass(frozen=True)
-class StepMetrics:
+class StepMetrics(DisplayMixin):
     """Metrics of one step response (s, %, and the response's unit, N for friction).
 
     ``None`` marks a quantity the response never reached (e.g. no settling into the band of the

@@ -51,6 +51,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric import defaults as D
+from exofric._display import DisplayMixin
 from exofric._lsq import lsq_covariance, residual_variance, standard_errors
 from exofric.control._identify import IdentifiedPlant, identify_step
 from exofric.errors import (
@@ -905,7 +906,7 @@ def simulate_charge(
 
 
 @dataclass(frozen=True)
-class ChargeFit:
+class ChargeFit(DisplayMixin):
     """Sonic conductances and volume fitted to charge/discharge transients, and the fit.
 
     Attributes

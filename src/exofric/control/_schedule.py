@@ -42,6 +42,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 
 from exofric import defaults as D
+from exofric._display import DisplayMixin
 from exofric.control._metrics import step_metrics
 from exofric.control._pid import Controller, ModelFeedforward, PIDGains
 from exofric.control._plant import CurveFrictionMap, FrictionFn, PlantParams, local_slope
@@ -681,7 +682,7 @@ class StrategyRow:
 
 
 @dataclass(frozen=True)
-class StrategyTable:
+class StrategyTable(DisplayMixin):
     """Settling time, overshoot and steady-state error of every strategy and scenario.
 
     Attributes

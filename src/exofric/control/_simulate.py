@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import NDArray
 
+from exofric._display import DisplayMixin
 from exofric.control._pid import Controller
 from exofric.control._plant import FrictionFn, PlantParams, PressurePlant
 from exofric.errors import InputError, check_range, check_series
@@ -66,7 +67,7 @@ class PlantLike(Protocol):
 
 
 @dataclass(frozen=True)
-class SimulationResult:
+class SimulationResult(DisplayMixin):
     """Sampled closed-loop trajectories (length n + 1, sample k at time k dt).
 
     Attributes

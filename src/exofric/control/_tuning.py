@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from exofric._display import DisplayMixin
 from exofric.control._metrics import itae
 from exofric.control._pid import Controller, ModelFeedforward, PIDGains
 from exofric.control._plant import FrictionFn, PlantParams
@@ -44,7 +45,7 @@ CONTROLLERS = ("pd", "pi", "pid")
 
 
 @dataclass(frozen=True)
-class TuningResult:
+class TuningResult(DisplayMixin):
     """Gains and how they were obtained.
 
     Attributes

@@ -52,6 +52,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from exofric._display import DisplayMixin, HtmlReprMixin
 from exofric.design._execution import (
     BLAS_ENV,
     ExecutionPlan,
@@ -76,7 +77,7 @@ SolveFn = Callable[..., Any]
 
 
 @dataclass(frozen=True)
-class SweepSummary:
+class SweepSummary(DisplayMixin):
     """What one :func:`run_sweep` call did.
 
     ``designs`` = ``computed`` + ``cached`` + ``skipped``; ``computed`` counts the solves run
@@ -142,7 +143,7 @@ class SweepSummary:
 
 
 @dataclass(frozen=True)
-class SweepRun:
+class SweepRun(HtmlReprMixin):
     """Summary and rows (one per design and pressure) of a sweep.
 
     Attributes

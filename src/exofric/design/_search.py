@@ -29,6 +29,7 @@ import numpy as np
 import pandas as pd
 
 from exofric import defaults as D
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_finite, check_positive, check_range
 from exofric.friction import FrictionModel, SqueezeCurve
 
@@ -58,7 +59,7 @@ _CANDIDATE_COLS = (
 
 
 @dataclass(frozen=True)
-class DesignSearch:
+class DesignSearch(DisplayMixin):
     """Designs of a sweep ranked against a target torque (Nm) at a pressure limit (MPa).
 
     Attributes

@@ -68,6 +68,7 @@ import pandas as pd
 import scipy.linalg
 import scipy.spatial.distance
 
+from exofric._display import DisplayMixin
 from exofric.design._dimensionless import (
     GROUPS,
     _add_geometric_groups,
@@ -487,7 +488,7 @@ def candidate_designs(spec: SweepSpec, n: int = N_CANDIDATES, seed: int = 0) -> 
 
 
 @dataclass(frozen=True)
-class SurrogateSearch:
+class SurrogateSearch(DisplayMixin):
     """A design search on the surrogate, its best designs confirmed with the FE solver.
 
     Attributes

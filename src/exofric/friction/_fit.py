@@ -46,13 +46,14 @@ lack of fit (:class:`LackOfFit`, an F test of the model against the cluster mean
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+from collections.abc import Hashable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._display import DisplayMixin
 from exofric._lsq import hc3_covariance, lsq_covariance, residual_variance
 from exofric.errors import (
     ConvergenceError,
@@ -240,7 +241,7 @@ class LackOfFit:
 
 
 @dataclass(frozen=True)
-class GammaFit:
+class GammaFit(DisplayMixin):
     """Result of the Eq 7 least-squares fit of gamma (and F0 for the affine model).
 
     Attributes
@@ -744,7 +745,7 @@ class _GammaPoints:
 
 def _gamma_points(
     friction_pressure_mpa: ArrayLike, friction_n: ArrayLike, squeeze_pressure_mpa: ArrayLike,
-    squeeze_force_n: ArrayLike, groups: ArrayLike | None, ci: str,
+    squeeze_force_n: ArrayLike, groups: ArrayLike | list[Hashable] | None, ci: str,
     pressure_sd_mpa: ArrayLike | None, friction_sd_n: ArrayLike | None, model: str,
     edge_tol: float,
 ) -> _GammaPoints:
@@ -926,28 +927,36 @@ def _gamma_result(
 
 
 def fit_gamma(
-    friction_pressure_mpa: ArrayLike,
-    friction_n: ArrayLike,
-    squeeze_pressure_mpa: ArrayLike,
-    squeeze_force_n: ArrayLike,
+    friction_pressure_mpa: ArrayLike | Any,
+    friction_n: ArrayLike | Any,
+    squeeze_pressure_mpa: ArrayLike | None = None,
+    squeeze_force_n: ArrayLike | None = None,
     *,
     model: ModelKind = "proportional",
     ci: CiMethod = "auto",
     n_boot: int = 2000,
     seed: int = 0,
-    groups: ArrayLike | None = None,
+    groups: ArrayLike | list[Hashable] | None = None,
     pressure_sd_mpa: ArrayLike | None = None,
     friction_sd_n: ArrayLike | None = None,
 ) -> GammaFit:
     """Fit gamma (Eq 7) to friction points against a squeeze curve N(P).
 
+    Two forms: ``fit_gamma(data, squeeze)`` with the natural objects, or the four arrays
+    ``fit_gamma(friction_pressure_mpa, friction_n, squeeze_pressure_mpa, squeeze_force_n)``.
+
     Parameters
     ----------
     friction_pressure_mpa, friction_n : array_like
         Measured pressures (MPa) and friction forces (N); several tests may be pooled and
-        pressures may repeat (replicate pulls).
-    squeeze_pressure_mpa, squeeze_force_n : array_like
-        Squeeze curve N(P) (MPa, N), e.g. from ``exofric squeeze``.
+        pressures may repeat (replicate pulls). In the two-argument form, the first is the
+        friction data (a :class:`RigRun`, a :class:`RigReduction` -- its pulls' kinetic
+        friction, clustered by plateau --, or a DataFrame or mapping with ``pressure_mpa``
+        and ``friction_n`` or ``kinetic_n``, and ``plateau`` or ``group`` when present) and
+        the second the squeeze curve (a :class:`~exofric.simulate.SqueezeResult`, a
+        :class:`SqueezeCurve`, or anything with ``pressure_mpa`` and ``squeeze_force_n``).
+    squeeze_pressure_mpa, squeeze_force_n : array_like, optional
+        Squeeze curve N(P) (MPa, N), e.g. from ``exofric squeeze`` (the four-array form).
     model : {"proportional", "affine"}
         F = gamma N (paper, default) or F = gamma N + F0.
     ci : {"auto", "analytic", "ols", "bootstrap", "cluster", "odr"}
@@ -1004,7 +1013,20 @@ def fit_gamma(
     >>> rep = fit_gamma(pr, f, p, n)
     >>> rep.ci_method, rep.n_clusters, rep.lack_of_fit.df_pure_error
     ('cluster', 5, 20)
+
+    The same with the natural objects: friction data and a squeeze curve.
+
+    >>> import pandas as pd
+    >>> pulls = pd.DataFrame({"pressure_mpa": pr, "friction_n": f})
+    >>> fit_gamma(pulls, {"pressure_mpa": p, "squeeze_force_n": n}).gamma == rep.gamma
+    True
     """
+    if squeeze_pressure_mpa is None and squeeze_force_n is None:
+        friction_pressure_mpa, friction_n, squeeze_pressure_mpa, squeeze_force_n, groups = \
+            _natural_inputs(friction_pressure_mpa, friction_n, groups)
+    elif squeeze_pressure_mpa is None or squeeze_force_n is None:
+        raise InputError("fit_gamma takes (data, squeeze_result) or four arrays: give both "
+                         "squeeze_pressure_mpa and squeeze_force_n", param="squeeze_force_n")
     variant = _check_gamma_options(model, ci)
     seed = check_seed("seed", seed)
     edge_tol = 0.005
@@ -1028,3 +1050,38 @@ def fit_gamma(
     else:
         g_ci, f0_ci, note = _bootstrap_interval(pts, affine, n_boot, seed)
     return _gamma_result(pts, model, gamma, f0, g_ci, f0_ci, method, note, lof)
+
+
+def _column(obj: Any, *names: str) -> Any:
+    """The first of ``names`` found on ``obj`` (a column, a key or an attribute), else None."""
+    for name in names:
+        try:
+            if hasattr(obj, "columns") or isinstance(obj, Mapping):
+                if name in obj:
+                    return obj[name]
+            elif hasattr(obj, name):
+                return getattr(obj, name)
+        except (TypeError, KeyError):
+            continue
+    return None
+
+
+def _natural_inputs(data: Any, squeeze: Any, groups: Any) -> tuple[Any, Any, Any, Any, Any]:
+    """``fit_gamma(data, squeeze)``: the four arrays (and the clusters) of the natural objects."""
+    if hasattr(data, "pulls") and hasattr(data, "to_frame"):     # a RigReduction: its pulls
+        data = data.to_frame()
+    p = _column(data, "pressure_mpa")
+    f = _column(data, "friction_n", "kinetic_n")
+    if p is None or f is None:
+        raise InputError("fit_gamma(data, squeeze): data must have pressure_mpa and friction_n "
+                         f"(or kinetic_n), got {type(data).__name__}", param="data")
+    if groups is None:
+        groups = _column(data, "plateau", "group")
+    sp = _column(squeeze, "pressure_mpa")
+    sn = _column(squeeze, "squeeze_force_n")
+    if sp is None or sn is None:
+        raise InputError("fit_gamma(data, squeeze): squeeze must have pressure_mpa and "
+                         f"squeeze_force_n (a squeeze result), got {type(squeeze).__name__}",
+                         param="squeeze")
+    return (np.asarray(p, dtype=float), np.asarray(f, dtype=float), np.asarray(sp, dtype=float),
+            np.asarray(sn, dtype=float), None if groups is None else np.asarray(groups))

@@ -75,6 +75,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._display import DisplayMixin
 from exofric._lsq import hc3_covariance, lsq_covariance, residual_variance, standard_errors
 from exofric.errors import (
     InputError,
@@ -528,7 +529,7 @@ class InterfaceTest:
 
 
 @dataclass(frozen=True)
-class InterfaceFit:
+class InterfaceFit(DisplayMixin):
     """Result of :func:`fit_interfaces`: mu_tube, mu_wall (unitless) and F0 (N) with CIs.
 
     Attributes
@@ -1161,7 +1162,7 @@ def fit_interfaces(
 
 
 @dataclass(frozen=True)
-class InterfaceRigRun:
+class InterfaceRigRun(DisplayMixin):
     """Virtual-rig tests of one structure with a planted interface law (SYNTHETIC).
 
     Built by :func:`simulate_interface_rig`.

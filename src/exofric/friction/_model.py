@@ -9,6 +9,7 @@ from typing import Any, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_finite, check_positive
 
 __all__ = [
@@ -123,7 +124,7 @@ class FrictionModel:
 
 
 @dataclass(frozen=True)
-class CubicFit:
+class CubicFit(DisplayMixin):
     """A cubic y(P) = c3 P^3 + c2 P^2 + c1 P + c0 over [p_min, p_max] MPa (paper Eq 8).
 
     ``y`` is usually the squeezing force N in N (Eq 8) or the friction F in N (Eq 9).

@@ -45,6 +45,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_positive, check_pressures, check_series
 from exofric.friction._fit import relative_errors
 from exofric.friction._interfaces import WIRE_KEY, _get
@@ -377,6 +378,20 @@ class MeasuredCurve:
 AnyLaw = FrictionLaw
 
 
+def structure_label(structure: Structure) -> str:
+    """A structure's label in tables: its ``name``, else its diameters (mm).
+
+    Examples
+    --------
+    >>> structure_label(Structure(10.0, 8.3, 4.97, 1.6))
+    'D 10 / d1 8.3 / ID 4.97 / d2 1.6 mm'
+    >>> structure_label(Structure(10.0, 8.3, 4.97, 1.6, name="base"))
+    'base'
+    """
+    return structure.name or (f"D {structure.hole_mm:g} / d1 {structure.tube_od_mm:g} / "
+                              f"ID {structure.tube_id_mm:g} / d2 {structure.wire_mm:g} mm")
+
+
 def _law_name(model: FrictionLaw) -> str:
     return model.name
 
@@ -441,7 +456,7 @@ class LawPrediction:
 
 
 @dataclass(frozen=True)
-class Prediction:
+class Prediction(DisplayMixin):
     """Predicted friction for one structure (MPa, N, %, Nm).
 
     One entry of :attr:`PredictionSet.predictions`, built by :func:`predict`.
@@ -549,7 +564,8 @@ class Prediction:
     def to_frame(self) -> pd.DataFrame:
         """The predicted curve as a DataFrame: one row per pressure (MPa, N, %).
 
-        Columns: ``structure`` (name), ``pressure_mpa``, ``squeeze_force_n``,
+        Columns: ``structure`` (its name, else its diameters: :func:`structure_label`),
+        ``pressure_mpa``, ``squeeze_force_n``,
         ``predicted_friction_n``, and with a measured curve ``measured_friction_n`` and
         ``relative_error_pct`` (means over replicates; NaN at pressures without a
         measurement; the measured pressures are among the predicted ones) and ``n_measured``.
@@ -573,7 +589,7 @@ class Prediction:
 
         p = np.asarray(self.pressure_mpa, dtype=float)
         cols: dict[str, Any] = {
-            "structure": [self.structure.name] * p.size,
+            "structure": [structure_label(self.structure)] * p.size,
             "pressure_mpa": p,
             "squeeze_force_n": np.asarray(self.squeeze_force_n, dtype=float),
             "predicted_friction_n": np.asarray(self.predicted_friction_n, dtype=float),
@@ -604,7 +620,7 @@ class Prediction:
 
 
 @dataclass(frozen=True)
-class PredictionSet:
+class PredictionSet(DisplayMixin):
     """Predictions for several structures, plus the ANOVA vs the base group when measured.
 
     Returned by :func:`predict`.

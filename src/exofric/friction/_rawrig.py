@@ -52,6 +52,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_finite, check_positive, check_range, check_seed
 from exofric.friction._rig import rig_set_points
 
@@ -202,7 +203,7 @@ class RawRigConfig:
 
 
 @dataclass(frozen=True)
-class RawRigLog:
+class RawRigLog(DisplayMixin):
     """A synthetic raw rig log and the truths planted in it.
 
     Attributes

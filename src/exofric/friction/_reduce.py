@@ -65,6 +65,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from exofric import defaults as D
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_range, warn_implausible
 
 if TYPE_CHECKING:
@@ -157,7 +158,7 @@ class ReduceSettings:
 
 
 @dataclass(frozen=True)
-class RigReduction:
+class RigReduction(DisplayMixin):
     """Pulls, skipped pulls, plateaus, the friction curve and hysteresis of one raw log.
 
     Attributes

@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._display import DisplayMixin
 from exofric.errors import (
     InputError,
     check_finite,
@@ -149,7 +150,7 @@ class RigConfig:
 
 
 @dataclass(frozen=True)
-class RigRun:
+class RigRun(DisplayMixin):
     """A synthetic friction test: raw logs and one friction value per pressure step.
 
     Attributes

@@ -24,13 +24,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_range
 
 __all__ = ["AnovaResult", "one_way_anova", "anova_vs_base"]
 
 
 @dataclass(frozen=True)
-class AnovaResult:
+class AnovaResult(DisplayMixin):
     """One-way ANOVA table for k groups (errors in any unit, usually %).
 
     Attributes

@@ -38,6 +38,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_finite, check_positive, check_range
 
 __all__ = ["TorqueCheck", "capstan_factor", "torque"]
@@ -90,7 +91,7 @@ def capstan_factor(wrap_deg: float, mu_arc: float, direction: str = "locking") -
 
 
 @dataclass(frozen=True)
-class TorqueCheck:
+class TorqueCheck(DisplayMixin):
     """Joint torque T = F R and whether it lies within a requirement [min, max] Nm.
 
     Built by :func:`torque`.

@@ -55,6 +55,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric import defaults as D
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, PlausibilityWarning, check_range
 from exofric.hardware._clock import RealClock
 from exofric.hardware._device import DeviceError, LoopFault, SensorStale
@@ -121,7 +122,7 @@ class SafetyLimits:
 
 
 @dataclass(frozen=True)
-class LoopResult:
+class LoopResult(DisplayMixin):
     """What a control run did: timing, how it stopped, step metrics, the samples.
 
     Attributes

@@ -59,8 +59,10 @@ def _fmt(v: float | None) -> str:
     return "-" if v is None else f"{v:.2f} s"
 
 
-def _settle(v: float | None) -> str:
-    return "not settled" if v is None else f"{v:.2f} s"
+def _settle(v: float | None, ff: bool) -> str:
+    if v is None:
+        return "never settles" if not ff else "never"
+    return f"{v:.2f} s"
 
 
 def plot_control_cases(
@@ -75,7 +77,8 @@ def plot_control_cases(
     The one Fig 12 design (``exofric control compare --plot``, the report, ``.plot()``):
     top row, friction (N) against time (s), red without and blue with the model feedforward,
     the target (black) and its settling band (grey); each column's title gives exofric's
-    settling times and, below, the paper's ("paper: without 5.73 s, with 4.20 s"). Bottom row
+    settling times ("PD, exofric: without model never settles, with 4.08 s") and, below, the
+    paper's ("paper: without 5.73 s, with 4.20 s"). Bottom row
     (``pressure=True``): tube pressure (MPa) and the controller's command (dotted). One legend
     for the whole figure sits above the Axes, so it never covers a curve.
 
@@ -105,7 +108,7 @@ def plot_control_cases(
     >>> len(fig.axes), len(fig.axes[0].lines)     # friction and pressure rows; 2 runs + target
     (2, 3)
     >>> print(fig.axes[0].get_title())
-    PI: exofric without 6.06 s, with 4.08 s
+    PI, exofric: without model 6.06 s, with 4.08 s
     paper: without 5.73 s, with 4.20 s
     """
     from matplotlib.lines import Line2D
@@ -135,11 +138,11 @@ def plot_control_cases(
             ax.axhspan(tgt * (1 - band), tgt * (1 + band), color="0.85")
         ours = {c.feedforward: c.metrics.settling_time_s for c in mine}
         ref = {c.feedforward: c.paper_settling_time_s for c in mine}
-        otxt = ", ".join(f"{'with' if ff else 'without'} {_settle(v)}"
+        otxt = ", ".join(f"{'with' if ff else 'without model'} {_settle(v, ff)}"
                          for ff, v in sorted(ours.items()))
         ptxt = ", ".join(f"{'with' if ff else 'without'} {_fmt(v)}"
                          for ff, v in sorted(ref.items()) if v is not None)
-        head = f"{kind.upper()}: exofric {otxt}" if otxt else kind.upper()
+        head = f"{kind.upper()}, exofric: {otxt}" if otxt else kind.upper()
         ax.set_title(head + (f"\npaper: {ptxt}" if ptxt else ""), fontsize=SMALL)
         ax.grid(alpha=0.3)
         if pressure:

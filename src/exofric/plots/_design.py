@@ -3,7 +3,8 @@
 Units on the axes: mm (or Shore A); colour: torque T(pmax) in Nm. Every design is drawn: where
 other dimensions vary too (e.g. the hole D), one panel per combination of them. Squares reach
 the target, circles do not; a black edge is inside the validated region, a red edge outside;
-grey crosses are impossible designs; the star is the best-ranked design. A legend says so.
+grey crosses are impossible designs; a star at a marker's corner marks the best-ranked
+design (its number stays readable). A legend says so.
 """
 
 from __future__ import annotations
@@ -121,10 +122,12 @@ def plot_design_map(
             sel &= (t[c] == w).to_numpy()
         sc = _draw_panel(a, t[sel], x, y, lo, hi, pairs, search.best, skipped) or sc
     for i, a in enumerate(axes):
-        if i // ncol == nrow - 1 or i + ncol >= n:
+        if i // ncol == nrow - 1 or i + ncol >= n:   # the lowest panel of its column
             a.set_xlabel(_LABELS.get(x, x))
+            a.tick_params(labelbottom=True)         # shared x hides them above a gap
         if i % ncol == 0:
             a.set_ylabel(_LABELS.get(y, y))
+            a.tick_params(labelleft=True)
     if sc is not None:
         fig.colorbar(sc, ax=axes, label=f"torque at {search.pmax_mpa:g} MPa (Nm)", shrink=0.9)
     handles = _legend_handles(search, skipped)
@@ -208,8 +211,12 @@ def _draw_panel(a: Any, sub: pd.DataFrame, x: str, y: str, lo: float, hi: float,
         if len(sk):
             a.scatter(sk[x], sk[y], marker="x", s=50, color="0.5", zorder=2)
     if best is not None and all(best[c] == w for c, w in pairs):
-        a.scatter([best[x]], [best[y]], marker="*", s=140, color="orange", edgecolors="k",
-                  zorder=5, transform=a.transData)
+        from matplotlib.transforms import offset_copy
+
+        # at the marker's upper right corner, so that the design's number stays readable
+        corner = offset_copy(a.transData, fig=a.figure, x=10, y=10, units="points")
+        a.scatter([best[x]], [best[y]], marker="*", s=170, color="orange", edgecolors="k",
+                  zorder=5, transform=corner)
     if pairs:
         a.set_title(", ".join(f"{_SHORT.get(c, c)} = {w:g}" for c, w in pairs),
                     fontsize=SMALL + 1)

@@ -114,6 +114,28 @@ def _inconsistencies(d: dict[str, Any], notes: Sequence[tuple[str, str]]) -> str
     return out
 
 
+def _mode_label(cfg: dict[str, Any]) -> str:
+    """The squeeze accuracy the run used, named as ``exofric squeeze --accuracy`` names it.
+
+    The report's N(P) comes from one mesh (no two-mesh estimate); it is stated with its level
+    and that level's documented error (defaults.SQUEEZE_ACCURACY), never as "converged".
+    """
+    from exofric import defaults
+
+    m = cfg["squeeze_mesh"]
+    level = next((k for k, v in defaults.SQUEEZE_ACCURACY.items()
+                  if (v["n_radial"], v["n_circ"]) == (m["n_radial"], m["n_circ"])), None)
+    err = {"draft": "2.2 %", "standard": "0.56 %", "fine": "0.17 %"}
+    mesh = f"{m['n_radial']} x {m['n_circ']} quad9"
+    head = "fast" if cfg["fast"] else "default"
+    if level is None:
+        return f"{head}: squeeze mesh {mesh} (coarser than every --accuracy level)"
+    std = defaults.SQUEEZE_ACCURACY["standard"]
+    return (f"{head}: one squeeze mesh, {mesh}, the size of the {level} accuracy (N within "
+            f"{err[level]} of a converged mesh, no error estimate); exofric squeeze defaults to "
+            f"standard ({std['n_radial']} x {std['n_circ']}, {err['standard']})")
+
+
 def _run_details(d: dict[str, Any]) -> str:
     def sec(v: float | None) -> tuple[str, str]:
         return ("n", "-" if v is None else f"{v:.2f}")
@@ -122,7 +144,7 @@ def _run_details(d: dict[str, Any]) -> str:
     rows.append(["figures and report", sec(d.get("report_time_s"))])
     rows.append(["total computation (stages 1-8)", sec(d["wall_time_s"])])
     cfg = d["config"]
-    mesh = [["mode", "fast (coarse meshes)" if cfg["fast"] else "default (converged meshes)"],
+    mesh = [["mode", _mode_label(cfg)],
             ["squeeze mesh", f"{cfg['squeeze_mesh']['n_radial']} x "
              f"{cfg['squeeze_mesh']['n_circ']} quad9, grading {cfg['squeeze_mesh']['grading']}"],
             ["inflation mesh", f"{cfg['inflation_mesh']['n_radial']} x "
@@ -169,7 +191,7 @@ def render_html(data: dict[str, Any], figures: Sequence[Any],
             f"{times.get(key, float('nan')):.2f} s</span></h2>{_SECTIONS[key](data)}"
             f"{_beside(data, key)}{figs}</section>")
     when = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")  # noqa: UP017
-    mode = "fast (coarse meshes)" if data["config"]["fast"] else "default (converged meshes)"
+    mode = _mode_label(data["config"])
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">

@@ -22,6 +22,7 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Literal, Protocol
 
 from exofric import paper
+from exofric._display import DisplayMixin
 from exofric.control import (
     CONTROLLERS,
     AntiWindup,
@@ -242,7 +243,7 @@ class ControlSetup:
 
 
 @dataclass(frozen=True)
-class CaseResult:
+class CaseResult(DisplayMixin):
     """One closed-loop step response and its metrics (N, MPa, s).
 
     Attributes
@@ -406,7 +407,7 @@ def run_case(
 
 
 @dataclass(frozen=True)
-class CompareResult:
+class CompareResult(DisplayMixin):
     """The six Fig 12 cases and the settling-time reductions (ours and the paper's, %).
 
     Attributes

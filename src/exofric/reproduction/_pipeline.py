@@ -38,6 +38,7 @@ from typing import Any
 import numpy as np
 
 from exofric import defaults, paper
+from exofric._display import DisplayMixin
 from exofric._version import __version__
 from exofric.fe import MeshSpec
 from exofric.friction import RigConfig
@@ -208,7 +209,7 @@ class StageTime:
 
 
 @dataclass(frozen=True)
-class ReproduceResult:
+class ReproduceResult(DisplayMixin):
     """Everything :func:`reproduce` computed, stage by stage, with timings and versions.
 
     Attributes

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any, cast
 import numpy as np
 
 from exofric import defaults
+from exofric._display import DisplayMixin
 from exofric.errors import InputError, check_pressures
 from exofric.fe import (
     InflationProblem,
@@ -37,7 +38,7 @@ __all__ = ["InflationResult", "inflate"]
 
 
 @dataclass(frozen=True)
-class InflationResult:
+class InflationResult(DisplayMixin):
     """Free inflation of the tube at each pressure.
 
     Attributes

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from exofric._display import DisplayMixin
 from exofric.defaults import MR_STRETCH_LIMIT
 from exofric.errors import InputError, warn_implausible
 from exofric.fe import (
@@ -42,7 +43,7 @@ WIDE_RING_RATIO = 1.0
 
 
 @dataclass(frozen=True)
-class RingResult:
+class RingResult(DisplayMixin):
     """Force vs pin displacement of the ring tensile test (FE, quarter model).
 
     Attributes

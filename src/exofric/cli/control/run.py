@@ -41,7 +41,10 @@ def run_cmd(
                                      "as feedforward."),
     schedule: bool = typer.Option(False, "--schedule", help="Schedule the gains on the "
                                   "local slope dF/dP of the friction map."),
-    target: float = typer.Option(54.40, "--target", help="Friction set-point in N."),
+    target: float = typer.Option(54.40, "--target-friction", help="Friction set-point in "
+                                 "N (the flag `exofric control` takes too)."),
+    target_old: float | None = typer.Option(None, "--target", hidden=True,
+                                            help="Deprecated spelling of --target-friction."),
     duration: float = typer.Option(10.0, "--duration", help="Run length in s."),
     rate: float = typer.Option(100.0, "--rate", help="Loop rate in Hz."),
     log: str | None = typer.Option(None, "--log", help="Write the run log (rig-log schema "
@@ -72,6 +75,12 @@ def run_cmd(
     from exofric.errors import InputError, check_range
     from exofric.hardware import LoopFault, SafetyLimits, open_device, run_loop
 
+    if target_old is not None:   # the old flag keeps working, and says so
+        import warnings
+
+        warnings.warn("--target is deprecated: use --target-friction (same meaning, N)",
+                      stacklevel=1)
+        target = target_old
     kind = controller.lower()
     if kind not in ("pd", "pi", "pid"):
         raise InputError(f"--controller must be pd, pi or pid, got {controller!r}")
@@ -126,7 +135,8 @@ def run_cmd(
                 ("jitter p50 / p99 / max", f"{d['jitter_p50_ms']:.3f} / "
                  f"{d['jitter_p99_ms']:.3f} / {d['jitter_max_ms']:.3f}", "ms"),
                 ("overruns / skipped", f"{d.get('overruns')} / {d.get('skipped')}", ""),
-                ("stopped", f"{d.get('stopped_reason')} at {d.get('stopped_at_s')}", "s"),
+                ("stopped", f"{d.get('stopped_reason')} at "
+                 f"{_fmt(d.get('stopped_at_s'), '.2f')}", "s"),
                 ("vented", str(d.get("vented")), ""),
                 ("dry run", str(dry_run), "")]
         if d.get("log_path"):
