@@ -458,3 +458,38 @@ def test_the_reported_calls_and_the_kinds_that_keep_working(tmp_path):
     # str or Path for paths
     io.write_json({"a": 1}, str(tmp_path / "a.json"))
     assert io.read_json(tmp_path / "a.json") == io.read_json(str(tmp_path / "a.json"))
+
+
+@pytest.mark.parametrize(("cls", "kwargs", "field"), [
+    ("exofric.fe:NewtonSettings", {"max_iter": "5"}, "max_iter"),
+    ("exofric.fe:MeshSpec", {"n_radial": "4"}, "n_radial"),
+    ("exofric.friction:ReduceSettings", {"smooth_s": "0.1"}, "smooth_s"),
+    ("exofric.friction:PullFitSettings", {"n_z": "20"}, "n_z"),
+    ("exofric.simulate:PulloutNumerics", {"n_path": "30"}, "n_path"),
+])
+def test_settings_objects_check_their_fields(cls: str, kwargs: dict, field: str) -> None:
+    """The user-facing settings dataclasses refuse a value of the wrong kind at construction
+    (issue 38: they accepted strings or raised a plain TypeError), naming the field."""
+    import importlib
+
+    mod, name = cls.split(":")
+    klass = getattr(importlib.import_module(mod), name)
+    with pytest.raises(InputError) as exc:
+        klass(**kwargs)
+    assert exc.value.param == field and name in str(exc.value)
+    assert "must be" in str(exc.value)           # a kind check, not "unexpected argument"
+
+
+def test_setups_check_their_fields() -> None:
+    from exofric.geometry import BASE
+    from exofric.material import MooneyRivlin
+    from exofric.simulate import PulloutSetup, SqueezeSetup
+
+    mat = MooneyRivlin.from_shore(62.5)
+    with pytest.raises(InputError) as exc:
+        SqueezeSetup(BASE, mat, mu_wall="0.2")  # type: ignore[arg-type]
+    assert exc.value.param == "mu_wall"
+    with pytest.raises(InputError) as exc:
+        PulloutSetup(BASE, mat, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.2,
+                     cable_ea_n="stiff")  # type: ignore[arg-type]
+    assert exc.value.param == "cable_ea_n"

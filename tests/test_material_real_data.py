@@ -397,3 +397,28 @@ def test_both_measures_in_one_file(tmp_path):
     used = {c["column"]: c["used"] for c in eng.attrs["columns"]}
     assert used == {"Engineering Strain": True, "Engineering Stress (MPa)": True,
                     "True Strain": False, "True Stress (MPa)": False, "Time (s)": False}
+
+
+def test_specimen_sizes_are_bounded_and_an_unused_area_is_said() -> None:
+    # issue 38: `material --fit f.csv --area 1e300` exited 0 and ignored the area. A size
+    # beyond any specimen is an error naming it; an area with a stress column is not used:
+    # a warning says so; the stress is read as written.
+    import warnings
+
+    import pandas as pd
+
+    from exofric.io import tensile_stress_stretch
+
+    f = pd.DataFrame({"stretch": [1.0, 1.5, 2.0], "stress_mpa": [0.0, 0.5, 1.0]})
+    cols = {"stretch": "stretch", "stress": "stress_mpa"}
+    with pytest.raises(InputError, match=r"area_mm2 must be in \(0, 1e\+06\]") as exc:
+        tensile_stress_stretch(f, cols, area_mm2=1e300)
+    assert exc.value.param == "area_mm2"
+    with pytest.raises(InputError, match="gauge_length_mm"):
+        tensile_stress_stretch(f, cols, gauge_length_mm=-1.0)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = tensile_stress_stretch(f, cols, area_mm2=6.0)
+    assert out["stress_mpa"].tolist() == [0.0, 0.5, 1.0]
+    assert any(issubclass(w.category, PlausibilityWarning) and "not used" in str(w.message)
+               for w in caught)

@@ -1082,7 +1082,7 @@ SIZING_CONDUCTANCES = (0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4)
 
 
 @dataclass(frozen=True)
-class GaitSizing:
+class GaitSizing(DisplayMixin):
     """Valve sizing from a sweep of the ports' sonic conductance (built by :func:`size_valve`).
 
     Attributes

@@ -8,6 +8,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_range
 from exofric.fe._assembly import Assembler
 from exofric.fe._hyperelastic import ElementState, HyperelasticBody
@@ -18,6 +19,7 @@ from exofric.material import MooneyRivlin
 __all__ = ["ENDS", "MeshSpec", "InflationProblem", "PressurizedTube", "check_ends"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class MeshSpec:
     """Mesh resolution of the tube.

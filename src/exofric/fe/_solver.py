@@ -27,6 +27,7 @@ from scipy.sparse.linalg import MatrixRankWarning, splu
 from threadpoolctl import ThreadpoolController
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric.errors import ConvergenceError
 from exofric.fe._assembly import Assembler
 from exofric.fe._stats import collecting, record_attempt
@@ -83,6 +84,7 @@ class Problem(Protocol):
         ...
 
 
+@checked_init
 @dataclass(frozen=True)
 class NewtonSettings:
     """Solver settings (tolerances are relative to the problem's scales).

@@ -57,6 +57,7 @@ from numpy.typing import NDArray
 from exofric import defaults
 from exofric._display import DisplayMixin
 from exofric._lsq import lsq_covariance, residual_variance, standard_errors
+from exofric._validate import checked_init
 from exofric.errors import (
     ConvergenceError,
     InputError,
@@ -86,6 +87,7 @@ _MU_MIN = 1e-3          # lower bound of mu_wire, mu_wall in the search (the sol
 # settings and result
 
 
+@checked_init
 @dataclass(frozen=True)
 class PullFitSettings:
     """Numerical settings of :func:`fit_pullout` (the physics is in its arguments).

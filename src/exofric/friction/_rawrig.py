@@ -53,6 +53,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_finite, check_positive, check_range, check_seed
 from exofric.friction._rig import rig_set_points
 
@@ -64,6 +65,7 @@ __all__ = ["RawRigConfig", "RawRigLog", "simulate_raw_log"]
 _RELAX_S = 0.05          # wire relaxation time constant after a pull stops (s)
 
 
+@checked_init
 @dataclass(frozen=True)
 class RawRigConfig:
     """Settings of the raw-log virtual rig (s, Hz, mm, mm/s, N, N/s, MPa, %).

@@ -66,6 +66,7 @@ from numpy.typing import NDArray
 
 from exofric import defaults as D
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_range, warn_implausible
 
 if TYPE_CHECKING:
@@ -79,6 +80,7 @@ __all__ = [
 _MIN_WINDOW = 10        # fewest samples of a steady window or of a tare window
 
 
+@checked_init
 @dataclass(frozen=True)
 class ReduceSettings:
     """How :func:`reduce_log` segments a raw log (MPa, s, mm; defaults in ``exofric.defaults``).

@@ -38,6 +38,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from exofric._display import DisplayMixin
 from exofric.errors import InputError
 from exofric.io._table import (
     Grid,
@@ -67,7 +68,7 @@ _MIN_SAMPLES = 10
 
 
 @dataclass(frozen=True)
-class GaitData:
+class GaitData(DisplayMixin):
     """Knee flexion angle and moment over time (walking data), as read by :func:`read_gait`.
 
     Attributes

@@ -122,14 +122,23 @@ def _factor(role: str, unit: str | None, column: str, source: str) -> tuple[floa
     return f, u
 
 
+#: a tensile specimen's sizes: (largest possible, largest plausible), mm or mm^2; a dumbbell of
+#: silicone is 2-6 mm wide, 1-3 mm thick, 20-100 mm long (ISO 37, ASTM D412)
+_SIZE_LIMITS = {"gauge_length_mm": (1e4, 500.0), "width_mm": (1e3, 100.0),
+                "thickness_mm": (1e3, 50.0), "area_mm2": (1e6, 1e3)}
+
+
 def _check_size(name: str, value: Any) -> float | None:
     if value is None:
         return None
     if isinstance(value, (str, bytes, bool)):
         raise InputError(f"{name} must be a number, got {value!r}", param=name)
     v = float(value)
-    if not (math.isfinite(v) and v > 0.0):
-        raise InputError(f"{name} must be > 0, got {value!r}", param=name)
+    top, plausible = _SIZE_LIMITS.get(name, (math.inf, math.inf))
+    if not (math.isfinite(v) and 0.0 < v <= top):
+        raise InputError(f"{name} must be in (0, {top:g}], got {value!r}", param=name)
+    if v > plausible:
+        warn_implausible(f"{name} = {v:g}: a tensile specimen's is below {plausible:g}")
     return v
 
 
@@ -239,6 +248,9 @@ def tensile_stress_stretch(
         y_role = "force"
     elif "stress" in have:
         y_role = "stress"
+        if area is not None:
+            warn_implausible(f"{source}: area_mm2 = {area:g} is not used: the stress is read "
+                             f"from column {have['stress']!r}")
     elif "force" in have:
         raise InputError(f"area_mm2 is required to turn column {have['force']!r} of {source} "
                          "into a stress (mm^2; or width and thickness, mm)", param="area_mm2")

@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from exofric._display import DisplayMixin
 from exofric.errors import ConvergenceError, InputError, check_positive, check_pressures
 from exofric.material import MooneyRivlin
 
@@ -50,7 +51,7 @@ __all__ = [
 
 
 @dataclass(frozen=True)
-class InflationCurve:
+class InflationCurve(DisplayMixin):
     """Tube diameters (mm) at each pressure (MPa) from a reference solution.
 
     Attributes
@@ -315,7 +316,7 @@ _GAUSS_POINTS = 64  # Gauss-Legendre nodes across the wall (integrands smooth in
 
 
 @dataclass(frozen=True)
-class TubeInflationCurve:
+class TubeInflationCurve(DisplayMixin):
     """Tube diameters (mm) and axial stretch at each pressure (MPa), incompressible reference.
 
     Attributes

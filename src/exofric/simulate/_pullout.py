@@ -61,7 +61,7 @@ __all__ = ["PulloutResult", "SectionPullout", "pullout", "section_pullout"]
 
 
 @dataclass(frozen=True)
-class SectionPullout:
+class SectionPullout(DisplayMixin):
     """Axial pull of the wire through one unit length of squeezed tube (N/mm, mm).
 
     Attributes

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_positive, check_range
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
@@ -36,6 +37,7 @@ def _count(name: str, value: Any, low: int, high: int) -> int:
     return int(value)
 
 
+@checked_init
 @dataclass(frozen=True)
 class PulloutNumerics:
     """Numerical parameters of the section solve and the shear lag (defaults: converged).
@@ -126,6 +128,7 @@ def check_pullout_friction(mu_wire: float, mu_wall: float, mu_wire_wall: float, 
     return mw, mh, mww, ms
 
 
+@checked_init
 @dataclass(frozen=True)
 class PulloutSetup:
     """A pull-out problem but its pressure and path: structure, material, friction, cable, ends.

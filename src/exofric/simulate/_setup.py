@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_positive
 from exofric.fe import GRAVITY_OPTIONS, MeshSpec, NewtonSettings, check_ends
 from exofric.geometry import Structure
@@ -30,6 +31,7 @@ if TYPE_CHECKING:
 __all__ = ["SqueezeSetup"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class SqueezeSetup:
     """A squeeze problem but its pressures: structure, material, ends, friction, accuracy, ...
