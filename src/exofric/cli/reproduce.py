@@ -24,7 +24,8 @@ def register(app: typer.Typer) -> None:
         out: Path = typer.Option(Path("exofric-report"), "--out",
                                  help="Output directory (created)."),
         fast: bool = typer.Option(False, "--fast",
-                                  help="Coarse meshes (for CI); default: converged meshes."),
+                                  help="Coarse meshes (for CI); default: the draft "
+                                  "accuracy's squeeze mesh."),
         notes_dir: Path = typer.Option(None, "--notes-dir", help="Directory of "
                                        "paper-notes*.md (default: ./docs or the source tree)."),
         as_json: bool = JSON_OPTION,

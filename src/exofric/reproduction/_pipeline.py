@@ -69,6 +69,32 @@ __all__ = ["ReproduceConfig", "ReproduceResult", "StageTime", "STAGES", "reprodu
 
 #: Coarse meshes of ``--fast`` (CI): N(0.6 MPa) within 0.1% of the default mesh's.
 FAST_SQUEEZE_MESH = MeshSpec(n_radial=1, n_circ=12, grading=6.0)
+
+
+def _level_mesh(level: str) -> MeshSpec:
+    """The mesh whose N an accuracy level returns (``exofric squeeze --accuracy level``).
+
+    The report solves on the ``draft`` level's mesh, so its N(P) is the one ``exofric squeeze
+    --accuracy draft`` prints, and the report names that level (issue 34: it said "converged
+    meshes" on a mesh no level used).
+
+    Parameters
+    ----------
+    level : {'draft', 'standard', 'fine'}
+        A key of :data:`exofric.defaults.SQUEEZE_ACCURACY`.
+
+    Returns
+    -------
+    MeshSpec
+
+    Examples
+    --------
+    >>> m = _level_mesh("draft")
+    >>> m.n_radial, m.n_circ
+    (2, 24)
+    """
+    spec = {k: v for k, v in defaults.SQUEEZE_ACCURACY[level].items() if k != "coarsen"}
+    return MeshSpec(**spec)
 #: The inflation mesh of ``--fast`` (CI), coarse as :data:`FAST_SQUEEZE_MESH`.
 FAST_INFLATION_MESH = MeshSpec(n_radial=1, n_circ=4)
 
@@ -118,7 +144,7 @@ class ReproduceConfig:
 
     Examples
     --------
-    >>> cfg = ReproduceConfig()                     # converged meshes, the paper's numbers
+    >>> cfg = ReproduceConfig()              # the draft accuracy's mesh, the paper's numbers
     >>> cfg.fast, cfg.gamma_true, cfg.target_friction_n, cfg.arm_radius_m
     (False, 0.7168, 54.4, 0.1)
     >>> cfg.pressures_mpa[0], cfg.rig_pressures_mpa[0]   # MPa
@@ -126,7 +152,7 @@ class ReproduceConfig:
     """
 
     fast: bool = False
-    squeeze_mesh: MeshSpec = MeshSpec(**defaults.SQUEEZE_MESH)
+    squeeze_mesh: MeshSpec = field(default_factory=lambda: _level_mesh("draft"))
     inflation_mesh: MeshSpec = MeshSpec(**defaults.INFLATION_MESH)
     sensitivity_mesh: MeshSpec = FAST_SQUEEZE_MESH
     pressures_mpa: tuple[float, ...] = tuple(round(0.05 * i, 10) for i in range(1, 13))
@@ -139,13 +165,14 @@ class ReproduceConfig:
 
     @classmethod
     def for_mode(cls, fast: bool = False) -> ReproduceConfig:
-        """Default (converged meshes) or ``fast`` (coarse meshes) configuration.
+        """Default (the draft accuracy's squeeze mesh) or ``fast`` (coarse meshes) configuration.
 
         Parameters
         ----------
         fast : bool
             Use :data:`FAST_SQUEEZE_MESH` and :data:`FAST_INFLATION_MESH` (``--fast``, CI)
-            instead of the converged meshes of :mod:`exofric.defaults`.
+            instead of the draft accuracy's squeeze mesh and the inflation mesh of
+            :mod:`exofric.defaults`.
 
         Returns
         -------
@@ -315,7 +342,7 @@ def reproduce(
     Parameters
     ----------
     config : ReproduceConfig, optional
-        Default: converged meshes (:meth:`ReproduceConfig.for_mode`).
+        Default: the draft accuracy's squeeze mesh (:meth:`ReproduceConfig.for_mode`).
     on_stage : callable, optional
         Progress callback ``(key, title, index, total, finished, wall_time_s)``, called
         before (``finished=False``) and after each stage.
