@@ -315,12 +315,23 @@ class FrictionLawOptions(OptionGroup):
 
 class ContactFrictionOptions(OptionGroup):
     """The wire's contact friction (unitless Coulomb coefficients) of the pull-out problem:
-    tube-wire, tube-hole wall, wire-hole wall, and the static coefficient."""
+    tube-wire, tube-hole wall, wire-hole wall, and the static coefficient. ``OPTIONS`` words
+    them once for ``pullout`` and ``stiffness``."""
 
     mu_wire: float
     mu_wall: float
     mu_wire_wall: float
     mu_static: float | None
+    OPTIONS: ClassVar[dict[str, Any]] = {
+        "mu_wire": typer.Option(..., "--mu-wire", help="Kinetic Coulomb coefficient tube-wire "
+                                "(axial), [0, 2]."),
+        "mu_wall": typer.Option(..., "--mu-wall", help="Coulomb coefficient tube-hole wall, "
+                                "[0, 2]."),
+        "mu_wire_wall": typer.Option(..., "--mu-wire-wall", help="Coulomb coefficient wire-hole "
+                                     "wall (line contact), [0, 2]."),
+        "mu_static": typer.Option(None, "--mu-static", help="Static coefficient of the wire's "
+                                  "interfaces (>= --mu-wire): breakaway peak."),
+    }
 
 
 class OutputOptions(OptionGroup):

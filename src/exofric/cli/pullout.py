@@ -20,24 +20,13 @@ from exofric.cli._options import (
 
 __all__ = ["register"]
 
-#: pullout's wording of the contact friction group
-_FRICTION = ContactFrictionOptions.options(
-    mu_wire=typer.Option(..., "--mu-wire", help="Kinetic Coulomb coefficient tube-wire (axial), "
-                         "[0, 2]."),
-    mu_wall=typer.Option(..., "--mu-wall", help="Coulomb coefficient tube-hole wall, [0, 2]."),
-    mu_wire_wall=typer.Option(..., "--mu-wire-wall", help="Coulomb coefficient wire-hole wall "
-                              "(line contact), [0, 2]."),
-    mu_static=typer.Option(None, "--mu-static", help="Static coefficient of the wire's "
-                           "interfaces (>= --mu-wire): breakaway peak."),
-)
-
 
 @grouped
 def pullout_cmd(
     structure: StructureOptions = StructureOptions.options(),
     length: float = typer.Option(116.0, help="Tube length L (mm)."),
     pressure: float = typer.Option(..., help="Tube pressure P (MPa)."),
-    friction: ContactFrictionOptions = _FRICTION,
+    friction: ContactFrictionOptions = ContactFrictionOptions.options(),
     cable_ea: float = typer.Option(defaults.CABLE_EA_N, "--cable-ea",
                                    help="Cable axial stiffness EA (N); default: 1.6 mm 7x7 "
                                    "steel, ~110 GPa on ~1.2 mm^2."),

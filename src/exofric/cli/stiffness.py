@@ -21,14 +21,6 @@ from exofric.cli._options import (
 
 __all__ = ["register"]
 
-#: stiffness's wording of the contact friction group
-_FRICTION = ContactFrictionOptions.options(
-    mu_wire=typer.Option(..., "--mu-wire", help="Kinetic coefficient tube-wire."),
-    mu_wall=typer.Option(..., "--mu-wall", help="Coefficient tube-hole wall."),
-    mu_wire_wall=typer.Option(..., "--mu-wire-wall", help="Coefficient wire-wall."),
-    mu_static=typer.Option(None, "--mu-static", help="Static coefficient."),
-)
-
 
 @grouped
 def stiffness_cmd(
@@ -38,7 +30,7 @@ def stiffness_cmd(
     radius: float = typer.Option(..., help="Pulley radius / lever arm R (m)."),
     wrap_deg: float = typer.Option(0.0, "--wrap-deg", help="Wrap on the knee arc (deg)."),
     mu_arc: float = typer.Option(0.0, "--mu-arc", help="Coefficient wire-arc (capstan)."),
-    friction: ContactFrictionOptions = _FRICTION,
+    friction: ContactFrictionOptions = ContactFrictionOptions.options(),
     cable_ea: float = typer.Option(defaults.CABLE_EA_N, "--cable-ea", help="Cable EA (N)."),
     ends: str = typer.Option("fixed", "--ends", help=PULLOUT_ENDS_HELP),
     displacement: float = typer.Option(3.0, help="Pulled-end travel (mm) of each pull "
