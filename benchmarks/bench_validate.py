@@ -9,7 +9,8 @@ Each row times one call of a public function through its checked wrapper (what
 arguments), a light function (``torque``), a squeeze's arguments (a Structure, a material, a
 pressure list of 13, keyword floats; only the check, ``_bind``, since a solve takes seconds),
 and an array of 100,000 pressures (a list: every element's type is looked at; an ndarray: its
-dtype only). The reference scale is an empty Python function call, printed too: on a shared
+dtype only), and the construction of the dataclasses built per step (``checked_init``). The
+reference scale is an empty Python function call, printed too: on a shared
 machine absolute times move with the load, the ratio to it does not.
 """
 
@@ -59,6 +60,7 @@ def rows(runs: int) -> list[dict[str, Any]]:
         ("fit_gamma pressure_sd_mpa: ndarray, 1e5", lambda: v._bind(
             fg_plan, ([0.3], [1.0]), {"pressure_sd_mpa": big_arr}), None, 5000),
     ]
+    cases += _construction_cases()
     out = []
     for name, checked, raw, number in cases:
         checked()
@@ -67,6 +69,32 @@ def rows(runs: int) -> list[dict[str, Any]]:
         out.append({"case": name, "checked_us": c, "raw_us": r if raw else None,
                     "overhead_us": c - r})
     return out
+
+
+def _construction_cases() -> list[tuple[str, Callable[[], Any], Callable[[], Any] | None, int]]:
+    """Dataclass construction (issue 38): a checked constructor against the raw one, for the
+    classes built per step (Reading per device sample; PathPoint per load step), and the
+    per-Newton-iteration ContactState through ``unchecked`` (what the contact code does)."""
+    import numpy as np
+
+    from exofric._validate import unchecked
+    from exofric.fe import ContactState, PathPoint
+    from exofric.hardware import Reading
+
+    a = np.zeros(200)
+
+    def raw_of(cls: type, *args: Any) -> Callable[[], Any]:
+        init, obj = inspect.unwrap(cls.__init__), object.__new__(cls)
+        return lambda: init(obj, *args)
+
+    return [
+        ("Reading(0.3, 12.0, 5)", lambda: Reading(0.3, 12.0, 5), raw_of(Reading, 0.3, 12.0, 5),
+         20000),
+        ("PathPoint(0.5, u, 3, 1)", lambda: PathPoint(0.5, a, 3, 1),
+         raw_of(PathPoint, 0.5, a, 3, 1), 20000),
+        ("unchecked(ContactState, ...)", lambda: unchecked(ContactState, 0.0, a, a, a, a),
+         raw_of(ContactState, 0.0, a, a, a, a), 20000),
+    ]
 
 
 def main() -> None:

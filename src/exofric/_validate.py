@@ -24,6 +24,10 @@ What a hint accepts (the docstrings' promises):
   function's own check); a class -- an instance of it;
 * ``Any``, ``object``, type variables, protocols and names that do not resolve -- anything.
 
+Every public dataclass (data, settings and results: 124 classes) checks its fields the same
+way at construction (:func:`checked_init`); the per-iteration states of the contact code are
+built with :func:`unchecked` (no user input reaches them).
+
 A parameter left at its default is not checked. The hints are read on a function's first
 call (a few hundred microseconds, once); a checked call costs a few microseconds
 (``benchmarks/bench_validate.py``).
@@ -44,7 +48,7 @@ from typing import Any, TypeVar
 
 from exofric.errors import InputError
 
-__all__ = ["checked", "checked_init", "is_checked"]
+__all__ = ["checked", "checked_init", "is_checked", "unchecked"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -180,7 +184,8 @@ def _fixed(elems: list[_Spec | None]) -> _Spec:
             return False
         return all(e is None or e.test(v) for e, v in zip(elems, x, strict=True))
 
-    return _Spec(test, f"a sequence of {n} values")
+    what = "numbers" if all(e is REAL for e in elems) else "values"
+    return _Spec(test, f"a sequence of {n} {what}")
 
 
 def _mapping(key: _Spec | None, value: _Spec | None) -> _Spec:
@@ -641,5 +646,40 @@ def checked_init(cls: C) -> C:
     ...
     exofric.errors.InputError: speed_mm_per_s must be a number, got 'fast' (str) in Pull()
     """
+    cls._exofric_raw_init = cls.__init__  # type: ignore[attr-defined,misc]  # unchecked()
     cls.__init__ = checked(cls.__init__, name=cls.__name__)  # type: ignore[misc]
     return cls
+
+
+T = TypeVar("T")
+
+
+def unchecked(cls: type[T], *args: Any, **kwargs: Any) -> T:
+    """An instance of a :func:`checked_init` class built without the kind check.
+
+    For the states a solver builds on every Newton iteration from values it computed itself
+    (:class:`~exofric.fe.ContactState`, :class:`~exofric.fe.FrictionState`: some 900 per
+    draft squeeze), where the check's ~5-12 microseconds would be paid for nothing; everything
+    a user constructs goes through the checked constructor.
+
+    Parameters
+    ----------
+    cls : type
+        A class decorated with :func:`checked_init`.
+    *args, **kwargs
+        Its constructor's arguments.
+
+    Returns
+    -------
+    object
+        ``cls(*args, **kwargs)``, built by its own ``__init__`` without the kind check.
+
+    Examples
+    --------
+    >>> from exofric.hardware import Reading
+    >>> unchecked(Reading, 0.3, 12.0).force_n
+    12.0
+    """
+    obj = cls.__new__(cls)
+    cls._exofric_raw_init(obj, *args, **kwargs)  # type: ignore[attr-defined]
+    return obj

@@ -18,11 +18,16 @@ Exit codes of ``exofric`` (:data:`EXIT_CODES`, defined here only):
 
 from __future__ import annotations
 
+import functools
 import math
+import os
+import re
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, overload
 
 if TYPE_CHECKING:  # numpy is imported where it is used: the CLI imports this module first
+    from types import FrameType
+
     import numpy as np
     from numpy.typing import ArrayLike, NDArray
 
@@ -36,9 +41,11 @@ __all__ = [
     "EXIT_VENT_NOT_CONFIRMED",
     "ConvergenceError",
     "InputError",
+    "MaterialInstabilityError",
     "PlausibilityWarning",
     "check_finite",
     "warn_implausible",
+    "warning_key",
     "check_positive",
     "check_pressures",
     "check_range",
@@ -125,6 +132,52 @@ class ConvergenceError(RuntimeError):
         self.reached = reached
 
 
+class MaterialInstabilityError(ConvergenceError):
+    """A load path stopped where the material itself is Drucker-unstable (a
+    :class:`ConvergenceError`, exit code 3, that no finer mesh or smaller step cures).
+
+    Raised instead of the plain "did not converge" when the largest principal stretch of the
+    last converged state has reached the stretch from which the material's parameters are
+    Drucker-unstable (``dP/dl <= 0``) along the planar or uniaxial path: the message names
+    the model, its parameters, that stretch and the one reached.
+
+    Attributes
+    ----------
+    reached : float or None
+        The last converged load level (MPa for pressure paths).
+    stretch : float
+        Largest principal stretch (unitless) at the last converged state.
+    onset : float
+        The stretch (unitless) from which the parameters are Drucker-unstable.
+    param : str
+        ``"params"``: the material parameters are the input to change.
+
+    Parameters
+    ----------
+    message : str
+        One line.
+    reached : float, optional
+        The last converged load level.
+    stretch, onset : float
+        As the attributes.
+
+    Examples
+    --------
+    >>> err = MaterialInstabilityError("ogden1 is unstable", reached=0.54, stretch=3.3,
+    ...                                onset=3.1)
+    >>> isinstance(err, ConvergenceError), err.param
+    (True, 'params')
+    """
+
+    def __init__(self, message: str, reached: float | None = None, stretch: float = math.nan,
+                 onset: float = math.nan) -> None:
+        super().__init__(message, reached=reached)
+        self.reached = reached
+        self.stretch = stretch
+        self.onset = onset
+        self.param = "params"
+
+
 class PlausibilityWarning(UserWarning):
     """Data that parses and is physically possible, but unlikely to be what the user meant.
 
@@ -160,7 +213,76 @@ def warn_implausible(message: str) -> None:
     """
     import warnings
 
-    warnings.warn(message, PlausibilityWarning, stacklevel=3)
+    warnings.warn(message, PlausibilityWarning, stacklevel=_outside_stacklevel())
+
+
+def _outside_stacklevel() -> int:
+    """The ``stacklevel`` that points a warning at the first caller outside exofric.
+
+    Counted from the function that calls ``warnings.warn`` (level 1); exofric's own frames
+    (the argument-checking wrappers of the public functions included) are skipped, so the
+    warning names the user's line, as Python 3.12's ``skip_file_prefixes`` would.
+    """
+    import sys
+
+    root = os.path.dirname(os.path.abspath(__file__)) + os.sep
+    frame = sys._getframe(2)           # the caller of the function that warns
+    level = 2
+    while frame.f_back is not None and _inside(frame, root):
+        frame = frame.f_back
+        level += 1
+    return level
+
+
+def _inside(frame: FrameType, root: str) -> bool:
+    """Whether ``frame`` runs exofric's code: a file of the package, or code a dataclass
+    generated for one of its classes (``__init__``, with the defining module's globals)."""
+    name = frame.f_code.co_filename
+    return name.startswith(root) or (
+        name == "<string>" and str(frame.f_globals.get("__name__", "")).startswith("exofric."))
+
+
+#: Units after a whole number that make it a measured value (``1 MPa``, ``150%``, ``3 N``).
+_UNITS = r"(?:MPa|kPa|bar|mm|Nm|N|%|ms|s|Hz|Shore|deg|rad)(?![A-Za-z])"
+
+
+@functools.cache
+def _measured_number() -> re.Pattern[str]:
+    return re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+(?=[eE][-+]?\d))(?:[eE][-+]?\d+)?"
+                      rf"|[-+]?\d+(?=\s?{_UNITS})")
+
+
+def warning_key(category: type[Warning], message: str) -> tuple[type[Warning], str]:
+    """What makes two warnings "the same" when a batch of solves issues each kind once.
+
+    The category and the message with its measured numbers replaced by ``#``: a number with a
+    decimal point or an exponent (``1.23``, ``2e-3``) or a whole number followed by a unit
+    (``1 MPa``, ``150%``, ``3 N``). Other whole numbers name or count things (``test 6``,
+    ``3 of 64 samples``) and keep messages apart. Used by every "each warning once" batch
+    (the tolerance bands' samples, ``exofric predict``).
+
+    Parameters
+    ----------
+    category : type
+        The warning's class.
+    message : str
+        Its text.
+
+    Returns
+    -------
+    tuple
+        ``(category, message with the measured numbers as '#')``.
+
+    Examples
+    --------
+    >>> warning_key(UserWarning, "test 6: N = 1.23 N at 0.6 MPa")[1]
+    'test 6: N = # N at # MPa'
+    >>> warning_key(UserWarning, "N = 1.24 N") == warning_key(UserWarning, "N = 1.23 N")
+    True
+    >>> warning_key(UserWarning, "test 6") == warning_key(UserWarning, "test 7")
+    False
+    """
+    return category, _measured_number().sub("#", str(message))
 
 
 def check_finite(name: str, value: float) -> float:
@@ -335,7 +457,13 @@ def _series_array(name: str, values: ArrayLike, unit: str, pre: str) -> NDArray[
     import numpy as np
 
     try:
-        a = np.asarray(values, dtype=float).ravel()
+        raw = np.asarray(values)
+        numbers = raw.dtype.kind in "biuf" or (raw.dtype.kind == "O" and all(
+            isinstance(v, (int, float, np.number)) and not isinstance(v, bool)
+            for v in raw.ravel()))
+        if not numbers:       # text ("0.2", ["0.1", "0.2"]), None, other objects
+            raise ValueError
+        a = raw.astype(float).ravel()
     except (TypeError, ValueError):
         raise InputError(f"{pre}{name} must be a list of numbers{unit}",
                          param=name if name.isidentifier() else None) from None

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_finite, check_positive
 
 __all__ = ["Structure", "BASE", "check_size_mm"]
@@ -61,6 +62,7 @@ def check_size_mm(name: str, value: float, what: str = "") -> float:
     return v
 
 
+@checked_init
 @dataclass(frozen=True)
 class Structure:
     """A hole-tube-wire structure (all sizes in mm).

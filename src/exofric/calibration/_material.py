@@ -54,6 +54,7 @@ from exofric import defaults as D
 from exofric._display import DisplayMixin
 from exofric._lsq import correlation as correlation_matrix
 from exofric._lsq import lsq_covariance, standard_errors
+from exofric._validate import checked_init
 from exofric.errors import (
     ConvergenceError,
     InputError,
@@ -102,6 +103,7 @@ _MODE_NAMES = ("uniaxial", "biaxial", "planar")
 # Ring test data
 
 
+@checked_init
 @dataclass(frozen=True)
 class RingTest:
     """A ring tensile test: a ring cut from the tube, pulled over two pins; force per displacement.
@@ -212,6 +214,7 @@ def _unit_of(name: str) -> str:
     return "unitless"
 
 
+@checked_init
 @dataclass(frozen=True)
 class DatasetFit:
     """One dataset of a joint calibration: data, the fitted model's values, the misfit.
@@ -299,6 +302,7 @@ class DatasetFit:
         }
 
 
+@checked_init
 @dataclass(frozen=True)
 class MisfitProfile:
     """The misfit along one direction of relative parameter space, the forward models re-run.
@@ -367,6 +371,7 @@ class MisfitProfile:
         }
 
 
+@checked_init
 @dataclass(frozen=True)
 class Identifiability:
     """How well the data determine the parameters: eigen-analysis, correlation, profile.
@@ -451,6 +456,7 @@ class Identifiability:
         }
 
 
+@checked_init
 @dataclass(frozen=True)
 class MaterialCalibration(DisplayMixin):
     """A hyperelastic model (and tube ID) calibrated jointly to several tests.

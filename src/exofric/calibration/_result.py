@@ -19,6 +19,7 @@ import numpy as np
 from exofric import defaults
 from exofric._display import DisplayMixin
 from exofric._json import jsonable
+from exofric._validate import checked_init
 from exofric.errors import InputError, warn_implausible
 from exofric.material import MooneyRivlin
 
@@ -83,6 +84,7 @@ def _check_growth(name: str, where: str, p: np.ndarray, od: np.ndarray) -> None:
                          "it")
 
 
+@checked_init
 @dataclass(frozen=True)
 class InflationData:
     """Validated inflation test points, sorted by (shore, pressure).
@@ -214,6 +216,7 @@ class InflationData:
         return int(self.pressure_mpa.size)
 
 
+@checked_init
 @dataclass(frozen=True)
 class Trial:
     """One trial (hardness, tube ID) of a calibration and its errors (%).
@@ -260,6 +263,7 @@ class Trial:
         })
 
 
+@checked_init
 @dataclass(frozen=True)
 class CalibrationResult(DisplayMixin):
     """Identified Shore hardness and/or tube inner diameter, with errors and history.

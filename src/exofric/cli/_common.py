@@ -53,9 +53,14 @@ def parse_floats(name: str, text: str) -> list[float]:
     """Parse ``"0.1,0.2, 0.3"`` into floats; the error names the option."""
     from exofric.errors import InputError
 
-    out = []
-    for part in text.split(","):
-        part = part.strip()
+    out: list[float] = []
+    parts = [p.strip() for p in text.split(",")]
+    while parts and not parts[-1]:        # a trailing comma is forgiven
+        parts.pop()
+    for part in parts:
+        if not part and out:   # "0.3,,0.6": a number left out, not a separator typed twice
+            raise InputError(f"{name} has an empty item after {out[-1]:g} in {text!r}: give "
+                             "a number between each two commas")
         if not part:
             continue
         try:

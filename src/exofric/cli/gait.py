@@ -65,6 +65,7 @@ def _friction(struct: _GaitStructure, mat: MaterialOptions, gamma: float | None,
               p_max: float) -> tuple[Any, Any, str]:
     """(friction map, tube table or None, description)."""
     if not struct.given():
+        _nothing_for_the_map(struct, mat)
         return None, None, "paper Eq 9 (gamma x Eq 8 cubic)"
     import numpy as np
 
@@ -84,6 +85,20 @@ def _friction(struct: _GaitStructure, mat: MaterialOptions, gamma: float | None,
     fmap = CurveFrictionMap(tuple(map(float, res.pressure_mpa)),
                             tuple(map(float, res.squeeze_force_n)), g)
     return fmap, tube_volume_table(res), f"FE squeeze curve x gamma {g:g}"
+
+
+def _nothing_for_the_map(struct: _GaitStructure, mat: MaterialOptions) -> None:
+    """Without a structure the map is the paper's Eq 9: a material or a length given would be
+    ignored silently (issue 38), so it is an error naming the option."""
+    from exofric.errors import InputError
+
+    given = [f"--{k.replace('_', '-')}" for k in ("shore", "c10", "c01", "d", "model", "params")
+             if getattr(mat, k) is not None]
+    given += ["--length"] if struct.length != 116.0 else []
+    if given:
+        raise InputError(f"{given[0]} sets the FE friction map's tube: give it with --hole, "
+                         "--tube-od, --tube-id and --wire (without them the map is the "
+                         "paper's Eq 9)", param=given[0].lstrip("-"))
 
 
 def _fig12() -> dict[str, Any]:

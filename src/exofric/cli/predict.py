@@ -238,7 +238,12 @@ def _structures(use_paper: bool, structures: str | None, one: _OneStructure
     if structures is not None:
         if not Path(str(structures)).is_file():
             raise InputError(f"{structures}: file not found")
-        return structures_from_dict(read_toml(str(structures)), BASE)
+        try:
+            return structures_from_dict(read_toml(str(structures)), BASE)
+        except InputError as exc:   # about the file: its keys (hole_mm) are not flags (--hole)
+            why = str(exc).removeprefix("structures file: ")
+            raise InputError(f"{Path(str(structures)).name}: {why}", param="structures") \
+                from None
     if any(v is None for v in (one.hole, one.tube_od, one.tube_id, one.wire)):
         raise InputError("one structure needs all of --hole, --tube-od, --tube-id and "
                          "--wire (mm)", param="hole")
@@ -321,11 +326,12 @@ def _add_bands(d: dict[str, Any], res: Any, model: Any, bands: dict[str, Any]) -
 
 def _warnings_once() -> Any:
     """Context: the warnings raised inside it, each kind once (the first of the messages that
-    differ only in their measured numbers, not in a structure's name; issue 34), issued when
-    it ends."""
-    import re
+    differ only in their measured numbers, not in a structure's name: issue 34,
+    :func:`exofric.errors.warning_key`), issued when it ends."""
     import warnings
     from contextlib import contextmanager
+
+    from exofric.errors import warning_key
 
     @contextmanager
     def ctx() -> Any:
@@ -337,10 +343,7 @@ def _warnings_once() -> Any:
                 pending = list(caught)
         seen: dict[Any, Any] = {}
         for w in pending:
-            # measured numbers (with a point or an exponent) vary between samples; whole
-            # numbers name things ("test 6") and keep messages apart
-            key = re.sub(r"[-+]?\d+(?:\.\d*)?[eE][-+]?\d+|[-+]?\d+\.\d*", "#", str(w.message))
-            seen.setdefault((w.category, key), w)
+            seen.setdefault(warning_key(w.category, str(w.message)), w)
         for w in seen.values():
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, registry=None)
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError
 
 if TYPE_CHECKING:
@@ -28,6 +29,7 @@ __all__ = ["ClosedLoopResult", "closed_loop"]
 FeedforwardKind = Literal["2dof", "static"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class ClosedLoopResult(DisplayMixin):
     """A closed-loop friction step: the gains, the trajectories and their metrics (N, MPa, s).

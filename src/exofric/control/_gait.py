@@ -47,6 +47,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from exofric._display import DisplayMixin, HtmlReprMixin
+from exofric._validate import checked_init
 from exofric.control._gait_controllers import (
     IterativeLearning,
     PlantModel,
@@ -125,6 +126,7 @@ class GaitLike(Protocol):
     knee_moment_nm: NDArray[np.float64]
 
 
+@checked_init
 @dataclass(frozen=True)
 class GaitSetup:
     """The gait scenario: assistance, joint, sensor, timing and controller settings.
@@ -649,6 +651,7 @@ def _capstan(s: GaitSetup, direction: str) -> float:
 # ---- metrics ------------------------------------------------------------------------------------
 
 
+@checked_init
 @dataclass(frozen=True)
 class StrideMetrics:
     """How one stride went (see :func:`simulate_gait`).
@@ -752,6 +755,7 @@ def _metrics(ctx: _Context, tr: _Trace) -> tuple[StrideMetrics, ...]:
 # ---- results ------------------------------------------------------------------------------------
 
 
+@checked_init
 @dataclass(frozen=True)
 class GaitResult(HtmlReprMixin):
     """One controller through ``strides`` strides (built by :func:`simulate_gait`).
@@ -985,6 +989,7 @@ def simulate_gait(
         float(np.max(np.abs(prof.demand))), tuple(str(w.message) for w in caught))
 
 
+@checked_init
 @dataclass(frozen=True)
 class GaitComparison(DisplayMixin):
     """Every controller on one scenario (built by :func:`compare_gait`).
@@ -1081,6 +1086,7 @@ def compare_gait(gait: GaitLike, setup: GaitSetup | None = None, *,
 SIZING_CONDUCTANCES = (0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4)
 
 
+@checked_init
 @dataclass(frozen=True)
 class GaitSizing(DisplayMixin):
     """Valve sizing from a sweep of the ports' sonic conductance (built by :func:`size_valve`).

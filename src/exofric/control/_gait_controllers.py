@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from exofric._validate import checked_init
 from exofric.control._pid import ModelFeedforward
 from exofric.errors import InputError, check_range
 
@@ -113,6 +114,7 @@ def box_lsq(a: NDArray[np.float64], b: NDArray[np.float64], lo: float, hi: float
     return np.clip(x, lo, hi)
 
 
+@checked_init
 @dataclass(frozen=True)
 class PlantModel:
     """First-order-plus-dead-time pressure model p' = (K u(t - d) - p) / tau.

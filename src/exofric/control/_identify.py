@@ -30,12 +30,14 @@ from numpy.typing import ArrayLike, NDArray
 from exofric import defaults
 from exofric._display import DisplayMixin
 from exofric._lsq import lsq_covariance, residual_variance, standard_errors
+from exofric._validate import checked_init
 from exofric.control._plant import PlantParams
 from exofric.errors import InputError, check_series, warn_implausible
 
 __all__ = ["IdentifiedPlant", "identify_step", "fopdt_response"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class IdentifiedPlant(DisplayMixin):
     """A fitted first-order-plus-dead-time pressure supply and its fit quality.

@@ -24,11 +24,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_range, check_series
 
 __all__ = ["StepMetrics", "step_metrics", "itae"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class StepMetrics(DisplayMixin):
     """Metrics of one step response (s, %, and the response's unit, N for friction).

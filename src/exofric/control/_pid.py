@@ -43,6 +43,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
+from exofric._validate import checked_init
 from exofric.control._plant import PlantParams, PressurePlant
 from exofric.errors import InputError, check_finite, check_range
 
@@ -54,6 +55,7 @@ AntiWindup = Literal["back-calculation", "clamping", "none"]
 _AW = ("back-calculation", "clamping", "none")
 
 
+@checked_init
 @dataclass(frozen=True)
 class PIDGains:
     """Parallel PID gains of Eq 10 for a friction loop (error in N, command in MPa).

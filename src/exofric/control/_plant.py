@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_finite, check_positive, check_range
 from exofric.friction import (
     CubicFit,
@@ -57,6 +58,7 @@ __all__ = [
 FrictionFn = Callable[[float], float]
 
 
+@checked_init
 @dataclass(frozen=True)
 class PlantParams:
     """Pneumatic supply and sensor parameters (defaults: a small pneumatic supply).
@@ -250,6 +252,7 @@ def _as_array(p: ArrayLike) -> tuple[NDArray[np.float64], bool]:
     return arr, arr.ndim == 0
 
 
+@checked_init
 @dataclass(frozen=True)
 class CubicFrictionMap:
     """Friction F(P) = scale * gamma * N(P) from a cubic N(P) (Eq 9), clipped to F >= 0.
@@ -357,6 +360,7 @@ class CubicFrictionMap:
                 "scale": self.scale}
 
 
+@checked_init
 @dataclass(frozen=True)
 class CurveFrictionMap:
     """Friction F(P) = scale * gamma * N(P) from a tabulated (FE) squeeze curve N(P).

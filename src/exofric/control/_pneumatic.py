@@ -53,6 +53,7 @@ from numpy.typing import ArrayLike, NDArray
 from exofric import defaults as D
 from exofric._display import DisplayMixin
 from exofric._lsq import lsq_covariance, residual_variance, standard_errors
+from exofric._validate import checked_init
 from exofric.control._identify import IdentifiedPlant, identify_step
 from exofric.errors import (
     InputError,
@@ -120,6 +121,7 @@ def _flow_factor(c_dm3_per_s_bar: float, temperature_k: float) -> float:
     return c_dm3_per_s_bar * 1e-2 * RHO0_KG_PER_M3 * math.sqrt(T0_K / temperature_k)
 
 
+@checked_init
 @dataclass(frozen=True)
 class Orifice:
     """An ISO 6358 flow restriction (valve port): sonic conductance C and critical ratio b.
@@ -223,6 +225,7 @@ class Orifice:
         return float(m) if scalar else m
 
 
+@checked_init
 @dataclass(frozen=True)
 class PneumaticParams:
     """Parameters of the physical pneumatic plant (defaults: assumptions, not measurements).
@@ -905,6 +908,7 @@ def simulate_charge(
     return pd.DataFrame({"time_s": t, "pressure_mpa": p, "command_mpa": cmd})
 
 
+@checked_init
 @dataclass(frozen=True)
 class ChargeFit(DisplayMixin):
     """Sonic conductances and volume fitted to charge/discharge transients, and the fit.

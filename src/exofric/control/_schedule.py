@@ -43,6 +43,7 @@ import numpy as np
 
 from exofric import defaults as D
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.control._metrics import step_metrics
 from exofric.control._pid import Controller, ModelFeedforward, PIDGains
 from exofric.control._plant import CurveFrictionMap, FrictionFn, PlantParams, local_slope
@@ -633,6 +634,7 @@ class HysteresisInverse:
 # The comparison.
 
 
+@checked_init
 @dataclass(frozen=True)
 class StrategyRow:
     """One strategy on one scenario: metrics of the last step (s, %, N).
@@ -681,6 +683,7 @@ class StrategyRow:
         return asdict(self)
 
 
+@checked_init
 @dataclass(frozen=True)
 class StrategyTable(DisplayMixin):
     """Settling time, overshoot and steady-state error of every strategy and scenario.
@@ -815,6 +818,7 @@ def _label(start: float, target: float) -> str:
         f"{'down' if target < start else 'up'} {start:g}->{target:g} N")
 
 
+@checked_init
 @dataclass(frozen=True)
 class StrategyOptions:
     """Which loops :func:`compare_strategies` builds, how it tunes them, how it judges a step.

@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.control._pid import Controller
 from exofric.control._plant import FrictionFn, PlantParams, PressurePlant
 from exofric.errors import InputError, check_range, check_series
@@ -66,6 +67,7 @@ class PlantLike(Protocol):
         ...
 
 
+@checked_init
 @dataclass(frozen=True)
 class SimulationResult(DisplayMixin):
     """Sampled closed-loop trajectories (length n + 1, sample k at time k dt).

@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.control._metrics import itae
 from exofric.control._pid import Controller, ModelFeedforward, PIDGains
 from exofric.control._plant import FrictionFn, PlantParams
@@ -44,6 +45,7 @@ __all__ = ["TuningResult", "rule_gains", "itae_gains", "CONTROLLERS"]
 CONTROLLERS = ("pd", "pi", "pid")
 
 
+@checked_init
 @dataclass(frozen=True)
 class TuningResult(DisplayMixin):
     """Gains and how they were obtained.

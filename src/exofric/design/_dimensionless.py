@@ -57,6 +57,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_positive
 from exofric.friction import deviation
 from exofric.geometry import BASE, Structure
@@ -189,6 +190,7 @@ def _add_geometric_groups(f: pd.DataFrame) -> None:
     f["wire_ratio"] = f["wire_mm"].to_numpy(float) / d1
 
 
+@checked_init
 @dataclass(frozen=True)
 class Applicability:
     """How far a design is from the calibration designs, in the dimensionless groups.

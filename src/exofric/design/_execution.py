@@ -38,6 +38,7 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric.design._spec import SolverSpec
 from exofric.errors import InputError
 
@@ -51,6 +52,7 @@ EXECUTORS = ("auto", "serial", "processes", "dask")
 BLAS_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
 
+@checked_init
 @dataclass(frozen=True)
 class ExecutionPlan:
     """Where a sweep's designs are solved, and why.

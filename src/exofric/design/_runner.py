@@ -53,6 +53,7 @@ import numpy as np
 import pandas as pd
 
 from exofric._display import DisplayMixin, HtmlReprMixin
+from exofric._validate import checked_init
 from exofric.design._execution import (
     BLAS_ENV,
     ExecutionPlan,
@@ -76,6 +77,7 @@ ProgressFn = Callable[[int, int, str], None]
 SolveFn = Callable[..., Any]
 
 
+@checked_init
 @dataclass(frozen=True)
 class SweepSummary(DisplayMixin):
     """What one :func:`run_sweep` call did.
@@ -142,6 +144,7 @@ class SweepSummary(DisplayMixin):
                 "execution_reason": self.execution_reason}
 
 
+@checked_init
 @dataclass(frozen=True)
 class SweepRun(HtmlReprMixin):
     """Summary and rows (one per design and pressure) of a sweep.

@@ -30,6 +30,7 @@ import pandas as pd
 
 from exofric import defaults as D
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_finite, check_positive, check_range
 from exofric.friction import FrictionModel, SqueezeCurve
 
@@ -58,6 +59,7 @@ _CANDIDATE_COLS = (
 )
 
 
+@checked_init
 @dataclass(frozen=True)
 class DesignSearch(DisplayMixin):
     """Designs of a sweep ranked against a target torque (Nm) at a pressure limit (MPa).

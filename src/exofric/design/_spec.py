@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric._version import __version__
 from exofric.errors import InputError, check_positive, check_pressures, check_range
 from exofric.fe import MeshSpec, NewtonSettings
@@ -53,6 +54,7 @@ _SHORT = {"hole_mm": "D", "tube_od_mm": "d1", "tube_id_mm": "ID", "wall_mm": "t"
           "shore": "S", "length_mm": "L"}
 
 
+@checked_init
 @dataclass(frozen=True)
 class SolverSpec:
     """Squeeze solver settings for every design (see :func:`exofric.simulate.squeeze`).
@@ -108,6 +110,7 @@ class SolverSpec:
         return asdict(self)
 
 
+@checked_init
 @dataclass(frozen=True)
 class MaterialSpec:
     """How a design's Shore A hardness becomes a Mooney-Rivlin material (paper Eqs 3-6).
@@ -152,6 +155,7 @@ class MaterialSpec:
         return asdict(self)
 
 
+@checked_init
 @dataclass(frozen=True)
 class Design:
     """One point of the design space (sizes in mm, hardness in Shore A).
@@ -209,6 +213,7 @@ class Design:
         return asdict(self)
 
 
+@checked_init
 @dataclass(frozen=True)
 class SweepSpec:
     """A validated sweep: designs, pressures (MPa), friction post-processing, solver.

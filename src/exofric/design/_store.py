@@ -35,6 +35,7 @@ import numpy as np
 import pandas as pd
 import pyarrow as pa
 
+from exofric._validate import checked_init
 from exofric.design._spec import SweepSpec, parse_sweep
 from exofric.errors import InputError
 from exofric.io import ParquetStore, QuarantinedFile, read_toml
@@ -297,6 +298,7 @@ def check_rows(key: str, status: str, table: pa.Table) -> str:
     return ""
 
 
+@checked_init
 @dataclass(frozen=True)
 class SweepCheck:
     """What :func:`verify_sweep` found in a sweep folder.

@@ -69,6 +69,7 @@ import scipy.linalg
 import scipy.spatial.distance
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.design._dimensionless import (
     GROUPS,
     _add_geometric_groups,
@@ -174,6 +175,7 @@ def _box(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return lo, np.where(keep, span, 1.0), keep
 
 
+@checked_init
 @dataclass(frozen=True)
 class SqueezeSurrogate:
     """A fitted surrogate of N(P) (see the module docstring); build with :func:`fit_surrogate`.
@@ -487,6 +489,7 @@ def candidate_designs(spec: SweepSpec, n: int = N_CANDIDATES, seed: int = 0) -> 
     return out
 
 
+@checked_init
 @dataclass(frozen=True)
 class SurrogateSearch(DisplayMixin):
     """A design search on the surrogate, its best designs confirmed with the FE solver.

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exofric._validate import checked_init
 from exofric.errors import InputError
 
 __all__ = ["ReferenceData", "reference_data", "lagrange_1d", "shape_2d", "pressure_basis"]
@@ -112,6 +113,7 @@ def pressure_basis(order: int, xi: np.ndarray, eta: np.ndarray) -> np.ndarray:
     return np.stack([one, xi, eta], axis=1) if order == 2 else one[:, None]
 
 
+@checked_init
 @dataclass(frozen=True)
 class ReferenceData:
     """Per-mesh constants of the element integrals.

@@ -17,11 +17,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_positive
 
 __all__ = ["TubeMesh", "polar_mesh", "graded_angles", "two_sided_angles"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class TubeMesh:
     """A structured polar mesh of a tube (coordinates in mm, centre at the origin).

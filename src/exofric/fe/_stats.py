@@ -12,9 +12,12 @@ from contextvars import ContextVar
 from dataclasses import asdict, dataclass
 from typing import Any
 
+from exofric._validate import checked_init
+
 __all__ = ["SolverStats", "StatsCollector", "collect_stats", "collecting", "record_attempt"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class SolverStats:
     """Where a solve's Newton work went (accumulated by :func:`collect_stats`).

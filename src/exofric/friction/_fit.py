@@ -55,6 +55,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from exofric._display import DisplayMixin
 from exofric._lsq import hc3_covariance, lsq_covariance, residual_variance
+from exofric._validate import checked_init
 from exofric.errors import (
     ConvergenceError,
     InputError,
@@ -173,6 +174,7 @@ def _signed_max(err_pct: NDArray[np.float64]) -> float:
     return float(e[np.argmax(np.abs(e))])
 
 
+@checked_init
 @dataclass(frozen=True)
 class LackOfFit:
     """Lack-of-fit F test of the least-squares fit against the cluster (replicate) means.
@@ -240,6 +242,7 @@ class LackOfFit:
         }
 
 
+@checked_init
 @dataclass(frozen=True)
 class GammaFit(DisplayMixin):
     """Result of the Eq 7 least-squares fit of gamma (and F0 for the affine model).

@@ -77,6 +77,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from exofric._display import DisplayMixin
 from exofric._lsq import hc3_covariance, lsq_covariance, residual_variance, standard_errors
+from exofric._validate import checked_init
 from exofric.errors import (
     InputError,
     check_finite,
@@ -131,6 +132,7 @@ class IdentifiabilityWarning(UserWarning):
     """
 
 
+@checked_init
 @dataclass(frozen=True)
 class InterfaceFrictionModel:
     """The interface-resolved friction law F = mu_tube S_wire + mu_wall N_wall + F0 (N).
@@ -285,6 +287,7 @@ def _get(source: Any, key: str) -> Any:
     return value
 
 
+@checked_init
 @dataclass(frozen=True, init=False)
 class InterfaceCurves:
     """One structure's FE curves S_wire(P) and N(P), interpolated by monotone PCHIP.
@@ -475,6 +478,7 @@ class InterfaceCurves:
                 "wrap_ratio": list(self.wrap_ratio)}
 
 
+@checked_init
 @dataclass(frozen=True)
 class InterfaceTest:
     """Friction tests of one structure with its FE curves: one block of :func:`fit_interfaces`.
@@ -528,6 +532,7 @@ class InterfaceTest:
         object.__setattr__(self, "groups", g)
 
 
+@checked_init
 @dataclass(frozen=True)
 class InterfaceFit(DisplayMixin):
     """Result of :func:`fit_interfaces`: mu_tube, mu_wall (unitless) and F0 (N) with CIs.
@@ -1161,6 +1166,7 @@ def fit_interfaces(
                              lof)
 
 
+@checked_init
 @dataclass(frozen=True)
 class InterfaceRigRun(DisplayMixin):
     """Virtual-rig tests of one structure with a planted interface law (SYNTHETIC).

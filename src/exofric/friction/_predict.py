@@ -46,6 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_positive, check_pressures, check_series
 from exofric.friction._fit import relative_errors
 from exofric.friction._interfaces import WIRE_KEY, _get
@@ -95,6 +96,7 @@ class ApplicabilityWarning(UserWarning):
     """
 
 
+@checked_init
 @dataclass(frozen=True)
 class Deviation:
     """Geometric deviation of a structure from the base group (see module docstring).
@@ -319,6 +321,7 @@ def _structure(row: Any, scale_from: Structure | None, where: str, base: Structu
         raise InputError(f"structures file: {where}: sizes must be numbers in mm") from None
 
 
+@checked_init
 @dataclass(frozen=True)
 class MeasuredCurve:
     """A measured friction curve: pressures (MPa) and friction forces (N).
@@ -401,6 +404,7 @@ def _law_params(model: FrictionLaw) -> dict[str, Any]:
     return {k: v for k, v in model.to_dict().items() if k != "law"}
 
 
+@checked_init
 @dataclass(frozen=True)
 class LawPrediction:
     """One law's predicted friction for one structure, and its errors (N, %).
@@ -455,6 +459,7 @@ class LawPrediction:
         }
 
 
+@checked_init
 @dataclass(frozen=True)
 class Prediction(DisplayMixin):
     """Predicted friction for one structure (MPa, N, %, Nm).
@@ -619,6 +624,7 @@ class Prediction(DisplayMixin):
         return pd.DataFrame(cols)
 
 
+@checked_init
 @dataclass(frozen=True)
 class PredictionSet(DisplayMixin):
     """Predictions for several structures, plus the ANOVA vs the base group when measured.

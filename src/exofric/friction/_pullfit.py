@@ -140,6 +140,7 @@ class PullFitSettings:
             check_range(f"start {k}", v, 0.0, 2.0)
 
 
+@checked_init
 @dataclass(frozen=True)
 class PulloutFit(DisplayMixin):
     """Friction coefficients fitted to measured pulls, with intervals (unitless; N, mm, MPa).

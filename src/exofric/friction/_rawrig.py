@@ -204,6 +204,7 @@ class RawRigConfig:
         return dict(asdict(self))
 
 
+@checked_init
 @dataclass(frozen=True)
 class RawRigLog(DisplayMixin):
     """A synthetic raw rig log and the truths planted in it.

@@ -159,6 +159,7 @@ class ReduceSettings:
         return dict(asdict(self))
 
 
+@checked_init
 @dataclass(frozen=True)
 class RigReduction(DisplayMixin):
     """Pulls, skipped pulls, plateaus, the friction curve and hysteresis of one raw log.

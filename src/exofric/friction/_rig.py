@@ -42,6 +42,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import (
     InputError,
     check_finite,
@@ -56,6 +57,7 @@ from exofric.friction._law import FrictionLaw, curve_column, law_columns
 __all__ = ["RigConfig", "RigRun", "simulate_law_rig", "simulate_rig"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class RigConfig:
     """Settings of the virtual rig (s, mm/s, Hz, mm, %, N, N/s, MPa).
@@ -149,6 +151,7 @@ class RigConfig:
         return dict(asdict(self))
 
 
+@checked_init
 @dataclass(frozen=True)
 class RigRun(DisplayMixin):
     """A synthetic friction test: raw logs and one friction value per pressure step.

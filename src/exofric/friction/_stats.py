@@ -25,11 +25,13 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_range
 
 __all__ = ["AnovaResult", "one_way_anova", "anova_vs_base"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class AnovaResult(DisplayMixin):
     """One-way ANOVA table for k groups (errors in any unit, usually %).

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_pressures, check_range, warn_implausible
 from exofric.friction._torque import capstan_factor
 
@@ -24,6 +25,7 @@ if TYPE_CHECKING:
 __all__ = ["JointStiffness", "joint_stiffness"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class JointStiffness(DisplayMixin):
     """The locked knee: stiffness K(P) (Nm/rad) and breakaway torque T_break(P) (Nm).
@@ -172,20 +174,18 @@ def joint_stiffness(
         warn_implausible(f"radius_m = {r_m:g} m: a knee's lever arm is a few centimetres")
     cap = capstan_factor(wrap_deg, mu_arc, "locking")
     L = setup.structure.length_mm
-    if not (0.0 < float(displacement_mm) <= L):
-        raise InputError(f"displacement_mm must be in (0, {L:g}] mm, got {displacement_mm!r}",
-                         param="displacement_mm")
+    travel = setup.travel_mm(displacement_mm)    # pullout's own check, before the squeeze
     res = SqueezeSetup(setup.structure, setup.material, accuracy=setup.accuracy,
                        mesh=setup.mesh, keep_fields=True).solve(list(p))
     K, Tb, Ts, Fb, angs, tqs = [], [], [], [], [], []
     notes: list[str] = []
     for k in range(len(p)):
-        r = pullout(setup, float(p[k]), displacement_mm=float(displacement_mm),
+        r = pullout(setup, float(p[k]), displacement_mm=travel,
                     squeeze_result=res, squeeze_index=k, first_loading=True)
         notes += [f"P = {p[k]:g} MPa: {n}" for n in r.notes]
         if r.section.initial_stiffness_n_per_mm2 > 0 and r.slip_length_mm[-1] < L:
             notes.append(f"P = {p[k]:g} MPa: the whole length does not slide within "
-                         f"{displacement_mm:g} mm: T_break is the largest torque reached "
+                         f"{travel:g} mm: T_break is the largest torque reached "
                          "(increase displacement_mm)")
         theta = r.displacement_mm / (1000.0 * r_m)
         torque = cap * r.force_n * r_m

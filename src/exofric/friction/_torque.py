@@ -39,6 +39,7 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_finite, check_positive, check_range
 
 __all__ = ["TorqueCheck", "capstan_factor", "torque"]
@@ -90,6 +91,7 @@ def capstan_factor(wrap_deg: float, mu_arc: float, direction: str = "locking") -
     return math.exp(sign * mu * theta)
 
 
+@checked_init
 @dataclass(frozen=True)
 class TorqueCheck(DisplayMixin):
     """Joint torque T = F R and whether it lies within a requirement [min, max] Nm.

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 from urllib.parse import parse_qs, urlsplit
 
 from exofric import defaults as D
+from exofric._validate import checked_init
 from exofric.errors import InputError
 
 if TYPE_CHECKING:
@@ -175,6 +176,7 @@ class LoopFault(RuntimeError):
         return EXIT_FAULT if self.vent_confirmed else EXIT_VENT_NOT_CONFIRMED
 
 
+@checked_init
 @dataclass(frozen=True)
 class Reading:
     """One sample of the rig's sensors.
@@ -303,6 +305,7 @@ class DeviceBase:
             self.close()
 
 
+@checked_init
 @dataclass(frozen=True)
 class DeviceURL:
     """A parsed device URL.

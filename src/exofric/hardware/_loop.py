@@ -56,6 +56,7 @@ import numpy as np
 
 from exofric import defaults as D
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, PlausibilityWarning, check_range
 from exofric.hardware._clock import RealClock
 from exofric.hardware._device import DeviceError, LoopFault, SensorStale
@@ -82,6 +83,7 @@ _FLUSH_EVERY = 50
 TIMING_WARN_FRACTION = 0.01
 
 
+@checked_init
 @dataclass(frozen=True)
 class SafetyLimits:
     """Pressure and force limits of a control run.
@@ -121,6 +123,7 @@ class SafetyLimits:
         return round(LOOP_TRIP_PRESSURE_FACTOR * self.max_pressure_mpa, 12) if t is None else t
 
 
+@checked_init
 @dataclass(frozen=True)
 class LoopResult(DisplayMixin):
     """What a control run did: timing, how it stopped, step metrics, the samples.

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from exofric._validate import checked_init
 from exofric.hardware._device import (
     DEFAULT_BAUD,
     DEFAULT_CONNECT_TIMEOUT_S,
@@ -78,6 +79,7 @@ _HEART_KEYS = {"table", "address", "type", "word_order"}
 _MAX_READ = 125
 
 
+@checked_init
 @dataclass(frozen=True)
 class RegisterSpec:
     """Where one signal lives and how its registers map to physical units.
@@ -135,6 +137,7 @@ class RegisterSpec:
         return f"{self.name} ({self.table} register {self.address}, {self.type})"
 
 
+@checked_init
 @dataclass(frozen=True)
 class RegisterMap:
     """A checked register map: one :class:`RegisterSpec` per signal.

@@ -141,10 +141,12 @@ def read_table(
                 raise InputError(f"{name}: duplicate {col} {dup.iloc[0]:g}{where}")
             if len(sub) < min_rows:
                 raise InputError(
-                    f"{name}: needs at least {min_rows} data rows{where}, got {len(sub)}"
+                    f"{name}: needs at least {min_rows} data row{'s' * (min_rows != 1)}"
+                    f"{where}, got {len(sub)}"
                 )
     elif len(df) < min_rows:
-        raise InputError(f"{name}: needs at least {min_rows} data rows, got {len(df)}")
+        raise InputError(f"{name}: needs at least {min_rows} data row{'s' * (min_rows != 1)}, "
+                         f"got {len(df)}")
     df = df.reset_index(drop=True)
     df.attrs.update({"units": {c: pk.unit for c, pk in picks.items() if pk.unit is not None},
                      "columns": {c: pk.header for c, pk in picks.items()},

@@ -39,6 +39,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError
 from exofric.io._table import (
     Grid,
@@ -67,6 +68,7 @@ _MOMENT = re.compile(r"^knee(?:_angle|_flexion)?(?:_(?P<side>[rl]))?_(?:moment|t
 _MIN_SAMPLES = 10
 
 
+@checked_init
 @dataclass(frozen=True)
 class GaitData(DisplayMixin):
     """Knee flexion angle and moment over time (walking data), as read by :func:`read_gait`.
@@ -258,8 +260,8 @@ def _series(grid: Grid, i: int) -> NDArray[np.float64]:
     v = numeric_column(grid.column(i), grid.headers[i], grid.source, grid.row)
     if not np.all(np.isfinite(v)):
         k = int(np.flatnonzero(~np.isfinite(v))[0])
-        raise InputError(f"{grid.source}: {grid.row(k)}, column {grid.headers[i]!r} is empty or "
-                         "not a number")
+        what = "empty or NaN" if np.isnan(v[k]) else f"not finite: {v[k]:g}"
+        raise InputError(f"{grid.source}: {grid.row(k)}, column {grid.headers[i]!r} is {what}")
     return v
 
 

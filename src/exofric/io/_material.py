@@ -341,8 +341,9 @@ def _read_grid(p: Path) -> tuple[pd.DataFrame, dict[str, str | None], dict[str, 
         if bad.size:
             k = int(bad[0])
             cell = pd.Series(raw).iloc[k]
-            what = "empty" if str(cell).strip() in ("", "nan") else \
-                f"not a finite number: {cell!r}"
+            shown = repr(cell) if isinstance(cell, str) else str(cell)   # inf, not np.float64(inf)
+            what = "empty or NaN" if str(cell).strip() in ("", "nan") else \
+                f"not a finite number: {shown}"
             raise InputError(f"{name}: {grid.row(k)}, column {h!r} is {what}")
         cols[h] = vals
         units_found[h] = grid.units[i] if i < len(grid.units) else None

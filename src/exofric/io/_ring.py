@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exofric.errors import InputError
+from exofric.errors import InputError, warn_implausible
 from exofric.io._files import read_table
 from exofric.io._table import _decode
 
@@ -141,4 +141,9 @@ def read_ring_test(path: str | Path, columns: Mapping[str, str] | None = None
         k = int(back[0]) + 1
         raise InputError(f"{p.name}: data row {k + 1}, column 'displacement_mm' must increase "
                          f"strictly (one loading curve), got {d[k]:g} mm after {d[k - 1]:g}")
+    neg = np.flatnonzero(f < 0.0)
+    if neg.size:   # a tare offset can dip below 0 near the start; a whole curve below is a sign
+        warn_implausible(f"{p.name}: column 'force_n' is negative in {neg.size} of {f.size} "
+                         f"rows (from data row {neg[0] + 1}: {f[neg[0]]:g} N): the pins pull "
+                         "the ring apart, its force is >= 0; check the sign convention")
     return d, f

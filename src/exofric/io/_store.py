@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from exofric._validate import checked_init
 from exofric.errors import InputError
 from exofric.io._files import atomic_path, read_json, write_json
 
@@ -68,6 +69,7 @@ def content_sha256(table: pa.Table) -> str:
     return h.hexdigest()
 
 
+@checked_init
 @dataclass(frozen=True)
 class QuarantinedFile:
     """A stored file that failed verification and is no longer trusted.

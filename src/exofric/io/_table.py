@@ -425,8 +425,8 @@ def _text_grid(p: Path, name: str, *, text: bool = False, comment: bool = False)
             if len(content) >= 300:
                 break
     if not content:
-        raise InputError(f"{name}: no header row (expected column names such as time_s, "
-                         "pressure_<unit>, force_<unit>)")
+        raise InputError(f"{name}: no header row: the file is empty or holds only # comments "
+                         "(expected a row of column names with units, e.g. pressure_mpa)")
     sep = _choose_sep([c[1] for c in content])
     rows = [_split_fields(c[1], sep) for c in content]
     flat = [f for r in rows[-20:] for f in r]
@@ -724,10 +724,23 @@ def _read_grids(p: Path, *, text: bool, comment: bool, strict: bool) -> list[Gri
     if suffix in (".parquet", ".pq"):
         return [_parquet_grid(p, name)]
     if suffix in (".xlsx", ".xlsm"):
-        return [_excel_grid(p, name)]
+        return [_unique_headers(_excel_grid(p, name))]
     if suffix == ".lvm":
         return [_lvm_grid(p, name, text=text)]
-    return [_text_grid(p, name, text=text, comment=comment)]
+    return [_unique_headers(_text_grid(p, name, text=text, comment=comment))]
+
+
+def _unique_headers(grid: Grid) -> Grid:
+    """``grid``, or an InputError if two columns have the same (non-empty) header, case aside:
+    which one a reader took would be a silent choice (issue 38)."""
+    keys = [h.strip().lower() for h in grid.headers]
+    for i, key in enumerate(keys):
+        same = [j for j, k in enumerate(keys) if k == key]
+        if key and len(same) > 1:
+            raise InputError(f"{grid.source}: column {grid.headers[i]!r} is in the file "
+                             f"{len(same)} times (columns {', '.join(str(j + 1) for j in same)}"
+                             "); rename all but one")
+    return grid
 
 
 def file_sha256(path: str | Path) -> str:

@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Any
 from exofric import defaults as D
 from exofric._display import DisplayMixin
 from exofric._lsq import correlation, lsq_covariance, standard_errors
+from exofric._validate import checked_init
 from exofric.errors import InputError, warn_implausible
 from exofric.material._hyperelastic import (
     HYPERELASTIC_MODELS,
@@ -62,6 +63,7 @@ __all__ = ["MaterialFit", "ModeFit", "ModeStability", "fit_material"]
 RESIDUALS = ("absolute", "relative")
 
 
+@checked_init
 @dataclass(frozen=True)
 class ModeFit:
     """Data and goodness of fit of one test mode.
@@ -118,6 +120,7 @@ class ModeFit:
                 "rms_mpa": self.rms_mpa, "stress_kind": self.stress_kind}
 
 
+@checked_init
 @dataclass(frozen=True)
 class ModeStability:
     """Drucker stability of a fitted model along one homogeneous path, over a stretch range.
@@ -157,6 +160,7 @@ class ModeStability:
                 "unstable_from": self.unstable_from}
 
 
+@checked_init
 @dataclass(frozen=True)
 class MaterialFit(DisplayMixin):
     """A hyperelastic model fitted to test data, with its uncertainty and stability.
@@ -364,6 +368,14 @@ def _mode_data(mode: str, data: Any, kind: str) -> tuple[NDArray[np.float64],
         i = int(np.flatnonzero(step * (1 if step[0] > 0 else -1) <= 0.0)[0]) + 1
         raise InputError(f"{mode}: stretch must be strictly monotonic (one loading curve), got "
                          f"{lam[i - 1]:g} then {lam[i]:g} at index {i}", param=mode)
+    wrong = np.flatnonzero((lam - 1.0) * p < 0.0)
+    if 2 * wrong.size > lam.size:   # tension pulls, compression pushes: mostly the other sign
+        # is a sign convention slipped (a few points: a tare offset, or an unstable curve that
+        # falls through zero, which the stability check names)
+        warn_implausible(f"{mode}: stress_mpa has the sign of the other direction at "
+                         f"{wrong.size} of {lam.size} points (first: stretch "
+                         f"{lam[wrong[0]]:g}, stress {p[wrong[0]]:g} MPa): check the sign "
+                         "convention or a tare offset")
     if kind == "true":
         p = p / lam  # sigma = l P in the loaded direction of all three modes
     return lam, p
@@ -1010,6 +1022,10 @@ def _fit_data(name: str, given: dict[str, Any], kinds: dict[str, str],
     if n_pts < n_par:
         raise InputError(f"{name} has {n_par} parameters: it needs at least {n_par} data "
                          f"points, got {n_pts}", param="model")
+    if n_pts == n_par:      # interpolated, not fitted: nothing left to judge the fit by
+        warn_implausible(f"{name} has {n_par} parameter{'s' * (n_par > 1)} and the data "
+                         f"{n_pts} point{'s' * (n_pts > 1)}: the curve passes through them "
+                         "exactly, the standard errors and R^2 are undefined (nan)")
     if residuals == "relative":
         for m, (_, p) in data.items():
             zero = np.flatnonzero(p == 0.0)

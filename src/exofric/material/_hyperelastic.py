@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_range, warn_implausible
 
 if TYPE_CHECKING:
@@ -147,6 +148,7 @@ def _stretch_array(stretch: ArrayLike) -> NDArray[np.float64]:
     return a
 
 
+@checked_init
 @dataclass(frozen=True)
 class StabilityCheck:
     """Drucker stability of a model along the three homogeneous paths, over a stretch range.
@@ -207,6 +209,7 @@ class StabilityCheck:
         }
 
 
+@checked_init
 @dataclass(frozen=True)
 class HyperelasticModel:
     """A nearly incompressible hyperelastic material: model name, parameters and ``d``.
@@ -612,6 +615,38 @@ Drucker-unstable (dP/dl <= 0) within the stretches the FE reaches (principal str
         """
         _check_fe_stability(self, stretch_max)
 
+    def section_instability(self, stretch: float) -> tuple[str, float] | None:
+        """Whether a solve that stopped at largest principal stretch ``stretch`` stopped on
+        the material's own Drucker instability (issue 38).
+
+        Compared: ``stretch`` and the smallest stretch > 1 from which the planar or uniaxial
+        path is Drucker-unstable (``dP/dl <= 0``; the paths a plane section's state lies
+        near); the material is blamed from 90 % of that stretch on (the failed step may have
+        crossed it).
+
+        Parameters
+        ----------
+        stretch : float
+            Largest principal stretch of the last converged state (unitless).
+
+        Returns
+        -------
+        tuple of (str, float) or None
+            The words naming the stretch, the model, its parameters and the unstable stretch,
+            and that stretch (unitless); None when the material does not explain it.
+
+        Examples
+        --------
+        >>> soft = material_model("ogden1", [0.6, 0.55])
+        >>> soft.section_instability(2.0) is None
+        True
+        >>> print(soft.section_instability(3.2)[0])
+        largest principal stretch 3.2: ogden1 (mu1 = 0.6 MPa, alpha1 = 0.55) is \
+Drucker-unstable (dP/dl <= 0) from planar stretch 3.08, a material instability no finer mesh \
+cures
+        """
+        return _section_instability(self, float(stretch))
+
 
 def _shown(name: str, value: float) -> str:
     """A parameter as a message shows it: ``C10 = 0.5 MPa``, ``alpha1 = 2`` (not the Python
@@ -682,6 +717,50 @@ def _check_fe_stability(model: HyperelasticModel, stretch_max: float | None,
                          f"stretch {lam:.3g}, beyond the {1.0 / smax:.3g}-{smax:.3g} the FE "
                          "results are validated for: a solve that stretches the tube that far "
                          "fails to converge")
+
+
+#: The homogeneous paths an FE section's state lies near: an in-plane stretch l with the
+#: out-of-plane stretch near 1 (planar: plane strain, the squeeze and the inflation) or free
+#: (uniaxial: plane stress, the ring). Equibiaxial (l, l, 1/l^2) needs an out-of-plane
+#: stretch no section reaches, so its onset is not compared with a section's stretch.
+_SECTION_PATHS = ("planar", "uniaxial")
+
+#: A solve that stopped with its largest stretch this close below the onset (the failing step
+#: may have crossed it: a squeeze's last steps grow the stretch by up to 30 %) is the material's.
+_ONSET_MARGIN = 0.9
+
+
+@functools.lru_cache(maxsize=64)
+def _tension_onset(name: str, params: tuple[float, ...],
+                   stretch_max: float = 10.0) -> tuple[float, str] | None:
+    """The smallest stretch > 1 (unitless) at which the planar or uniaxial path turns
+    Drucker-unstable (``dP/dl <= 0``, complex-step derivative on 2001 stretches evenly spaced
+    in ln l up to ``stretch_max``), with its path; None if both are stable there."""
+    import numpy as np
+
+    lam = np.geomspace(1.0, stretch_max, 2001)
+    best: tuple[float, str] | None = None
+    for mode in _SECTION_PATHS:
+        z = _isochoric_stress(name, params, mode, lam + 1j * 1e-30, "engineering")
+        bad = np.flatnonzero(~(np.imag(z) / 1e-30 > 0.0))
+        if bad.size and (best is None or lam[bad[0]] < best[0]):
+            best = (float(lam[bad[0]]), mode)
+    return best
+
+
+def _section_instability(model: HyperelasticModel, stretch: float) -> tuple[str, float] | None:
+    """Why a solve stopped at largest principal stretch ``stretch`` (unitless), if it is the
+    material's: (words naming the stretch, the model, its parameters and the unstable
+    stretch; the onset stretch), or None when ``stretch`` is below ``_ONSET_MARGIN`` x the
+    planar/uniaxial Drucker onset (or there is none up to stretch 10)."""
+    onset = _tension_onset(model.name, tuple(float(v) for v in model.params))
+    if onset is None or not stretch >= _ONSET_MARGIN * onset[0]:
+        return None
+    values = ", ".join(_shown(n, v) for n, v in zip(model.param_names, model.params,
+                                                     strict=True))
+    return (f"largest principal stretch {stretch:.3g}: {model.name} ({values}) is "
+            f"Drucker-unstable (dP/dl <= 0) from {onset[1]} stretch {onset[0]:.3g}, a material "
+            "instability no finer mesh cures", onset[0])
 
 
 def material_model(name: str, params: ArrayLike, d: float | None = None,

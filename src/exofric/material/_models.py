@@ -25,6 +25,7 @@ from statistics import NormalDist
 from typing import TYPE_CHECKING
 
 from exofric import defaults
+from exofric._validate import checked_init
 from exofric.errors import (
     InputError,
     check_finite,
@@ -105,6 +106,7 @@ def _astm_log10(s: float) -> float:
     return 10.0 ** (0.0235 * s - 0.6403)
 
 
+@checked_init
 @dataclass(frozen=True)
 class Correlation:
     """A published Shore A -> Young's modulus correlation.
@@ -210,6 +212,7 @@ def shore_to_modulus(shore: float, correlation: str = "paper") -> float:
     return float(corr.func(s))
 
 
+@checked_init
 @dataclass(frozen=True)
 class MooneyRivlin:
     """Two-parameter Mooney-Rivlin material (paper Eq 2, ANSYS convention).

@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from exofric import paper
+from exofric._validate import checked_init
 from exofric.io import jsonable, write_json, write_text
 from exofric.plots import (
     plot_control_cases,
@@ -57,6 +58,7 @@ FIGURE_DPI = 130
 FIGURE_MAX_PX = 1400
 
 
+@checked_init
 @dataclass(frozen=True)
 class FigureFile:
     """One written figure: key, file, title, caption, the stage it belongs to.
@@ -105,6 +107,7 @@ class FigureFile:
                 "width_px": self.width_px, "min_font_pt": self.min_font_pt}
 
 
+@checked_init
 @dataclass(frozen=True)
 class ReportFiles:
     """Paths written by :func:`write_report` and the time spent (s).

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from exofric import paper
+from exofric._validate import checked_init
 from exofric.errors import InputError
 from exofric.friction import CubicFit, FrictionModel, pressure_for_friction, torque
 
@@ -77,6 +78,7 @@ def printed_decimals(value: float) -> int:
     return len(text.split(".")[1].rstrip("0")) if "." in text else 0
 
 
+@checked_init
 @dataclass(frozen=True)
 class Comparison:
     """One paper number beside ours.

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from exofric import paper
+from exofric._validate import checked_init
 from exofric.control import CurveFrictionMap
 from exofric.friction import CubicFit, FrictionModel, SqueezeCurve, pressure_for_friction
 from exofric.reproduction._compare import Comparison
@@ -33,6 +34,7 @@ __all__ = ["CubicStage", "ControlStage", "stage_cubic", "stage_control"]
 # ----------------------------------------------------------------------------- stage 6
 
 
+@checked_init
 @dataclass(frozen=True)
 class CubicStage:
     """Cubic N(P) for test 5 (Eq 8) beside the paper's, and the pressure for 54.40 N (MPa).
@@ -151,6 +153,7 @@ def stage_cubic(test5: SqueezeResult, gamma: float, target_n: float) -> CubicSta
 # ----------------------------------------------------------------------------- stage 7
 
 
+@checked_init
 @dataclass(frozen=True)
 class ControlStage:
     """The six Fig 12 cases on the paper's Eq 9 map, and on our test-5 FE curve with our gamma.

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any, Literal, Protocol
 
 from exofric import paper
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.control import (
     CONTROLLERS,
     AntiWindup,
@@ -105,6 +106,7 @@ class FrictionMapLike(Protocol):
         """JSON-ready description of the map (coefficients in N, MPa)."""
 
 
+@checked_init
 @dataclass(frozen=True)
 class ControlSetup:
     """Everything a Fig 12 case needs besides the controller choice.
@@ -242,6 +244,7 @@ class ControlSetup:
                                 gain=p.gain, p_max_mpa=p.p_max_mpa)
 
 
+@checked_init
 @dataclass(frozen=True)
 class CaseResult(DisplayMixin):
     """One closed-loop step response and its metrics (N, MPa, s).
@@ -406,6 +409,7 @@ def run_case(
                       sim)
 
 
+@checked_init
 @dataclass(frozen=True)
 class CompareResult(DisplayMixin):
     """The six Fig 12 cases and the settling-time reductions (ours and the paper's, %).

@@ -39,6 +39,7 @@ import numpy as np
 
 from exofric import defaults, paper
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric._version import __version__
 from exofric.fe import MeshSpec
 from exofric.friction import RigConfig
@@ -114,6 +115,7 @@ STAGES: tuple[tuple[str, str], ...] = (
 StageCallback = Callable[[str, str, int, int, bool, float | None], None]
 
 
+@checked_init
 @dataclass(frozen=True)
 class ReproduceConfig:
     """Settings of a reproduction run (mm, MPa, s).
@@ -207,6 +209,7 @@ class ReproduceConfig:
 # ----------------------------------------------------------------------------- pipeline
 
 
+@checked_init
 @dataclass(frozen=True)
 class StageTime:
     """Wall time (s) of one stage.
@@ -235,6 +238,7 @@ class StageTime:
         return {"key": self.key, "title": self.title, "wall_time_s": self.wall_time_s}
 
 
+@checked_init
 @dataclass(frozen=True)
 class ReproduceResult(DisplayMixin):
     """Everything :func:`reproduce` computed, stage by stage, with timings and versions.

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric import paper
+from exofric._validate import checked_init
 from exofric.friction import (
     MeasuredCurve,
     PredictionSet,
@@ -47,6 +48,7 @@ __all__ = ["PredictionStage", "TorqueStage", "stage_prediction", "stage_torque"]
 # ----------------------------------------------------------------------------- stage 5
 
 
+@checked_init
 @dataclass(frozen=True)
 class PredictionStage:
     """Predictions for the seven Table 3 structures against SYNTHETIC measured curves.
@@ -215,6 +217,7 @@ def stage_prediction(
 # ----------------------------------------------------------------------------- stage 8
 
 
+@checked_init
 @dataclass(frozen=True)
 class TorqueStage:
     """Predicted torque T = F R at 0.6 MPa per structure against the knee's 0-40 Nm.

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from exofric import defaults, paper
+from exofric._validate import checked_init
 from exofric.fe import MeshSpec
 from exofric.friction import GammaFit, RigConfig, RigRun, fit_gamma, simulate_rig
 from exofric.geometry import Structure
@@ -36,6 +37,7 @@ ID_STEP_MM = 0.05
 # ----------------------------------------------------------------------------- stage 3
 
 
+@checked_init
 @dataclass(frozen=True)
 class SqueezeStage:
     """Base-group squeeze N(P) (Figs 6-7) and what moves N at 0.6 MPa.
@@ -166,6 +168,7 @@ def stage_squeeze(
 # ----------------------------------------------------------------------------- stage 4
 
 
+@checked_init
 @dataclass(frozen=True)
 class GammaStage:
     """gamma (Eq 7) from SYNTHETIC virtual-rig friction on the base squeeze curve (Fig 4).

@@ -28,6 +28,7 @@ import numpy as np
 
 from exofric import defaults as D
 from exofric import paper
+from exofric._validate import checked_init
 from exofric.calibration import (
     CalibrationResult,
     InflationData,
@@ -62,6 +63,7 @@ def _f(x: Any) -> float:
 # ----------------------------------------------------------------------------- stage 1
 
 
+@checked_init
 @dataclass(frozen=True)
 class Table2Stage:
     """Table 2 from Eqs 3-6 at the paper's Shore 62.5, beside the printed values.
@@ -158,6 +160,7 @@ def stage_table2() -> Table2Stage:
 # ----------------------------------------------------------------------------- stage 2
 
 
+@checked_init
 @dataclass(frozen=True)
 class CalibrationStage:
     """Tube ID from the paper's ANSYS columns, then Shore from the test column (Table 1).

@@ -41,6 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_positive, check_range, warn_implausible
 from exofric.geometry import Structure
 from exofric.simulate._squeeze import squeeze
@@ -68,6 +69,7 @@ IMPOSSIBLE_SHARE = 0.01
 IMPLAUSIBLE_SHARE = 0.05
 
 
+@checked_init
 @dataclass(frozen=True)
 class ClearanceDistribution:
     """How the clearance c (mm) is distributed along the tube (weights: shares of its length).
@@ -363,6 +365,7 @@ class ClearanceDistribution:
         return c, w
 
 
+@checked_init
 @dataclass(frozen=True)
 class ClearanceSqueeze(DisplayMixin):
     """N_eff(P) over a clearance distribution, with the per-clearance solves it used.

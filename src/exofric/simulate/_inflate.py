@@ -13,6 +13,7 @@ import numpy as np
 
 from exofric import defaults
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import InputError, check_pressures
 from exofric.fe import (
     InflationProblem,
@@ -37,6 +38,7 @@ if TYPE_CHECKING:
 __all__ = ["InflationResult", "inflate"]
 
 
+@checked_init
 @dataclass(frozen=True)
 class InflationResult(DisplayMixin):
     """Free inflation of the tube at each pressure.

@@ -26,7 +26,8 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 
 from exofric._display import DisplayMixin
-from exofric.errors import ConvergenceError, InputError, warn_implausible
+from exofric._validate import checked_init
+from exofric.errors import ConvergenceError, InputError
 from exofric.fe import nodal_weights
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
@@ -60,6 +61,7 @@ __all__ = ["PulloutResult", "SectionPullout", "pullout", "section_pullout"]
 # results
 
 
+@checked_init
 @dataclass(frozen=True)
 class SectionPullout(DisplayMixin):
     """Axial pull of the wire through one unit length of squeezed tube (N/mm, mm).
@@ -203,6 +205,7 @@ class SectionPullout(DisplayMixin):
         return plot_pullout(self, ax)
 
 
+@checked_init
 @dataclass(frozen=True)
 class PulloutResult(DisplayMixin):
     """Pull of the wire through the whole tube length: F(delta) at the pulled end (N, mm).
@@ -766,7 +769,7 @@ def pullout(
     """
     _check_setup(setup)
     L = setup.structure.length_mm
-    dmax = _check_travel(displacement_mm, L)
+    dmax = setup.travel_mm(displacement_mm)   # the one travel check (joint_stiffness too)
     if isinstance(cycles, bool) or not isinstance(cycles, int) or not 0 <= cycles <= 100:
         raise InputError(f"cycles must be an integer in [0, 100], got {cycles!r}",
                          param="cycles")
@@ -778,21 +781,6 @@ def pullout(
     path = _first_loading(sec, L, ea, dmax, num.n_path) if first_loading else None
     return _length_from_section(sec, L, ea, setup.static_ratio, dmax, int(cycles),
                                 num.n_z, num.n_path, num.line_stick_rel, ms, path)
-
-
-def _check_travel(displacement_mm: Any, length_mm: float) -> float:
-    """The pulled end's amplitude (mm) in (0, L]; a warning above 10 mm."""
-    try:
-        dmax = float(displacement_mm)
-    except (TypeError, ValueError):
-        dmax = float("nan")
-    if not (math.isfinite(dmax) and 0.0 < dmax <= length_mm):
-        raise InputError(f"displacement_mm must be in (0, {length_mm:g}] mm (the tube length), "
-                         f"got {displacement_mm!r}", param="displacement_mm")
-    if dmax > 10.0:
-        warn_implausible(f"displacement_mm = {dmax:g} mm: the squeeze state is held, which "
-                         "assumes the wire's travel is small against the tube's length")
-    return dmax
 
 
 def _first_loading(sec: SectionPullout, L: float, ea: float, dmax: float, n: int) -> np.ndarray:

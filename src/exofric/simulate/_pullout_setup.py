@@ -9,12 +9,13 @@ to the solvers as one frozen object, checked once (issue 32: ``pullout`` had 20 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from exofric import defaults
 from exofric._validate import checked_init
-from exofric.errors import InputError, check_positive, check_range
+from exofric.errors import InputError, check_positive, check_range, warn_implausible
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
 from exofric.simulate._common import check_friction, fe_material_of
@@ -239,6 +240,55 @@ class PulloutSetup:
             raise InputError(f"with_friction: unknown coefficient(s) {sorted(unknown)}",
                              param="coefficients")
         return replace(self, **coefficients)  # type: ignore[arg-type]
+
+    def travel_mm(self, displacement_mm: float) -> float:
+        """The pulled end's amplitude (mm), checked against the tube length: in (0, L].
+
+        The one check of a pull's travel (:func:`pullout`, :meth:`pull`,
+        :func:`exofric.friction.joint_stiffness`), before any solve; above 10 mm a
+        :class:`~exofric.errors.PlausibilityWarning` (the squeeze state is held, which assumes
+        the travel is small against the length).
+
+        Parameters
+        ----------
+        displacement_mm : float
+            Amplitude of the pulled end (mm).
+
+        Returns
+        -------
+        float
+            The amplitude (mm).
+
+        Raises
+        ------
+        InputError
+            Not a finite number in (0, L] (``param="displacement_mm"``).
+
+        Examples
+        --------
+        >>> from exofric.geometry import BASE
+        >>> s = PulloutSetup(BASE, MooneyRivlin.from_shore(62.5), mu_wire=0.3, mu_wall=0.5,
+        ...                  mu_wire_wall=0.2)
+        >>> s.travel_mm(3)
+        3.0
+        >>> s.travel_mm(200.0)
+        Traceback (most recent call last):
+        ...
+        exofric.errors.InputError: displacement_mm must be in (0, 116] mm (the tube length), \
+got 200.0
+        """
+        length_mm = self.structure.length_mm
+        try:
+            dmax = float(displacement_mm)
+        except (TypeError, ValueError):
+            dmax = float("nan")
+        if not (math.isfinite(dmax) and 0.0 < dmax <= length_mm):
+            raise InputError(f"displacement_mm must be in (0, {length_mm:g}] mm (the tube "
+                             f"length), got {displacement_mm!r}", param="displacement_mm")
+        if dmax > 10.0:
+            warn_implausible(f"displacement_mm = {dmax:g} mm: the squeeze state is held, which "
+                             "assumes the wire's travel is small against the tube's length")
+        return dmax
 
     def section(self, pressure_mpa: float, *, squeeze_result: SqueezeResult | None = None,
                 squeeze_index: int = -1) -> SectionPullout:

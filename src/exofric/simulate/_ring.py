@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.defaults import MR_STRETCH_LIMIT
 from exofric.errors import InputError, warn_implausible
 from exofric.fe import (
@@ -42,6 +43,7 @@ RING_MAX_STEP_MM = 0.5
 WIDE_RING_RATIO = 1.0
 
 
+@checked_init
 @dataclass(frozen=True)
 class RingResult(DisplayMixin):
     """Force vs pin displacement of the ring tensile test (FE, quarter model).

@@ -47,7 +47,6 @@ import itertools
 import math
 import multiprocessing
 import os
-import re
 import warnings
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -58,12 +57,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.errors import (
     ConvergenceError,
     InputError,
     check_positive,
     check_seed,
     warn_implausible,
+    warning_key,
 )
 from exofric.geometry import Structure
 from exofric.simulate._squeeze import squeeze
@@ -86,10 +87,10 @@ DENSE_GAP_MPA = 0.1
 MAX_IMPOSSIBLE = 0.25
 WARN_IMPOSSIBLE = 0.01
 _PCTS = (5, 50, 95)
-_NUMBER = re.compile(r"[-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?")
 Progress = Callable[[int, int, str], None]
 
 
+@checked_init
 @dataclass(frozen=True)
 class ToleranceResult(DisplayMixin):
     """Percentile bands of N(P) under tolerances, and which tolerance matters most.
@@ -283,11 +284,12 @@ def _solve_all(job: _Job, workers: int, progress: Progress | None, stage: str
 
 def _warn_once(outcomes: Sequence[_Outcome]) -> None:
     """Issue each kind of warning of the solves once (issue 34: not once per sample): the
-    first of the messages that differ only in their numbers (a sample's clearance, say)."""
+    first of the messages that differ only in their measured numbers (a sample's clearance,
+    say; :func:`exofric.errors.warning_key`)."""
     seen: dict[tuple[type[Warning], str], str] = {}
     for o in outcomes:
         for category, message in o.caught:
-            seen.setdefault((category, _NUMBER.sub("#", message)), message)
+            seen.setdefault(warning_key(category, message), message)
     for (category, _), message in seen.items():
         warnings.warn(message, category, stacklevel=4)
 
