@@ -3,18 +3,22 @@
 Run: ``.venv/bin/python benchmarks/bench_startup.py [--runs 7] [--json]``.
 
 Each row is a fresh process (``subprocess.run``, output captured), timed with
-``time.perf_counter`` around it; the rows are run interleaved (round-robin, ``--runs`` rounds)
-so that a burst of load from other processes hits every row alike, and the median is reported.
+``time.perf_counter`` around it (wall) and by the CPU time (user + sys) of the finished child
+(the number to read on a loaded machine: one thread, so on an idle machine wall ~ CPU); the
+rows are run interleaved (round-robin, ``--runs`` rounds) so that a burst of load from other
+processes hits every row alike, and the median and the range (min-max) are reported.
 ``python -c pass`` is the floor (the interpreter alone); "over floor" is the median minus it.
 
 * ``import exofric``: the lazy facade (every Dask worker and the CLI pay it).
 * ``exofric --help``: typer/click/rich and the command modules' option definitions only.
-* ``exofric material --shore 62.5``: the lightest computing command (no SciPy).
+* ``exofric material --shore 62.5``: the lightest computing command (no NumPy, no pydantic).
 * ``exofric squeeze ... --accuracy draft`` and the default (standard) squeeze of the base
   group: the imports the solve needs (NumPy, scipy.sparse/linalg, threadpoolctl) plus the
-  solve itself; nothing else heavy before it (no pandas, pyarrow, matplotlib).
+  solve itself; nothing else heavy before it (no pandas, pyarrow, matplotlib, pydantic,
+  scipy.optimize).
 
-Targets: ``material`` <= 0.2 s, default ``squeeze`` <= 0.45 s (whole process). BLAS/OpenMP
+Targets (issue 37): ``material`` <= 0.2 s, default ``squeeze`` <= 0.6 s (whole process; judged
+on the CPU time). BLAS/OpenMP
 are pinned to one thread in the children; byte-code caching is on (as in any installation, even
 where ``PYTHONDONTWRITEBYTECODE`` is set), with the ``.pyc`` files in a temporary
 ``PYTHONPYCACHEPREFIX`` written by a warm-up run of every row. On a shared machine the absolute
@@ -26,6 +30,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -46,8 +51,9 @@ ROWS: list[tuple[str, list[str], float | None]] = [
     ("exofric --help", [EXOFRIC, "--help"], 0.2),
     ("exofric material --shore 62.5", [EXOFRIC, "material", "--shore", "62.5"], 0.2),
     ("exofric squeeze (base) --accuracy draft", [*SQUEEZE, "--accuracy", "draft"], None),
-    ("exofric squeeze (base), default accuracy", SQUEEZE, 0.45),
+    ("exofric squeeze (base), default accuracy", SQUEEZE, 0.6),
 ]
+MATERIAL_ROW, SQUEEZE_ROW = ROWS[3][0], ROWS[5][0]
 
 
 def _env(pycache: str) -> dict[str, str]:
@@ -61,56 +67,72 @@ def _env(pycache: str) -> dict[str, str]:
     return env
 
 
-def measure(runs: int = 7) -> dict[str, Any]:
-    """Median whole-process wall time (s) of every row over ``runs`` interleaved rounds."""
+def measure(runs: int = 7, labels: list[str] | None = None) -> dict[str, Any]:
+    """Median whole-process wall and CPU time (s) of every row over ``runs`` interleaved rounds.
+
+    ``labels`` selects rows (default all; the floor is always measured). Each row has
+    ``wall_s`` and ``cpu_s`` (every run), their medians, minima and maxima.
+    """
+    rows = [r for r in ROWS if labels is None or r[0] in labels or r is ROWS[0]]
     with tempfile.TemporaryDirectory(prefix="exofric-pycache-") as pycache:
-        return _measure(runs, _env(pycache))
+        return _measure(runs, _env(pycache), rows)
 
 
-def _measure(runs: int, env: dict[str, str]) -> dict[str, Any]:
-    times: dict[str, list[float]] = {label: [] for label, _, _ in ROWS}
+def _child_cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def _measure(runs: int, env: dict[str, str],
+             rows: list[tuple[str, list[str], float | None]]) -> dict[str, Any]:
+    times: dict[str, list[float]] = {label: [] for label, _, _ in rows}
+    cpus: dict[str, list[float]] = {label: [] for label, _, _ in rows}
     failed: dict[str, str] = {}
-    for label, argv, _ in ROWS:  # warm-up: file cache, .pyc files; a failing row is reported
+    for label, argv, _ in rows:  # warm-up: file cache, .pyc files; a failing row is reported
         r = subprocess.run(argv, capture_output=True, env=env)
         if r.returncode != 0:
             failed[label] = f"exit {r.returncode}: {r.stderr.decode().strip()[-300:]}"
     for _ in range(runs):
-        for label, argv, _ in ROWS:
+        for label, argv, _ in rows:
             if label in failed:
                 continue
-            t0 = time.perf_counter()
+            c0, t0 = _child_cpu(), time.perf_counter()
             subprocess.run(argv, capture_output=True, env=env, check=True)
             times[label].append(time.perf_counter() - t0)
+            cpus[label].append(_child_cpu() - c0)
     floor = statistics.median(times[ROWS[0][0]])
     out: dict[str, Any] = {"runs": runs, "rows": {}}
-    for label, _, target in ROWS:
+    for label, _, target in rows:
         if label in failed:
             out["rows"][label] = {"error": failed[label], "target_s": target}
             continue
-        med = statistics.median(times[label])
+        med, cpu = statistics.median(times[label]), statistics.median(cpus[label])
         out["rows"][label] = {
-            "median_s": med,
-            "min_s": min(times[label]),
+            "median_s": med, "min_s": min(times[label]), "max_s": max(times[label]),
+            "cpu_median_s": cpu, "cpu_min_s": min(cpus[label]), "cpu_max_s": max(cpus[label]),
+            "wall_s": times[label], "cpu_s": cpus[label],
             "over_floor_s": med - floor,
             "target_s": target,
-            "meets_target": None if target is None else med <= target,
+            "meets_target": None if target is None else cpu <= target,
         }
     return out
 
 
 def report(res: dict[str, Any]) -> None:
     """Print the table of :func:`measure`'s result."""
-    print(f"CLI start-up, whole process, median of {res['runs']} interleaved runs (wall, s)")
-    print(f"{'command':<44} {'median':>7} {'min':>7} {'over floor':>10} {'target':>7}")
+    print(f"CLI start-up, whole process, median of {res['runs']} interleaved runs (s)")
+    print(f"{'command':<44} {'wall':>6} {'min-max':>11} {'CPU':>6} {'min-max':>11} "
+          f"{'over floor':>10} {'target':>7}")
     for label, r in res["rows"].items():
         if "error" in r:
             print(f"{label:<44} FAILED ({r['error'].splitlines()[-1]})")
             continue
         tgt = "" if r["target_s"] is None else (
             f"<= {r['target_s']:g}" + ("" if r["meets_target"] else " !"))
-        print(f"{label:<44} {r['median_s']:7.3f} {r['min_s']:7.3f} {r['over_floor_s']:10.3f} "
-              f"{tgt:>7}")
-    print("(squeeze includes the solve; '!' marks a missed target)")
+        print(f"{label:<44} {r['median_s']:6.3f} {r['min_s']:5.3f}-{r['max_s']:<5.3f} "
+              f"{r['cpu_median_s']:6.3f} {r['cpu_min_s']:5.3f}-{r['cpu_max_s']:<5.3f} "
+              f"{r['over_floor_s']:10.3f} {tgt:>7}")
+    print("(squeeze includes the solve; targets judged on the CPU time; '!' marks a miss)")
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:

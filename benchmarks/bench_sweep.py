@@ -12,7 +12,10 @@ Run: ``.venv/bin/python benchmarks/bench_sweep.py [--runs 5] [--no-dask] [--mesh
   finished children), the sweep's own ``wall_time_s`` (``run_sweep`` alone: no interpreter
   start-up, imports or exit) and the 1-minute load average before each run: the machine is
   shared, so compare the ratios of one session, not absolute times across sessions.
-  ``--mesh 4x32`` runs the same designs on another mesh (costlier solves).
+  ``--mesh 4x32`` runs the same designs on another mesh (costlier solves). The processes use
+  cached byte code as an installation does (:func:`process_env`; before 2026-11-27 they
+  compiled exofric's sources in every run where ``PYTHONDONTWRITEBYTECODE`` was set).
+  :func:`ratio_2_vs_1` measures only the target's pair (``benchmarks/run.py``).
 * Then, in this process: the start-up of the local worker pool (fork, every worker up) and of a
   Dask LocalCluster (start + close), and the dispatch cost per design with an instant stand-in
   solver (worker pool vs the serial loop), i.e. the inputs of ``exofric.design.plan_execution``
@@ -60,6 +63,29 @@ def _children_cpu() -> float:
     return r.ru_utime + r.ru_stime
 
 
+def process_env() -> dict[str, str]:
+    """The sweep processes' environment: byte code cached as in any installation (even where
+    ``PYTHONDONTWRITEBYTECODE`` is set: compiling exofric's sources in every process is ~0.2 s
+    of serial time no user pays), in ``$TMPDIR/exofric-bench-pycache``."""
+    env = dict(os.environ)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    env["PYTHONPYCACHEPREFIX"] = str(Path(tempfile.gettempdir()) / "exofric-bench-pycache")
+    return env
+
+
+def ratio_2_vs_1(runs: int = 5, config: Path = CONFIG) -> dict[str, Any]:
+    """The 2-worker speed-up: ``runs`` interleaved pairs of ``--workers 1`` / ``--workers 2``
+    whole processes; the ratio of each pair (wall s of 1 worker / of 2), their median and range.
+    """
+    res = whole_process(["workers1", "workers2"], runs, config)
+    w1 = [r["wall_s"] for r in res["workers1"]]
+    w2 = [r["wall_s"] for r in res["workers2"]]
+    ratios = [a / b for a, b in zip(w1, w2, strict=True)]
+    return {"workers1_wall_s": w1, "workers2_wall_s": w2, "ratios": ratios,
+            "ratio_of_medians": statistics.median(w1) / statistics.median(w2),
+            "load": [r["load"] for m in res.values() for r in m]}
+
+
 def run_cli(args: list[str], config: Path = CONFIG) -> dict[str, Any]:
     """One whole ``exofric sweep`` process into a fresh directory: wall and CPU (s), summary."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -67,7 +93,7 @@ def run_cli(args: list[str], config: Path = CONFIG) -> dict[str, Any]:
         cpu0, t0 = _children_cpu(), time.perf_counter()
         proc = subprocess.run([sys.executable, "-m", "exofric", "sweep", str(config), "--out",
                                str(Path(tmp) / "out"), "--json", *args],
-                              capture_output=True, text=True, timeout=900)
+                              capture_output=True, text=True, timeout=900, env=process_env())
         wall = time.perf_counter() - t0
         cpu = _children_cpu() - cpu0
     if proc.returncode != 0:

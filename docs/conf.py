@@ -67,6 +67,8 @@ nitpick_ignore: list[tuple[str, str]] = [
     ("py:class", "exofric.fe._assembly.Factorization"),
     # SectionPullout.held_ends: the held end zones' law, carried for the length model
     ("py:class", "exofric.simulate._shear_lag.HeldEnds"),
+    # SqueezeProblem.refine_direction's switches: the Newton solver's stick/slip predictor
+    ("py:class", "exofric.fe._contact.StickSlipModel"),
 ]
 
 # --- autodoc / numpydoc ----------------------------------------------------------------------

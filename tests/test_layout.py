@@ -30,7 +30,7 @@ TOP_MODULES = ("errors", "defaults", "geometry")
 def test_top_level_holds_only_stage_packages_and_single_modules() -> None:
     mods = sorted(m.name for m in pkgutil.iter_modules([str(SRC)]))
     allowed = {*STAGES, *TOP_MODULES, "cli", "_version", "_json", "_lazy", "_lsq", "_display",
-               "_validate", "__main__"}
+               "_validate", "_roots", "__main__"}
     assert set(mods) <= allowed, f"unexpected top-level modules: {set(mods) - allowed}"
     for name in mods:
         for stage in (*STAGES, "sweep", "report"):

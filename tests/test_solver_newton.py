@@ -252,3 +252,17 @@ def test_angle_wrap_matches_the_complex_exponential() -> None:
     a = np.random.default_rng(5).uniform(-40.0, 40.0, 10_000)
     assert np.max(np.abs(_wrap(a) - np.angle(np.exp(1j * a)))) <= 1e-15 * 40.0
     assert _wrap(np.array([-np.pi, np.pi]))[0] == np.pi
+
+
+@pytest.mark.parametrize("max_step", [0.015, 0.00625])
+def test_each_output_takes_the_fewest_full_steps(max_step: float) -> None:
+    """Outputs every 0.05 MPa (np.linspace, not exact in binary): each takes ceil(0.05 /
+    max_step) sub-steps, the last one landing on the output exactly. Before issue 37 a step
+    shortened to reach an output shrank the next (max_step 0.015: 4, 5, 7, 4, 5, 7, ...), and a
+    round-off sliver short of an output was a sub-step of its own that shrank the step to
+    ~1e-15 MPa (friction with open ends then failed at 0.55 MPa after thousands of them)."""
+    prob = InflationProblem(8.3, 4.97, MAT, MeshSpec())
+    loads = np.linspace(0.05, 0.6, 12)
+    pts = solve_path(prob, loads, NewtonSettings(max_step=max_step))
+    assert [pt.steps for pt in pts] == [int(np.ceil(0.05 / max_step - 1e-9))] * 12
+    assert [pt.load for pt in pts] == loads.tolist()

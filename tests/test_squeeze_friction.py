@@ -130,7 +130,11 @@ def test_dissipation_is_never_negative(steps: dict[float, tuple[np.ndarray, list
 
 def test_large_mu_approaches_full_stick_smoothly() -> None:
     """N falls monotonically with mu and levels off once everything sticks (mu >= 1.5 on the
-    base group): N(1.5) and N(2.0) within 0.2 %, stick fractions 1."""
+    base group): N(1.5) and N(2.0) within 0.3 %, stick fractions 1. (At these mu the answer at
+    the default 0.025 MPa load step carries a path error of ~0.3 %: N(0.6) at mu 1.5 is
+    1.7967, 1.7994, 1.8007, 1.8024 N/mm at steps of 0.025, 0.0125, 0.00625, 0.003125 MPa, and
+    cut-backs change the path; N(1.5) and N(2.0) agree to 0.01 % at the finest step. Issue 37
+    changed the cut-backs: 0.207 % here, 0.15-0.2 % before.)"""
     n = []
     for mu in (0.3, 1.0, 1.5, 2.0):
         with pytest.warns(PlausibilityWarning) if mu > 1.5 else _nullcontext():
@@ -140,7 +144,7 @@ def test_large_mu_approaches_full_stick_smoothly() -> None:
             c = r.contact
             assert c.stick_fraction_wire[-1] == 1.0 and c.stick_fraction_wall[-1] == 1.0
     assert n[0] > n[1] > n[2] - 1e-3
-    assert abs(n[3] / n[2] - 1) < 2e-3
+    assert abs(n[3] / n[2] - 1) < 3e-3
 
 
 def test_penalty_convergence() -> None:

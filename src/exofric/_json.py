@@ -7,10 +7,9 @@ their ``to_dict()`` without importing :mod:`exofric.io`.
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 from typing import Any
-
-import numpy as np
 
 __all__ = ["jsonable"]
 
@@ -32,6 +31,7 @@ def jsonable(obj: Any) -> Any:
 
     Examples
     --------
+    >>> import numpy as np
     >>> jsonable({"gamma": np.float64(0.7168), "p_mpa": np.array([0.2, np.nan])})
     {'gamma': 0.7168, 'p_mpa': [0.2, None]}
     """
@@ -39,9 +39,11 @@ def jsonable(obj: Any) -> Any:
         return {str(k): jsonable(v) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
         return [jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
+    # NumPy only if loaded: no value can be a NumPy one otherwise (start-up without NumPy)
+    np = sys.modules.get("numpy")
+    if np is not None and isinstance(obj, np.ndarray):
         return jsonable(obj.tolist())
-    if isinstance(obj, np.generic):
+    if np is not None and isinstance(obj, np.generic):
         return jsonable(obj.item())
     if isinstance(obj, float) and not math.isfinite(obj):
         return None

@@ -7,13 +7,22 @@ package's namespace.
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import sys
 from collections.abc import Callable, Mapping, Sequence
 from types import FunctionType, ModuleType
 from typing import Any
 
-__all__ = ["export_checked", "facade"]
+__all__ = ["defer_numpy_extras", "export_checked", "facade", "install_scipy_hook"]
+
+#: NumPy submodules that importing SciPy loads without using them: SciPy's array-API layer
+#: copies every attribute of ``numpy`` (``array_api_compat.clone_module``), and NumPy imports
+#: its submodules on attribute access (f2py compiles ~100 regular expressions, testing imports
+#: unittest): about 40 % of ``import scipy.sparse``. :func:`defer_numpy_extras` makes them
+#: load on their first real use instead.
+NUMPY_EXTRAS = ("numpy.f2py", "numpy.testing", "numpy.ma", "numpy.polynomial",
+                "numpy.ctypeslib", "numpy.rec", "numpy.char", "numpy.strings")
 
 
 def facade(
@@ -170,3 +179,75 @@ def export_checked(package: str) -> None:
         value = getattr(mod, name, None)
         if isinstance(value, FunctionType):
             setattr(mod, name, checked(value, package, name))
+
+
+def defer_numpy_extras(names: Sequence[str] = NUMPY_EXTRAS) -> list[str]:
+    """Register NumPy submodules not imported yet as lazy modules (loaded on first use).
+
+    Each becomes an :class:`importlib.util.LazyLoader` module in ``sys.modules`` and an
+    attribute of ``numpy``: ``numpy.testing`` (``hasattr``, ``dir``) does not import it,
+    ``numpy.testing.assert_allclose`` or ``from numpy.testing import ...`` does, and from then
+    on the module is the ordinary one. Imports NumPy.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Submodules of ``numpy`` (default :data:`NUMPY_EXTRAS`); those already imported or not
+        found are left alone.
+
+    Returns
+    -------
+    list of str
+        The names made lazy.
+
+    Examples
+    --------
+    >>> import numpy.testing
+    >>> defer_numpy_extras(["numpy.testing"])   # imported already: left alone
+    []
+    """
+    import importlib.util
+
+    import numpy
+
+    done: list[str] = []
+    for name in names:
+        if name in sys.modules:
+            continue
+        spec = importlib.util.find_spec(name)
+        if spec is None or spec.loader is None:
+            continue
+        spec.loader = importlib.util.LazyLoader(spec.loader)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)   # lazy: runs on the first attribute access
+        setattr(numpy, name.rpartition(".")[2], module)
+        done.append(name)
+    return done
+
+
+class _BeforeScipy:
+    """A ``sys.meta_path`` entry that calls :func:`defer_numpy_extras` once, just before the
+    first import of SciPy, then removes itself (it never finds a module)."""
+
+    def find_spec(self, name: str, path: Any = None, target: Any = None) -> None:
+        if name == "scipy" or name.startswith("scipy."):
+            with contextlib.suppress(ValueError):
+                sys.meta_path.remove(self)
+            with contextlib.suppress(Exception):   # never in the way of the import itself
+                defer_numpy_extras()
+        return None
+
+
+def install_scipy_hook() -> None:
+    """Defer :data:`NUMPY_EXTRAS` when SciPy is first imported (``import exofric`` calls it).
+
+    Costs nothing until then (NumPy is not imported); a no-op if SciPy is imported already.
+
+    Examples
+    --------
+    >>> install_scipy_hook()   # idempotent
+    """
+    if "scipy" in sys.modules or any(isinstance(f, _BeforeScipy) for f in sys.meta_path):
+        return
+    sys.meta_path.insert(0, _BeforeScipy())

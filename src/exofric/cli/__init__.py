@@ -2,9 +2,10 @@
 
 Each sub-command lives in its own module in this package and exposes
 ``register(app)``; modules are discovered automatically (names starting with
-``_`` are helpers). Every command takes ``--json`` and then prints exactly one
-JSON object on stdout. Bad input prints one line on stderr and exits 2; a solver
-that does not converge exits 3.
+``_`` are helpers). ``exofric.cli.app``, the typer app with every command, is built on first
+use; :func:`run` imports and builds only the command it runs. Every command takes ``--json``
+and then prints exactly one JSON object on stdout. Bad input prints one line on stderr and
+exits 2; a solver that does not converge exits 3.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 
+from exofric._lazy import install_scipy_hook
 from exofric._version import __version__
 from exofric.cli._common import WARNINGS, record_warning
 from exofric.cli._options import tidy_help
@@ -27,11 +29,11 @@ from exofric.cli._options import tidy_help
 if TYPE_CHECKING:
     from exofric.errors import InputError
 
-# Start-up: module level imports typer and the command modules' option definitions only;
-# everything a command computes with is imported inside the command function, so that
-# ``exofric --help`` and the light commands start fast (tests/test_startup.py,
-# benchmarks/bench_startup.py).
-app = typer.Typer(
+# Start-up: module level imports typer and the shared option helpers only; a command's module
+# (its option definitions) is imported when that command runs, and everything a command
+# computes with is imported inside the command function, so that ``exofric --help`` and the
+# light commands start fast (tests/test_startup.py, benchmarks/bench_startup.py).
+_APP_SETTINGS: dict[str, Any] = dict(
     name="exofric",
     help="Friction modelling, prediction and control for friction-based variable-stiffness "
     "exosuits (Ma et al. 2021). Units: mm, N, MPa, s, Nm.",
@@ -47,7 +49,6 @@ def _version(value: bool) -> None:
         raise typer.Exit()
 
 
-@app.callback()
 def _root(
     version: bool = typer.Option(
         False, "--version", callback=_version, is_eager=True, help="Print the version and exit."
@@ -64,14 +65,51 @@ _ORDER = ("paper", "material", "inflate", "calibrate", "ring", "squeeze", "pullo
           "reduce", "fit_friction", "rig", "predict", "invert", "torque", "fit_pullout", "gait",
           "sweep", "design", "reproduce", "control")
 
+#: Commands registered by a module of another name (``sweep.py`` also registers ``design``).
+_ALSO_IN = {"design": "sweep"}
+
 
 def _listed(name: str) -> tuple[int, str]:
     return (_ORDER.index(name) if name in _ORDER else len(_ORDER), name)
 
 
-for _mod in sorted((m.name for m in pkgutil.iter_modules(__path__)), key=_listed):
-    if not _mod.startswith("_"):
-        importlib.import_module(f"{__name__}.{_mod}").register(app)
+def _command_modules() -> list[str]:
+    """The command modules of this package, in help order (``_`` names are helpers)."""
+    return sorted((m.name for m in pkgutil.iter_modules(__path__)
+                   if not m.name.startswith("_")), key=_listed)
+
+
+def _new_app(modules: Sequence[str]) -> typer.Typer:
+    """A typer app with the root options and the commands of ``modules`` registered."""
+    new = typer.Typer(**_APP_SETTINGS)
+    new.callback()(_root)
+    for mod in modules:
+        importlib.import_module(f"{__name__}.{mod}").register(new)
+    return new
+
+
+_OWN: list[typer.Typer] = []   # the full app, once built by __getattr__
+
+
+def __getattr__(name: str) -> Any:
+    """``app``: the typer app with every command, built (every command module imported) on
+    first use; :func:`run` builds only the command it runs."""
+    if name == "app":
+        full = _new_app(_command_modules())
+        _OWN[:] = [full]
+        globals()["app"] = full
+        return full
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _only_module(args: Sequence[str]) -> str | None:
+    """The module of the command ``args`` runs, if it alone is needed (not for root options,
+    help listings or an unknown name: those build every command)."""
+    first = args[0] if args else ""
+    mod = _ALSO_IN.get(first, first.replace("-", "_"))
+    if not first or first.startswith(("-", "_")) or mod not in _command_modules():
+        return None
+    return mod
 
 
 def _click_classes(name: str) -> tuple[type[Exception], ...]:
@@ -175,19 +213,41 @@ def _with_flags(exc: InputError, cmd: Any) -> str:
     return _UNIT_NAME.sub(one, msg)
 
 
-_BUILT: list[Any] = [None, None]   # [the app, its click command tree]
+_BUILT: list[Any] = [None, None]   # [the app (or the one command's name), its click tree]
 
 
-def _command() -> Any:
-    """The click command tree of ``app``, built once per app object.
+def _command(args: Sequence[str] = ()) -> Any:
+    """The click command tree that runs ``args``, built once per app object (or command).
 
-    Building it (typer's ``get_command`` and :func:`tidy_help`: flags without ``<bool>``, help
-    that wraps) costs about 100 ms; in-process callers (the tests, a script) run many commands.
+    With exofric's own app, only the module of the command ``args`` names is imported and
+    built (a root option, a help listing or an unknown name builds every command); an app set
+    from outside (``exofric.cli.app = ...``) is used whole. Building a tree (typer's
+    ``get_command``, :func:`tidy_help`: flags without ``<bool>``, help that wraps; and
+    :func:`exofric.cli._coerce.install`: option values converted without pydantic) costs
+    about 25 ms for every command; in-process callers (the tests, a script) run many commands.
     A click command keeps no state between invocations: each makes its own context.
     """
-    if _BUILT[0] is not app:
-        _BUILT[:] = [app, tidy_help(typer.main.get_command(app))]
+    full = globals().get("app")
+    mod = _only_module(args) if full is None or (_OWN and full is _OWN[0]) else None
+    key: Any = (f"only:{args[0]}" if mod is not None
+                else full if full is not None else __getattr__("app"))
+    if not (_BUILT[0] is key or (isinstance(key, str) and _BUILT[0] == key)):
+        from exofric.cli._coerce import install
+
+        target = _new_app([mod]) if mod is not None else key
+        if mod is not None and not _registers(target, args[0]):
+            return _command(("--help",))   # not a command of its module: the full listing
+        tree = tidy_help(typer.main.get_command(target))
+        install(tree)
+        _BUILT[:] = [key, tree]
     return _BUILT[1]
+
+
+def _registers(app_: typer.Typer, name: str) -> bool:
+    """True if ``app_`` has a command or group called ``name``."""
+    names = [c.name for c in app_.registered_commands]
+    names += [g.name for g in app_.registered_groups]
+    return name in names
 
 
 def run(argv: Sequence[str] | None = None) -> int:
@@ -197,10 +257,15 @@ def run(argv: Sequence[str] | None = None) -> int:
     # figures are only ever written to files: a non-interactive backend, chosen once here
     # (before anything imports matplotlib; a user's MPLBACKEND wins)
     os.environ.setdefault("MPLBACKEND", "Agg")
-    cmd = _command()
+    # the CLI's process is ours: NumPy's submodules that SciPy's import touches but no command
+    # uses load on first use (exofric._lazy); a Python user's process is left as it is
+    install_scipy_hook()
+    args = list(sys.argv[1:] if argv is None else argv)
+    cmd: Any = None
     try:
+        cmd = _command(args)   # inside: a failing import is reported like any other error
         rv = cmd.main(
-            args=list(sys.argv[1:] if argv is None else argv),
+            args=args,
             prog_name="exofric",
             standalone_mode=False,
         )
@@ -229,14 +294,14 @@ def run(argv: Sequence[str] | None = None) -> int:
         from exofric.errors import ConvergenceError, InputError
 
         if isinstance(exc, InputError):
-            ran = _running_command(cmd, list(sys.argv[1:] if argv is None else argv))
+            ran = _running_command(cmd, args)
             print(f"exofric: error: {_with_flags(exc, ran)}", file=sys.stderr)
             return 2
         if isinstance(exc, ConvergenceError):
             hint = ("" if "To try" in str(exc) else " To try: a finer mesh (--accuracy fine), "
                     "smaller pressure steps (more --pressures points), or a thicker wall.")
             print(f"exofric: did not converge: {' '.join(str(exc).split())}"
-                  + (hint if _is_fe(list(sys.argv[1:] if argv is None else argv)) else ""),
+                  + (hint if _is_fe(args) else ""),
                   file=sys.stderr)
             return 3
         loop = sys.modules.get("exofric.hardware._loop")   # only if a loop ran

@@ -20,10 +20,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exofric._validate import checked_init, unchecked
 from exofric.fe._elements import lagrange_1d
 
 __all__ = ["RigidCircle", "ContactState", "FrictionState", "nodal_weights", "evaluate_contact",
-           "evaluate_friction", "polar_angle", "slip_geometry", "active_set_direction"]
+           "evaluate_friction", "polar_angle", "slip_geometry", "active_set_direction",
+           "StickSlipModel", "friction_bound_change"]
 
 #: The refined direction is kept only if rhs . d > _DESCENT_COS |rhs| |d|, i.e. it descends the
 #: energy (an indefinite tangent far from equilibrium can make the active-set solution an
@@ -31,6 +33,7 @@ __all__ = ["RigidCircle", "ContactState", "FrictionState", "nodal_weights", "eva
 _DESCENT_COS = 1e-6
 
 
+@checked_init
 @dataclass(frozen=True)
 class RigidCircle:
     """A rigid circular obstacle.
@@ -59,6 +62,7 @@ class RigidCircle:
     name: str = ""
 
 
+@checked_init
 @dataclass
 class ContactState:
     """Per-node contact results for one obstacle (nodes = the contact candidates).
@@ -183,9 +187,10 @@ def evaluate_contact(
             ew[:, None, None] * (grad[:, :, None] * grad[:, None, :])
             - (ew * phi * hess_sign / dist)[:, None, None] * P
         )
-    return ContactState(energy, force, blocks, gap, active)
+    return unchecked(ContactState, energy, force, blocks, gap, active)  # per iteration
 
 
+@checked_init
 @dataclass
 class FrictionState:
     """Per-node Coulomb friction of one obstacle at a trial state (nodes = contact candidates).
@@ -329,42 +334,116 @@ def evaluate_friction(
     >>> f.stick.tolist(), float(f.traction[0])       # no slip yet: sticks without force
     ([True], 0.0)
     """
-    d = x - np.asarray(circle.center)
-    r2 = d[:, 0] ** 2 + d[:, 1] ** 2
-    theta, dth, gth = slip_geometry(x, circle, anchor)
-    rc = circle.radius
-    gt = rc * dth
-    kw = eps_t * weights
     frozen = bound is not None
-    on = normal.active if bound is None else bound > 0.0   # nodes that can carry friction
     if bound is None:
-        bound = mu * np.linalg.norm(normal.force, axis=1)   # mu eps w <-g>
-    trial = kw * gt
-    stick = on & (np.abs(trial) < (1.0 - _SLIP_TOL) * bound)
-    sgn = np.sign(trial)
-    T = np.where(stick, trial, np.where(on, bound * sgn, 0.0))
-    force = -(T * rc)[:, None] * gth
-    slip = on & ~stick
-    energy = float(np.sum(np.where(stick, 0.5 * kw * gt**2, 0.0))
-                   + np.sum(np.where(slip, bound * np.abs(gt) - bound**2 / (2.0 * kw), 0.0)))
-    blocks = np.zeros((len(x), 2, 2))
-    if tangent:
-        # Hessian of theta = atan2(dy, dx): [[2 dx dy, dy^2 - dx^2], [dy^2 - dx^2, -2 dx dy]]/r^4
-        dx, dy = d[:, 0], d[:, 1]
-        r4 = r2**2
-        H = np.empty((len(x), 2, 2))
-        H[:, 0, 0] = 2.0 * dx * dy / r4
-        H[:, 1, 1] = -H[:, 0, 0]
-        H[:, 0, 1] = H[:, 1, 0] = (dy**2 - dx**2) / r4
-        # F_n = eps w <-g>, so dF_n/dx = -eps w grad(g) on active nodes
-        dfn = -(eps * weights * normal.active)[:, None] * _gap_grad(d, circle)
-        stick_b = (kw * rc**2)[:, None, None] * (gth[:, :, None] * gth[:, None, :])
-        slip_b = (mu if coupled or not frozen else 0.0) * (sgn * rc)[:, None, None] * (
-            gth[:, :, None] * dfn[:, None, :])
-        blocks = (np.where(stick[:, None, None], stick_b, 0.0)
-                  + np.where(slip[:, None, None], slip_b, 0.0)
-                  + (T * rc)[:, None, None] * H)
-    return FrictionState(energy, force, blocks, T, stick, theta)
+        on, bound = normal.active, mu * np.linalg.norm(normal.force, axis=1)  # mu eps w <-g>
+    else:
+        on = bound > 0.0  # nodes that can carry friction
+    geo = _SlipGeometry(x, weights, circle, eps, eps_t, anchor, normal.active, tangent)
+    energy, force, blocks, T, stick = geo.terms(mu if coupled or not frozen else 0.0, bound, on)
+    return unchecked(FrictionState, energy, force, blocks, T, stick, geo.theta)
+
+
+class _SlipGeometry:
+    """What the return map of :func:`evaluate_friction` needs of the nodes' positions, once.
+
+    ``theta`` (rad), ``gt = R (theta - theta_a)`` (mm), ``gth = grad(theta)`` (1/mm),
+    ``kw = eps_t w`` (N/mm^2) and, with ``tangent``, the Hessian ``hess`` of theta (1/mm^2)
+    and ``dfn = dF_n/dx = -eps w grad(g)`` on the ``active`` nodes (N/mm^2).
+    """
+
+    def __init__(self, x: np.ndarray, weights: np.ndarray, circle: RigidCircle, eps: float,
+                 eps_t: float, anchor: np.ndarray, active: np.ndarray, tangent: bool) -> None:
+        d = x - np.asarray(circle.center)
+        self.theta, dth, self.gth = slip_geometry(x, circle, anchor)
+        self.rc = circle.radius
+        self.gt = self.rc * dth
+        self.kw = eps_t * weights
+        self.tangent = tangent
+        if tangent:
+            self.hess = _theta_hessian(d)
+            self.dfn = -(eps * weights * active)[:, None] * _gap_grad(d, circle)
+
+    def terms(self, mu_b: float, bound: np.ndarray, on: np.ndarray
+              ) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(energy, force, blocks, traction, stick) of the return map at the slip bounds
+        ``bound`` on the nodes ``on``; ``mu_b`` the coefficient of the coupled slip block."""
+        gt, gth, kw, rc = self.gt, self.gth, self.kw, self.rc
+        trial = kw * gt
+        stick = on & (np.abs(trial) < (1.0 - _SLIP_TOL) * bound)
+        sgn = np.sign(trial)
+        T = np.where(stick, trial, np.where(on, bound * sgn, 0.0))
+        force = -(T * rc)[:, None] * gth
+        slip = on & ~stick
+        energy = float(np.sum(np.where(stick, 0.5 * kw * gt**2, 0.0))
+                       + np.sum(np.where(slip, bound * np.abs(gt) - bound**2 / (2.0 * kw), 0.0)))
+        blocks = np.zeros((len(gt), 2, 2))
+        if self.tangent:
+            stick_b = (kw * rc**2)[:, None, None] * (gth[:, :, None] * gth[:, None, :])
+            slip_b = mu_b * (sgn * rc)[:, None, None] * (gth[:, :, None] * self.dfn[:, None, :])
+            blocks = (np.where(stick[:, None, None], stick_b, 0.0)
+                      + np.where(slip[:, None, None], slip_b, 0.0)
+                      + (T * rc)[:, None, None] * self.hess)
+        return energy, force, blocks, T, stick
+
+
+def friction_bound_change(
+    x: np.ndarray, weights: np.ndarray, circle: RigidCircle, eps: float, eps_t: float,
+    mu: float, anchor: np.ndarray, bounds: tuple[np.ndarray, np.ndarray], tangent: bool,
+) -> tuple[float, np.ndarray, np.ndarray]:
+    """Change of the frozen-bound friction terms when the bounds change (issue 37).
+
+    :func:`evaluate_friction` with ``bound=bounds[1]`` minus with ``bound=bounds[0]`` (the
+    coupled tangent), at the same positions: what a refresh of the bounds does to an
+    evaluation (:meth:`exofric.fe.SqueezeProblem.patch_refreshed`), with the geometry
+    computed once.
+
+    Parameters
+    ----------
+    x : ndarray (m, 2)
+        Current coordinates of the candidate nodes (mm).
+    weights : ndarray (m,)
+        Tributary lengths (mm).
+    circle : RigidCircle
+        The obstacle.
+    eps, eps_t : float
+        Normal and tangential penalties (N/mm^3).
+    mu : float
+        Coulomb coefficient (unitless).
+    anchor : ndarray (m,)
+        Anchor angles (rad).
+    bounds : tuple of ndarray (m,)
+        The old and the new slip bounds (N per mm depth).
+    tangent : bool
+        Also the change of the tangent blocks (otherwise zeros).
+
+    Returns
+    -------
+    energy : float
+        Change of the energy (N mm per mm depth).
+    force : ndarray (m, 2)
+        Change of the friction force on the body (N per mm depth).
+    blocks : ndarray (m, 2, 2)
+        Change of the tangent blocks (N/mm per mm depth).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hole = RigidCircle((0.0, 0.0), 5.0, inside=True)
+    >>> x = np.array([[0.05, -5.01]])            # slipping: its force is the bound
+    >>> de, df, _ = friction_bound_change(x, np.ones(1), hole, 1e5, 1e5, 0.3,
+    ...                                   np.array([-np.pi / 2]),
+    ...                                   (np.array([300.0]), np.array([310.0])), False)
+    >>> round(float(np.hypot(*df[0])), 2)        # 10 N/mm more bound, times R / r
+    9.98
+    """
+    d = x - np.asarray(circle.center)
+    dist = np.hypot(d[:, 0], d[:, 1])
+    active = (circle.radius - dist if circle.inside else dist - circle.radius) <= 0.0
+    geo = _SlipGeometry(x, weights, circle, eps, eps_t, anchor, active, tangent)
+    e0, f0, b0, _, _ = geo.terms(mu, bounds[0], bounds[0] > 0.0)
+    e1, f1, b1, _, _ = geo.terms(mu, bounds[1], bounds[1] > 0.0)
+    return e1 - e0, f1 - f0, b1 - b0
 
 
 def slip_geometry(x: np.ndarray, circle: RigidCircle, anchor: np.ndarray
@@ -415,6 +494,144 @@ def _gap_grad(d: np.ndarray, circle: RigidCircle) -> np.ndarray:
 
 
 
+class StickSlipModel:
+    """Linearised stick/slip law of one obstacle's contact nodes at a state (frozen bounds).
+
+    The semismooth Newton step on the return map (:func:`evaluate_friction` with a given
+    ``bound``, issue 37): the tangent at ``u`` treats each node in the class it is in at
+    ``u`` (stick: the stiff tangential spring; slip: the force ``B s`` on the bound). A node
+    whose linearised trial force after the step, ``T*(d) = eps_t w (g_t + R grad(theta) . d)``
+    against the linearised bound ``B + mu dF_n/dx . d``, would leave that class (a sticking
+    node beyond the bound, a slipping one back inside it) is put in its predicted class in the
+    linear model (:meth:`correction`), and :func:`active_set_direction` solves the direction
+    again, until the classes it predicts are those it was solved with. A slipping node that
+    would slide the other way is predicted to stick first: it passes through the stick zone
+    on its way, and the model of the opposite slip alone would push it back (the classes
+    would alternate between the two slips).
+
+    Parameters
+    ----------
+    x : ndarray (m, 2)
+        Current coordinates of the candidate nodes (mm).
+    weights : ndarray (m,)
+        Tributary lengths (mm).
+    circle : RigidCircle
+        The obstacle.
+    eps, eps_t : float
+        Normal and tangential penalties (N/mm^3).
+    mu : float
+        Coulomb coefficient (unitless) of the coupled slip block (as in
+        :func:`evaluate_friction`).
+    anchor : ndarray (m,)
+        Anchor angles (rad).
+    active : ndarray of bool (m,)
+        The nodes in (normal) contact at ``x``.
+    bound : ndarray (m,)
+        The frozen slip bounds (N per mm depth); friction acts where > 0.
+
+    Attributes
+    ----------
+    cls0 : ndarray of int (m,)
+        Class of each node at ``x``: 0 no friction, 2 stick, +1 / -1 slip with the trial
+        force's sign.
+    geometry : _SlipGeometry
+        The nodes' slip geometry (``gt`` mm, ``gth`` 1/mm, ...).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> hole = RigidCircle((0.0, 0.0), 5.0, inside=True)
+    >>> x = np.array([[0.0, -5.01]])           # 0.01 mm in, at its anchor: sticks
+    >>> m = StickSlipModel(x, np.ones(1), hole, 1e5, 1e5, 0.3, np.array([-np.pi / 2]),
+    ...                    np.array([True]), np.array([300.0]))
+    >>> m.cls0.tolist(), m.classify(np.array([[0.01, 0.0]])).tolist()  # 0.01 mm on: slips
+    ([2], [1])
+    """
+
+    def __init__(self, x: np.ndarray, weights: np.ndarray, circle: RigidCircle, eps: float,
+                 eps_t: float, mu: float, anchor: np.ndarray, active: np.ndarray,
+                 bound: np.ndarray) -> None:
+        self.geometry = _SlipGeometry(x, weights, circle, eps, eps_t, anchor, active, True)
+        self.bound = bound
+        self.mu = mu
+        self.cls0 = self._classes(self.geometry.kw * self.geometry.gt, bound)
+        self.t0 = self._traction(self.cls0)
+
+    def _classes(self, trial: np.ndarray, bound: np.ndarray) -> np.ndarray:
+        """Classes (0 none, 2 stick, +-1 slip) of the trial forces against the bounds (N per
+        mm depth)."""
+        on = self.bound > 0.0
+        stick = on & (np.abs(trial) < (1.0 - _SLIP_TOL) * bound)
+        return np.where(stick, 2, np.where(on, np.sign(trial), 0.0)).astype(int)
+
+    def _traction(self, cls: np.ndarray) -> np.ndarray:
+        """Tangential force T (N per mm depth) at the state of each node in class ``cls``."""
+        g = self.geometry
+        return np.where(cls == 2, g.kw * g.gt, self.bound * cls)
+
+    def _blocks(self, cls: np.ndarray, t: np.ndarray) -> np.ndarray:
+        """Tangent blocks (N/mm per mm depth) of the nodes in classes ``cls``, forces ``t``."""
+        g = self.geometry
+        gg = g.gth[:, :, None]
+        stick = (g.kw * g.rc**2)[:, None, None] * (gg * g.gth[:, None, :])
+        slip = (self.mu * np.where(cls == 2, 0, cls) * g.rc)[:, None, None] * (
+            gg * g.dfn[:, None, :])
+        return (np.where((cls == 2)[:, None, None], stick, slip)
+                + (t * g.rc)[:, None, None] * g.hess)
+
+    def classify(self, dn: np.ndarray) -> np.ndarray:
+        """Classes the nodes would be in after the nodal step ``dn`` (m, 2) (mm), linearised.
+
+        Parameters
+        ----------
+        dn : ndarray (m, 2)
+            Displacement increments of the nodes (mm).
+
+        Returns
+        -------
+        ndarray of int (m,)
+            0 no friction, 2 stick, +1 / -1 slip.
+        """
+        g = self.geometry
+        trial = g.kw * (g.gt + g.rc * np.einsum("mi,mi->m", g.gth, dn))
+        cls = self._classes(trial, self.bound + self.mu * np.einsum("mi,mi->m", g.dfn, dn))
+        return np.where(cls * self.cls0 == -1, 2, cls)  # a reversal sticks first
+
+    def correction(self, cls: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Change of the linear model when the nodes are in the classes ``cls`` instead.
+
+        Parameters
+        ----------
+        cls : ndarray of int (m,)
+            Classes (from :meth:`classify`).
+
+        Returns
+        -------
+        blocks : ndarray (m, 2, 2)
+            Tangent blocks to add (N/mm per mm depth).
+        shift : ndarray (m, 2)
+            Change of the nodes' residual at the state (N per mm depth): the right-hand
+            side ``-R`` gets ``-shift``.
+        """
+        changed = cls != self.cls0
+        t = np.where(changed, self._traction(cls), self.t0)
+        blocks = np.where(changed[:, None, None],
+                          self._blocks(cls, t) - self._blocks(self.cls0, self.t0), 0.0)
+        return blocks, ((t - self.t0) * self.geometry.rc)[:, None] * self.geometry.gth
+
+
+def _theta_hessian(d: np.ndarray) -> np.ndarray:
+    """Hessian (1/mm^2) of the polar angle theta = atan2(dy, dx) at points ``d`` (m, 2):
+    ``[[2 dx dy, dy^2 - dx^2], [dy^2 - dx^2, -2 dx dy]] / r^4``."""
+    dx, dy = d[:, 0], d[:, 1]
+    r4 = (dx**2 + dy**2) ** 2
+    H = np.empty((len(d), 2, 2))
+    H[:, 0, 0] = 2.0 * dx * dy / r4
+    H[:, 1, 1] = -H[:, 0, 0]
+    H[:, 0, 1] = H[:, 1, 0] = (dy**2 - dx**2) / r4
+    return H
+
+
 def active_set_direction(
     gaps: Sequence[tuple[np.ndarray, np.ndarray]],
     kw: np.ndarray,
@@ -425,6 +642,7 @@ def active_set_direction(
     solve_with: Callable[[np.ndarray, np.ndarray], np.ndarray],
     max_iter: int,
     friction: Sequence[tuple[float | None, np.ndarray]] | None = None,
+    switches: Sequence[StickSlipModel] = (),
 ) -> np.ndarray:
     """Newton direction with the contacts the step itself would make (semismooth active set).
 
@@ -435,6 +653,9 @@ def active_set_direction(
     again, until the nodes in the model are exactly those the direction runs into (at most
     ``max_iter`` re-solves). The last direction is returned if it descends (``rhs . d >
     1e-6 |rhs| |d|``), else the plain one. Only the direction changes, never the residual.
+    With ``switches`` (friction), the nodes in contact whose stick/slip class the step would
+    change are also put in their predicted class (:meth:`StickSlipModel.correction`), and the
+    loop runs until both the entering nodes and the classes are consistent with the step.
 
     Parameters
     ----------
@@ -458,6 +679,8 @@ def active_set_direction(
     friction : sequence of (float or None, ndarray (m, 2)), optional
         Per obstacle: mu (None: frictionless) and ``s R grad(theta)`` of a node entering while
         sliding (its linearised friction ``mu s R F_n grad(theta)``).
+    switches : sequence of StickSlipModel, optional
+        The stick/slip law of the obstacles with friction at the current state.
 
     Returns
     -------
@@ -480,17 +703,24 @@ def active_set_direction(
     step = np.zeros(n_dofs)
     plain = d
     used = [np.zeros(m, dtype=bool) for _ in gaps]  # entering nodes in the model
+    classes = [sw.cls0 for sw in switches]  # stick/slip classes in the model
     for it in range(max_iter + 1):
         step[free] = d
         dn = step[contact_dofs]
         nxt = [(g > 0.0) & (g + np.einsum("mi,mi->m", grad, dn) < 0.0) for g, grad in gaps]
-        if all(np.array_equal(n_, us) for n_, us in zip(nxt, used, strict=True)):
+        cls = [sw.classify(dn) for sw in switches]
+        if all(np.array_equal(a, b) for a, b in zip([*nxt, *cls], [*used, *classes],
+                                                    strict=True)):
             break  # consistent: exactly the nodes it runs into are in its model
         if it == max_iter:
             break  # the last set is kept if it descends (the test below)
-        used = nxt
+        used, classes = nxt, cls
         blocks = np.zeros((m, 2, 2))
         extra = np.zeros(n_dofs)
+        for sw, c in zip(switches, classes, strict=True):
+            b, shift = sw.correction(c)
+            blocks += b
+            extra[contact_dofs.ravel()] -= shift.ravel()
         for (g, grad), e, (mf, slip_dir) in zip(gaps, used, fric, strict=True):
             ke = np.where(e, kw, 0.0)
             blocks += ke[:, None, None] * np.einsum("mi,mj->mij", grad, grad)

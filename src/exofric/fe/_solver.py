@@ -30,6 +30,7 @@ from exofric import defaults
 from exofric._validate import checked_init
 from exofric.errors import ConvergenceError
 from exofric.fe._assembly import Assembler
+from exofric.fe._divergence import explain_failure
 from exofric.fe._stats import collecting, record_attempt
 
 __all__ = ["Problem", "NewtonSettings", "solve_path", "PathPoint"]
@@ -150,6 +151,7 @@ class NewtonSettings:
     load_unit: str = "MPa"
 
 
+@checked_init
 @dataclass
 class PathPoint:
     """A converged state at one requested load.
@@ -340,7 +342,8 @@ class _Linear:
     """The linear algebra of one Newton attempt: the last tangent, its factors, the counts.
 
     ``counter[1]`` counts factorisations (the active-set re-solves included); a chord step
-    (:func:`_newton_attempt`) solves with the stored factors and adds none.
+    (:func:`_newton_attempt`) solves with the stored factors and adds none, nor does an
+    active-set re-solve done as a low-rank update of them (:meth:`solve`).
     """
 
     def __init__(self, problem: Problem, counter: list[int]) -> None:
@@ -359,9 +362,63 @@ class _Linear:
         self.K = K
 
     def solve(self, A: sp.csc_matrix, b: np.ndarray) -> np.ndarray:
-        """Solve with a matrix of its own (factorised here: the active-set re-solves)."""
+        """Solve with a matrix of its own (the active-set re-solves): a low-rank update of the
+        tangent's factors where ``A`` differs from the tangent in a few dofs, else factorised."""
+        x = self._update_solve(A, b)
+        if x is not None:
+            return x
         self._counter[1] += 1
         return self._factorize(A).solve(b)
+
+    def _update_solve(self, A: sp.csc_matrix, b: np.ndarray) -> np.ndarray | None:
+        """``A x = b`` by the Woodbury identity on the tangent's factors, or None.
+
+        ``A = K + U C U^T`` with ``U`` the unit columns of the p dofs whose rows or columns
+        differ (a node entering contact, a stick/slip switch: 2 dofs a node) and ``C`` the
+        difference there; then ``x = x0 - Z C (I + Z_J C)^-1 x0_J`` with ``x0 = K^-1 b``,
+        ``Z = K^-1 U`` (p + 1 solves with the factors: ~1/15-1/30 of a factorisation each on
+        the squeeze's meshes) and ``_J`` the rows of those dofs. None (factorise instead) for
+        another pattern, more than ``_UPDATE_DOFS`` dofs, or a solution whose residual is
+        above ``_UPDATE_RTOL`` of ``|A| |x| + |b|`` (an ill-conditioned update).
+        """
+        K, f = self.K, self.factor
+        if (K is None or f is None or A.shape != K.shape or A.nnz != K.nnz
+                or not (A.indptr is K.indptr or np.array_equal(A.indptr, K.indptr))
+                or not (A.indices is K.indices or np.array_equal(A.indices, K.indices))):
+            return None
+        diff = A.data - K.data
+        nz = np.flatnonzero(diff)
+        rows = A.indices[nz]
+        cols = np.searchsorted(A.indptr, nz, side="right") - 1
+        dofs = np.union1d(rows, cols)
+        if dofs.size > _UPDATE_DOFS:
+            return None
+        C = np.zeros((dofs.size, dofs.size))
+        np.add.at(C, (np.searchsorted(dofs, rows), np.searchsorted(dofs, cols)), diff[nz])
+        x0 = f.solve(b)
+        Z = np.zeros((b.size, dofs.size))
+        for k, j in enumerate(dofs):
+            e = np.zeros(b.size)
+            e[j] = 1.0
+            Z[:, k] = f.solve(e)
+        try:
+            y = np.linalg.solve(np.eye(dofs.size) + Z[dofs] @ C, x0[dofs])
+        except LinAlgError:
+            return None
+        x = x0 - Z @ (C @ y)
+        scale = float(np.max(np.abs(A.data))) * float(np.max(np.abs(x))) + float(
+            np.max(np.abs(b)))
+        if not (np.all(np.isfinite(x)) and np.max(np.abs(A @ x - b)) <= _UPDATE_RTOL * scale):
+            return None
+        return x
+
+
+#: Largest number of dofs in which an active-set matrix may differ from the factorised tangent
+#: for a low-rank update (:meth:`_Linear.solve`; 7 nodes: p + 1 solves cost about one
+#: factorisation on the 8 x 128 mesh, far less on coarser ones), and the residual it must reach
+#: relative to ``|A| |x| + |b|`` (a direct solve reaches ~1e-16 x the condition number).
+_UPDATE_DOFS = 14
+_UPDATE_RTOL = 1e-11
 
 
 class _Factor(Protocol):
@@ -446,15 +503,13 @@ def _newton_attempt(
     chord, r_prev = False, np.inf  # may the last factors serve (a short full step before)
     refresh = getattr(problem, "refresh", None)
     patch = getattr(problem, "patch_refreshed", None)
-    frictional = bool(getattr(problem, "frictional", False))
     for it in range(1, s.max_iter + 1):
         if refresh is not None and refresh(u) > 0.0:
             # friction: slip bounds frozen at u, so the trial's are stale; a problem that can
             # update the trial's evaluation itself (open tube ends: a constant shift of the
-            # energy and the axial residual) spares the re-evaluation, unless its slip bounds
-            # moved too (the patch knows only the cap)
-            cached = (patch(cached) if patch is not None and cached is not None
-                      and not frictional else None)
+            # energy and the axial residual; friction: the outer nodes' friction terms under
+            # the new bounds) spares the re-evaluation
+            cached = patch(cached) if patch is not None and cached is not None else None
         out = cached if cached is not None else problem.evaluate(u, load, not chord)
         cached = None
         if out is None:
@@ -483,8 +538,7 @@ def _newton_attempt(
         # no chord steps near the iteration limit: there, quadratic convergence counts
         short = d_max <= s.chord_step * lscale and it < s.max_iter - _CHORD_MARGIN
         ls = _line_search(problem, u, step, load, energy, rnorm, float(rf @ d),
-                          s.tol_r * fscale, s.line_search_halvings,
-                          not (short or frictional))
+                          s.tol_r * fscale, s.line_search_halvings, not short)
         if ls is None:
             if K is None:  # a chord direction failed (e.g. a contact changed): a tangent now
                 chord = False
@@ -499,6 +553,10 @@ def _newton_attempt(
             # residual was already converged and the correction is negligible
             return u, it
     return None
+
+
+#: A sub-step within this fraction of the rest of the way to the requested load takes all of it.
+_SNAP = 1e-9
 
 
 def solve_path(
@@ -606,8 +664,11 @@ def _follow(
         nsteps = 0
         cut = 0
         while lam < target - 1e-15:
-            h = min(step, target - lam)
-            trial_lam = lam + h
+            # the last sub-step to a target lands on it exactly (no sliver of round-off left
+            # to step over, from a step shrunk to that sliver)
+            rest = target - lam
+            h = rest if rest <= step * (1.0 + _SNAP) else step
+            trial_lam = target if h == rest else lam + h
             guess = u
             # no secant predictor for frictional problems: it extrapolates the displacements
             # but not the slip state, and the sliding wall arc is predicted past its edge
@@ -626,13 +687,13 @@ def _follow(
                 cut += 1
                 step = h * 0.5
                 if cut > s.max_cutbacks or step < s.min_step:
-                    raise ConvergenceError(
+                    raise explain_failure(problem, u, ConvergenceError(  # the material's?
                         f"Newton failed at {s.load_name} {trial_lam:.6g} {s.load_unit} after "
                         f"{cut - 1} cutbacks; last converged {s.load_name} {lam:.6g} "
                         f"{s.load_unit}. To try: a finer mesh, smaller load steps (max_step), "
                         "or a thicker wall / lower load if the tube is near its limit",
                         reached=lam,
-                    )
+                    ))
                 continue
             u_prev, lam_prev = u, lam
             u, k = res
@@ -640,7 +701,9 @@ def _follow(
             iters += k
             nsteps += 1
             cut = 0
-            step = min(s.max_step, h * 1.5)
+            # grow the step after a success; a step shortened only to land on the target
+            # does not shrink the next one
+            step = min(s.max_step, max(h * 1.5, step if h == rest else 0.0))
             if commit is not None:
                 commit(u)
             if on_step is not None:

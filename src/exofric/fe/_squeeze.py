@@ -61,12 +61,13 @@ from exofric.fe._contact import (
     ContactState,
     FrictionState,
     RigidCircle,
+    StickSlipModel,
     active_set_direction,
     evaluate_contact,
     evaluate_friction,
+    friction_bound_change,
     nodal_weights,
     polar_angle,
-    slip_geometry,
 )
 from exofric.fe._inflation import MeshSpec, PressurizedTube
 from exofric.fe._mesh import TubeMesh, polar_mesh, two_sided_angles
@@ -160,6 +161,10 @@ class SqueezeProblem(PressurizedTube):
     >>> round(p.wire_gap(np.zeros(p.n_dofs)), 3)  # the clearance (mm)
     0.1
     """
+
+    #: Semismooth stick/slip classes in :meth:`refine_direction` (issue 37; False: only the
+    #: nodes entering contact, as before; for checks).
+    stick_slip_switches: bool = True
 
     def __init__(
         self,
@@ -359,6 +364,7 @@ class SqueezeProblem(PressurizedTube):
         self.anchors = (polar_angle(xo, self.hole), polar_angle(xo, self.wire))
         #: frozen slip bounds mu F_n of the outer nodes (hole, wire) (N per mm depth)
         self.bounds = (np.zeros(len(xo)), np.zeros(len(xo)))
+        self._refreshed = (np.zeros(self.n_dofs), self.bounds)  # last refresh: u, old bounds
         #: frictional dissipation of each committed sub-step (N mm per mm depth, full model's
         #: section; the half model's is doubled), in order
         self.dissipation: list[float] = []
@@ -414,13 +420,65 @@ class SqueezeProblem(PressurizedTube):
         cap = PressurizedTube.refresh(self, u)
         if not self.frictional:
             return cap
-        ch, cw = self.contact(u)
-        new = tuple(m * np.linalg.norm(c.force, axis=1) for m, c in zip(self.mu, (ch, cw),
-                                                                            strict=True))
+        # mu F_n = mu eps w <-g> (the norm of evaluate_contact's force), without its states
+        xo = self.nodal(u)[self.outer]
+        new = []
+        for m, c in zip(self.mu, (self.hole, self.wire), strict=True):
+            dist = np.hypot(*(xo - np.asarray(c.center)).T)
+            gap = c.radius - dist if c.inside else dist - c.radius
+            new.append(m * self.penalty * self.w_outer * np.maximum(-gap, 0.0))
         change = max(float(np.max(np.abs(n - b))) for n, b in zip(new, self.bounds,
                                                                    strict=True))
+        self._refreshed = (u, self.bounds)  # for patch_refreshed: the state, the old bounds
         self.bounds = (new[0], new[1])
         return max(change, cap)
+
+    def patch_refreshed(self, evaluation: tuple[float, np.ndarray, sp.csc_matrix | None]
+                        ) -> tuple[float, np.ndarray, sp.csc_matrix | None] | None:
+        """The evaluation at the state just refreshed, updated for its new frozen bounds.
+
+        Friction (issue 37): only the friction terms of the outer nodes depend on the bounds,
+        so the energy, residual and tangent held for the state of the last :meth:`refresh`
+        (under the bounds before it) are corrected by the difference of those terms under the
+        new and the old bounds, instead of evaluating the whole body again. Open ends: the cap
+        term as well (:meth:`PressurizedTube.patch_refreshed`). None if that cannot be done.
+
+        Parameters
+        ----------
+        evaluation : tuple
+            ``(energy, residual, tangent)`` (N mm, N and N/mm per mm depth) at that state
+            under the old bounds (and cap area).
+
+        Returns
+        -------
+        tuple or None
+            The evaluation under the new bounds.
+        """
+        if self.ends == "open":
+            patched = PressurizedTube.patch_refreshed(self, evaluation)
+            if patched is None:
+                return None
+            evaluation = patched
+        if not self.frictional:
+            return evaluation if self.ends == "open" else None
+        u, old = self._refreshed
+        energy, R, K = evaluation
+        tangent = K is not None
+        xo = self.nodal(u)[self.outer]
+        force = np.zeros((len(xo), 2))
+        blocks = np.zeros((len(xo), 2, 2))
+        for c, m, a, b0, b1 in zip((self.hole, self.wire), self.mu, self.anchors, old,
+                                   self.bounds, strict=True):
+            if np.array_equal(b0, b1):
+                continue  # e.g. no contact with that obstacle yet
+            de, df, db = friction_bound_change(xo, self.w_outer, c, self.penalty,
+                                               self.penalty_t, m, a, (b0, b1), tangent)
+            energy += de
+            force += df
+            blocks += db
+        R = R.copy()
+        np.subtract.at(R, self.contact_dofs.ravel(), force.ravel())
+        return energy, R, self.assembler.add(K, 2, blocks) if K is not None else None
 
     def commit(self, u: np.ndarray) -> None:
         """Accept the converged state ``u``: move each node's anchor by its slip.
@@ -563,6 +621,13 @@ class SqueezeProblem(PressurizedTube):
         iterations per attempt fall, 6 x 96 from 4.1 to 2.0 s CPU. Only the direction
         changes: the residual, hence the converged state, is the same.
 
+        With friction (issue 37, :attr:`stick_slip_switches`), the nodes in contact whose
+        stick/slip class the step would change (:class:`~exofric.fe._contact.StickSlipModel`)
+        are put in that class in the linear model too: a slipping node that the step runs back
+        through its stick zone, or a sticking one past its bound, no longer stops the line
+        search (base group, mu 0.3 on both, default accuracy: 392 -> 258 iterations, 79 -> 0
+        damped steps, 6 -> 0 failed attempts).
+
         Parameters
         ----------
         u : ndarray (n_dofs,)
@@ -595,17 +660,24 @@ class SqueezeProblem(PressurizedTube):
         # friction of nodes entering contact: mu and s R grad(theta) (s: the sense of the
         # node's trial slip from its anchor), or None without friction on that obstacle
         fric: list[tuple[float | None, np.ndarray]] = []
-        for c, m, a in zip((self.hole, self.wire), self.mu, self.anchors, strict=True):
+        # the stick/slip law of the nodes in contact (issue 37): classes the step would change
+        switches: list[StickSlipModel] = []
+        for c, m, a, b, (g, _) in zip((self.hole, self.wire), self.mu, self.anchors,
+                                      self.bounds, lin, strict=True):
             if not (self.frictional and m > 0.0):
                 fric.append((None, np.zeros((len(kw), 2))))
                 continue
-            _, dth, gth = slip_geometry(xo, c, a)
-            fric.append((m, (np.sign(dth) * c.radius)[:, None] * gth))
+            sw = StickSlipModel(xo, self.w_outer, c, self.penalty, self.penalty_t, m, a,
+                                g <= 0.0, b)
+            geo = sw.geometry
+            fric.append((m, (np.sign(geo.gt) * c.radius)[:, None] * geo.gth))
+            if self.stick_slip_switches:
+                switches.append(sw)
         free = self.free
         return active_set_direction(
             lin, kw, cd, free, rhs, d,
             lambda blocks, extra: solve(self.assembler.add(K, 2, blocks), rhs + extra[free]),
-            max_iter, fric)
+            max_iter, fric, switches)
 
     def limit_predictor(self, u: np.ndarray, guess: np.ndarray) -> np.ndarray:
         """Shorten a load-step predictor so that no node newly crosses into the last obstacle.

@@ -27,30 +27,34 @@ Examples
 ('neo-hookean', True)
 """
 
-from exofric.material._fit import MaterialFit, ModeFit, ModeStability, fit_material
-from exofric.material._hyperelastic import (
-    HYPERELASTIC_MODELS,
-    MODES,
-    HyperelasticModel,
-    StabilityCheck,
-    material_model,
-)
-from exofric.material._models import (
-    CORRELATIONS,
-    Correlation,
-    MaterialRangeWarning,
-    MooneyRivlin,
-    shore_to_modulus,
-)
-from exofric.material._silicone import SILICONE_SOURCE, SILICONES, silicone_uniaxial
-from exofric.material._treloar import TRELOAR_SOURCE, treloar_1944
+from __future__ import annotations
 
-__all__ = ["CORRELATIONS", "Correlation", "HYPERELASTIC_MODELS", "HyperelasticModel", "MODES",
-           "MaterialFit", "MaterialRangeWarning", "ModeFit", "ModeStability", "MooneyRivlin",
-           "SILICONES", "SILICONE_SOURCE", "StabilityCheck", "TRELOAR_SOURCE", "fit_material",
-           "material_model", "shore_to_modulus", "silicone_uniaxial", "treloar_1944"]
+from typing import TYPE_CHECKING
 
-# every public function checks its arguments' kinds (InputError naming the parameter)
-from exofric._lazy import export_checked  # noqa: E402
+from exofric._lazy import lazy_package
 
-export_checked(__name__)
+if TYPE_CHECKING:  # for type checkers and IDEs: the same names, eagerly
+    from exofric.material._fit import MaterialFit, ModeFit, ModeStability, fit_material
+    from exofric.material._hyperelastic import (
+        HYPERELASTIC_MODELS,
+        MODES,
+        HyperelasticModel,
+        StabilityCheck,
+        material_model,
+    )
+    from exofric.material._models import (
+        CORRELATIONS,
+        Correlation,
+        MaterialRangeWarning,
+        MooneyRivlin,
+        shore_to_modulus,
+    )
+    from exofric.material._silicone import SILICONE_SOURCE, SILICONES, silicone_uniaxial
+    from exofric.material._treloar import TRELOAR_SOURCE, treloar_1944
+
+
+# Lazy facade (PEP 562): ``exofric material --shore`` and the Mooney-Rivlin constants load
+# neither NumPy nor the fits; each name is loaded from its module on first use, every public
+# function checked (InputError naming the parameter; exofric._lazy.lazy_package). The
+# TYPE_CHECKING imports above are the one list of public names.
+__getattr__, __dir__, __all__ = lazy_package(__name__, __file__)
