@@ -1,8 +1,12 @@
 """Benchmark: the friction force along the wire's contact arc, exofric vs CalculiX (issue 35.3).
 
-Run: ``python benchmarks/bench_tangential.py [--full] [--quick] [--only ccx|exofric] [--json]
-[--quiet] [--out PATH]``. Without options (``make bench``): exofric's standard run against the
-stored CalculiX reference, a few seconds, nothing written. ``--full``: every study of both codes,
+Run: ``python benchmarks/bench_tangential.py [--full] [--quick] [--converge] [--only
+ccx|exofric] [--json] [--quiet] [--out PATH]``. ``--converge``: both codes refined near the wire
+to convergence at 0.2-0.3 MPa (three meshes each, Richardson-extrapolated; ~21 min CPU), written
+to ``tests/data/ccx_tangential_converged.json``: exofric -3.7 / -1.7 / -1.4 % against CalculiX
+at 0.2 / 0.25 / 0.3 MPa (docs/formulation.md section 13.1). Without options (``make
+bench``): exofric's standard run against the stored CalculiX reference, a few seconds, nothing
+written. ``--full``: every study of both codes,
 ~1 h on a shared 2-core machine (several minutes of CPU per CalculiX run on the finer meshes),
 written to ``tests/data/ccx_tangential_base.json`` (or ``--out``).
 
@@ -84,7 +88,7 @@ import calculix_models as ccxm  # noqa: E402
 SHORE = 62.5
 MU_WIRE = 0.3
 PRESSURES_MPA = np.round(np.arange(1, 13) * 0.05, 10)
-SHOWN_MPA = (0.1, 0.2, 0.3, 0.6)
+SHOWN_MPA = (0.1, 0.2, 0.25, 0.3, 0.6)
 OUT = HERE.parent / "tests" / "data" / "ccx_tangential_base.json"
 
 #: CalculiX runs: name -> deck options (beside COMMON). The reference is REFERENCE.
@@ -130,7 +134,40 @@ EXO_RUNS: dict[str, tuple[tuple[int, int, float], float | None, float]] = {
     "12x96_g20_step_0.00625": ((12, 96, 20.0), None, 0.00625),
     "12x96_g20_step_0.003125": ((12, 96, 20.0), None, 0.003125),
 }
-EXO_QUICK = ("standard",)
+#: The accuracy levels as they are now (two-sided graded meshes, issue 35), with T_wire's own
+#: two-mesh error estimate (``estimate.wire_tangential_pct``, %): run name "level_<level>".
+EXO_LEVELS = ("level_standard", "level_fine")
+EXO_QUICK = ("standard", "level_standard")
+
+#: The convergence study of both codes (``--converge``, issue 35 item 3 revisited): pressures to
+#: 0.3 MPa only (the ramp ends there: half the cost), each code refined near the wire by doubling
+#: its element counts through the wall and around the half at fixed gradings (every element
+#: about halves), then its penalty and load steps at the finest mesh.
+CONV_PRESSURES_MPA = np.round(np.arange(1, 7) * 0.05, 10)
+CONV_OUT = HERE.parent / "tests" / "data" / "ccx_tangential_converged.json"
+#: CalculiX: rings graded 6:1 toward the outer surface, angles 20:1 toward the wire, the rigid
+#: wire and hole in 128 elements over their half circles (facets no coarser than the tube's).
+CCX_CONV_BASE: dict[str, Any] = {"rigid_elements": 128, "grading": 20.0, "radial_grading": 6.0,
+                                 "max_increment_mpa": 0.025, "stick_slope": 1e3}
+CCX_CONV: dict[str, dict[str, Any]] = {
+    "4x40": {"n_radial": 4, "n_circ": 40},
+    "8x80": {"n_radial": 8, "n_circ": 80},
+    "16x160": {"n_radial": 16, "n_circ": 160},
+    "16x160_slope_1e4": {"n_radial": 16, "n_circ": 160, "stick_slope": 1e4},
+    "16x160_inc_0.0125": {"n_radial": 16, "n_circ": 160, "max_increment_mpa": 0.0125},
+}
+#: exofric: uniform rings (MeshSpec has no radial grading), angles 20:1 toward the wire.
+EXO_CONV: dict[str, tuple[tuple[int, int, float], float | None, float]] = {
+    "6x48": ((6, 48, 20.0), None, 0.00625),
+    "12x96": ((12, 96, 20.0), None, 0.00625),
+    "24x192": ((24, 192, 20.0), None, 0.00625),
+    "24x192_step_0.003125": ((24, 192, 20.0), None, 0.003125),
+    "24x192_eps_1e4": ((24, 192, 20.0), 1e4, 0.00625),
+    "24x192_eps_1e5": ((24, 192, 20.0), 1e5, 0.00625),
+    "6x48_step_0.003125": ((6, 48, 20.0), None, 0.003125),
+    "12x96_step_0.003125": ((12, 96, 20.0), None, 0.003125),
+    "24x192_step_0.0015625": ((24, 192, 20.0), None, 0.0015625),
+}
 
 
 def _material() -> MooneyRivlin:
@@ -141,10 +178,13 @@ def _list(a: Any) -> list[float]:
     return [float(v) + 0.0 for v in np.asarray(a, dtype=float)]
 
 
-def run_ccx(name: str, ccx: str = "ccx") -> dict[str, Any]:
-    """One CalculiX run of :data:`CCX_RUNS` ``name``: T_wire, S_wire, N (N/mm), CPU (s)."""
-    opts = {**CCX_BASE, **CCX_RUNS[name]}
-    deck = ccxm.squeeze_deck(PRESSURES_MPA, _material(), hole_mm=BASE.hole_mm,
+def run_ccx(name: str, ccx: str = "ccx", converge: bool = False) -> dict[str, Any]:
+    """One CalculiX run of :data:`CCX_RUNS` (``converge``: :data:`CCX_CONV`) ``name``: T_wire,
+    S_wire, N (N/mm), CPU (s)."""
+    opts = ({**CCX_CONV_BASE, **CCX_CONV[name]} if converge
+            else {**CCX_BASE, **CCX_RUNS[name]})
+    pressures = CONV_PRESSURES_MPA if converge else PRESSURES_MPA
+    deck = ccxm.squeeze_deck(pressures, _material(), hole_mm=BASE.hole_mm,
                              tube_od_mm=BASE.tube_od_mm, tube_id_mm=BASE.tube_id_mm,
                              wire_mm=BASE.wire_mm, node_forces=True,
                              **{**CCX_COMMON, **opts})
@@ -166,14 +206,28 @@ def run_ccx(name: str, ccx: str = "ccx") -> dict[str, Any]:
     return out
 
 
-def run_exofric(name: str) -> dict[str, Any]:
-    """One exofric run of :data:`EXO_RUNS` ``name``: T_wire, S_wire, N (N/mm), stick, time."""
-    (nr, nc, grading), eps_t, step = EXO_RUNS[name]
-    settings = NewtonSettings(**{**defaults.SQUEEZE_NEWTON, "max_step": step})
+def run_exofric(name: str, converge: bool = False) -> dict[str, Any]:
+    """One exofric run of :data:`EXO_RUNS` or :data:`EXO_LEVELS` (``converge``:
+    :data:`EXO_CONV`) ``name``: T_wire, S_wire, N (N/mm), stick, time; for a level also
+    T_wire's error estimate (%) and its flags."""
     t0 = time.process_time()
-    r = squeeze(BASE, _material(), PRESSURES_MPA, mu_wall=0.0, mu_wire=MU_WIRE,
-                gravity="none", mesh=MeshSpec(nr, nc, grading=grading), friction_penalty=eps_t,
-                settings=settings)
+    pressures = CONV_PRESSURES_MPA if converge else PRESSURES_MPA
+    if converge:
+        (nr, nc, grading), eps_t, step = EXO_CONV[name]
+        settings = NewtonSettings(**{**defaults.SQUEEZE_NEWTON, "max_step": step})
+        r = squeeze(BASE, _material(), pressures, mu_wall=0.0, mu_wire=MU_WIRE,
+                    gravity="none", mesh=MeshSpec(nr, nc, grading=grading),
+                    friction_penalty=eps_t, settings=settings, keep_fields=False)
+    elif name in EXO_LEVELS:
+        r = squeeze(BASE, _material(), PRESSURES_MPA, mu_wall=0.0, mu_wire=MU_WIRE,
+                    gravity="none", accuracy=name.split("_", 1)[1])
+        nr, nc, grading, step = r.mesh.n_radial, r.mesh.n_circ, r.mesh.grading, None
+    else:
+        (nr, nc, grading), eps_t, step = EXO_RUNS[name]
+        settings = NewtonSettings(**{**defaults.SQUEEZE_NEWTON, "max_step": step})
+        r = squeeze(BASE, _material(), PRESSURES_MPA, mu_wall=0.0, mu_wire=MU_WIRE,
+                    gravity="none", mesh=MeshSpec(nr, nc, grading=grading),
+                    friction_penalty=eps_t, settings=settings)
     cpu = time.process_time() - t0
     c = r.contact
     signs = []
@@ -188,11 +242,66 @@ def run_exofric(name: str) -> dict[str, Any]:
             "squeeze_force_n_per_mm": _list(r.squeeze_force_n_per_mm),
             "stick_fraction": _list(c.stick_fraction_wire),
             "contact_nodes": [len(p["wire"]["node"]) for p in c.profiles],
-            "sign_changes": signs, "cpu_time_s": cpu}
+            "sign_changes": signs, "cpu_time_s": cpu,
+            **({} if r.estimate.wire_tangential_pct is None else {
+                "tangential_error_estimate_pct": _list(r.estimate.wire_tangential_pct),
+                "estimate_reliable": [bool(v) for v in r.estimate.reliable]})}
 
 
 def _at(values: list[float], p: float) -> float:
-    return float(values[int(np.argmin(np.abs(PRESSURES_MPA - p)))])
+    """``values`` at ``p`` MPa (the full or the convergence study's pressures; nan beyond)."""
+    ps = PRESSURES_MPA if len(values) == PRESSURES_MPA.size else CONV_PRESSURES_MPA
+    if p > ps[-1] + 1e-12:
+        return float("nan")
+    return float(values[int(np.argmin(np.abs(ps - p)))])
+
+
+def richardson(f1: float, f2: float, f3: float, r: float = 2.0) -> dict[str, Any]:
+    """Richardson extrapolation of three meshes (``f1`` coarsest .. ``f3`` finest, every
+    element about halved between them: ratio ``r``) with the observed order.
+
+    ``order`` p = ln((f2 - f1) / (f3 - f2)) / ln r where the changes keep their sign and shrink
+    (otherwise None, and ``extrapolated`` is the finest value); ``extrapolated`` f3 + (f3 -
+    f2) / (r^p - 1); ``gci_pct`` Roache's grid convergence index of the finest mesh (safety
+    factor 1.25 with three meshes, %); ``last_change_pct`` 100 (f3 / f2 - 1)."""
+    d1, d2 = f2 - f1, f3 - f2
+    out: dict[str, Any] = {"last_change_pct": 100.0 * (f3 / f2 - 1.0), "order": None,
+                           "extrapolated": f3, "gci_pct": None}
+    if d1 * d2 > 0.0 and abs(d2) < abs(d1):
+        order = float(np.log(d1 / d2) / np.log(r))
+        ext = f3 + d2 / (r**order - 1.0)
+        out.update(order=order, extrapolated=ext,
+                   gci_pct=100.0 * 1.25 * abs(d2 / f3) / (r**order - 1.0))
+    return out
+
+
+def converged(out: dict[str, Any], code: str, names: tuple[str, str, str],
+              from_mpa: float = 0.2) -> dict[str, Any]:
+    """Per pressure from ``from_mpa``: the three-mesh Richardson extrapolation of ``code``'s
+    runs ``names`` (coarsest first), see :func:`richardson`."""
+    t = [np.asarray(out[code][n]["tangential_n_per_mm"]) for n in names]
+    k = [i for i, p in enumerate(CONV_PRESSURES_MPA) if p >= from_mpa - 1e-12]
+    return {"meshes": list(names), "pressure_mpa": [float(CONV_PRESSURES_MPA[i]) for i in k],
+            "per_pressure": [richardson(float(t[0][i]), float(t[1][i]), float(t[2][i]))
+                             for i in k]}
+
+
+#: The mesh sequences of the convergence study (coarsest first; exofric's at the load sub-step
+#: that halving changes by <= 0.4 % on its finest mesh)
+CONV_MESHES = {"ccx": ("4x40", "8x80", "16x160"),
+               "exofric": ("6x48_step_0.003125", "12x96_step_0.003125", "24x192_step_0.003125")}
+
+
+def summarise(out: dict[str, Any]) -> dict[str, Any]:
+    """Both codes' extrapolated T_wire (where their three meshes ran) and exofric's minus
+    CalculiX's, relative to CalculiX's (%)."""
+    res = {code: converged(out, code, names) for code, names in CONV_MESHES.items()
+           if all(n in out.get(code, {}) and "error" not in out[code][n] for n in names)}
+    if len(res) == 2:
+        res["exofric_vs_ccx_pct"] = [
+            100.0 * (a["extrapolated"] / b["extrapolated"] - 1.0) for a, b in
+            zip(res["exofric"]["per_pressure"], res["ccx"]["per_pressure"], strict=True)]
+    return res
 
 
 def compare(exo: dict[str, Any], ref: dict[str, Any], p_from: float = 0.2) -> dict[str, Any]:
@@ -206,8 +315,9 @@ def compare(exo: dict[str, Any], ref: dict[str, Any], p_from: float = 0.2) -> di
 
 def run(quick: bool = False, only: str | None = None, ccx: str = "ccx",
         log: Any = None, progress: Any = None, names: list[str] | None = None,
-        start: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The CalculiX and exofric runs (``quick``: one of each); JSON-ready dict.
+        start: dict[str, Any] | None = None, converge: bool = False) -> dict[str, Any]:
+    """The CalculiX and exofric runs (``quick``: one of each; ``converge``: the convergence
+    study :data:`CCX_CONV`, :data:`EXO_CONV`); JSON-ready dict.
 
     ``progress(partial)`` is called after every run (the caller writes partial results);
     ``names`` restricts the runs, ``start`` holds earlier runs that are kept."""
@@ -218,19 +328,20 @@ def run(quick: bool = False, only: str | None = None, ccx: str = "ccx",
     out: dict[str, Any] = {"ccx": dict((start or {}).get("ccx", {})),
                            "exofric": dict((start or {}).get("exofric", {}))}
     if only in (None, "ccx"):
-        for name in (CCX_QUICK if quick else CCX_RUNS):
+        for name in (CCX_CONV if converge else CCX_QUICK if quick else CCX_RUNS):
             if names is not None and name not in names:
                 continue
             note(f"[tangential] CalculiX {name} ...")
-            out["ccx"][name] = run_ccx(name, ccx)
+            out["ccx"][name] = run_ccx(name, ccx, converge)
             if progress is not None:
                 progress(out)
     if only in (None, "exofric"):
-        for name in (EXO_QUICK if quick else EXO_RUNS):
+        for name in (EXO_CONV if converge else EXO_QUICK if quick
+                     else (*EXO_RUNS, *EXO_LEVELS)):
             if names is not None and name not in names:
                 continue
             note(f"[tangential] exofric {name} ...")
-            out["exofric"][name] = run_exofric(name)
+            out["exofric"][name] = run_exofric(name, converge)
             if progress is not None:
                 progress(out)
     return out
@@ -253,24 +364,44 @@ def render(out: dict[str, Any]) -> str:
                 continue
             lines.append(_row(f"{code} {name}", r["tangential_n_per_mm"])
                          + f"  {r['cpu_time_s']:6.1f}")
+            if "tangential_error_estimate_pct" in r:
+                lines.append(_row("  its T_wire error estimate (%)",
+                                  r["tangential_error_estimate_pct"], "{:8.1f}%"))
     for name, cmp_ in out.get("comparison", {}).items():
         rel = cmp_["rel"]
         lines.append(f"{'rel ' + name:<40}" + "".join(
             "        -" if rel[int(np.argmin(np.abs(PRESSURES_MPA - p)))] is None else
             f"{100 * rel[int(np.argmin(np.abs(PRESSURES_MPA - p)))]:8.1f}%" for p in SHOWN_MPA))
+    conv = out.get("converged", {})
+    for code in ("ccx", "exofric"):
+        if code in conv:
+            c = conv[code]
+            lines.append(f"{code} {' -> '.join(c['meshes'])}: extrapolated at "
+                         + ", ".join(f"{p:g}" for p in c["pressure_mpa"]) + " MPa: "
+                         + ", ".join(f"{q['extrapolated']:.5f} (order "
+                                     + ("-" if q["order"] is None else f"{q['order']:.2f}")
+                                     + f", last change {q['last_change_pct']:+.1f} %)"
+                                     for q in c["per_pressure"]))
+    if "exofric_vs_ccx_pct" in conv:
+        lines.append("exofric vs ccx, extrapolated: "
+                     + ", ".join(f"{v:+.1f} %" for v in conv["exofric_vs_ccx_pct"]))
     if out.get("written"):
         lines.append(f"wrote {out['written']}")
     return "\n".join(lines)
 
 
-def _header(exe: str | None, started: datetime.datetime, argv: list[str]) -> dict[str, Any]:
+def _header(exe: str | None, started: datetime.datetime, argv: list[str],
+            converge: bool = False) -> dict[str, Any]:
     """Description, provenance, units, problem and definitions of the output JSON."""
+    study = ("mesh convergence studies of both codes to 0.3 MPa (each refined near the wire "
+             "by doubling its element counts at fixed gradings), then the penalty, stick slope "
+             "and steps at the finest meshes" if converge else
+             "CalculiX runs (the reference: stick slope, increment and mesh studies) and "
+             "exofric's own penalty, load-step and mesh studies (a record, not a reference)")
     return {
         "description": "The friction force along the wire's contact arc, T_wire "
                        "(wire_tangential_force_n_per_mm), base group, mu_wire 0.3, wall "
-                       "frictionless: CalculiX runs (the reference: stick slope, increment "
-                       "and mesh studies) and exofric's own penalty, load-step and mesh "
-                       "studies (a record, not a reference); issue 35 item 3",
+                       f"frictionless: {study}; issue 35 item 3",
         "provenance": {
             "command": " ".join(["python", "benchmarks/bench_tangential.py",
                                  *argv]),
@@ -279,7 +410,7 @@ def _header(exe: str | None, started: datetime.datetime, argv: list[str]) -> dic
             "python": platform.python_version(), "machine": platform.machine()},
         "units": {"pressure": "MPa", "force": "N/mm (per mm depth, full section)",
                   "length": "mm", "penalty": "N/mm^3 = MPa/mm", "time": "s (CPU)"},
-        "pressure_mpa": PRESSURES_MPA.tolist(),
+        "pressure_mpa": (CONV_PRESSURES_MPA if converge else PRESSURES_MPA).tolist(),
         "structure": {"name": BASE.name, "hole_mm": BASE.hole_mm,
                       "tube_od_mm": BASE.tube_od_mm, "tube_id_mm": BASE.tube_id_mm,
                       "wire_mm": BASE.wire_mm},
@@ -293,7 +424,8 @@ def _header(exe: str | None, started: datetime.datetime, argv: list[str]) -> dic
             "ccx": "2 |sum_j f_j . t_j| over the rigid wire's nodes, f_j the reaction, t_j the "
                    "circumferential unit vector about the wire's centre"},
         "ccx_model": {"deck": "benchmarks/calculix_models.py squeeze_deck",
-                      "common": CCX_COMMON, "base_options": CCX_BASE},
+                      "common": CCX_COMMON,
+                      "base_options": CCX_CONV_BASE if converge else CCX_BASE},
     }
 
 
@@ -313,10 +445,13 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     ap.add_argument("--ccx", default="ccx", help="CalculiX executable")
     ap.add_argument("--runs", default=None,
                     help="comma-separated run names (default: all of the chosen codes)")
+    ap.add_argument("--converge", action="store_true",
+                    help="the convergence study of both codes to 0.3 MPa (~30 min CPU); writes "
+                         f"{CONV_OUT.relative_to(HERE.parent)} (or --out)")
     ap.add_argument("--merge", action="store_true",
                     help="keep the runs already in --out and add (or replace) these")
     args = ap.parse_args(argv)
-    if not (args.full or args.quick or args.only or args.runs):
+    if not (args.full or args.quick or args.only or args.runs or args.converge):
         args.quick, args.only = True, "exofric"   # make bench: the stored reference, no ccx
     exe = ccxm.ccx_available(args.ccx)
     only = args.only
@@ -329,8 +464,10 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         only = "exofric"
     started = datetime.datetime.now(datetime.UTC)
     target = args.out if args.out is not None else (
+        CONV_OUT if args.converge else
         OUT if args.full and not (args.quick or args.only) else None)
-    header = _header(exe, started, sys.argv[1:] if argv is None else list(argv))
+    header = _header(exe, started, sys.argv[1:] if argv is None else list(argv),
+                     args.converge)
 
     def progress(partial: dict[str, Any]) -> None:
         if target is not None and str(target) != "-":
@@ -341,11 +478,14 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         start = json.loads(Path(target).read_text())
     names = None if args.runs is None else [n.strip() for n in args.runs.split(",")]
     res = run(args.quick, only, exe or args.ccx,
-              None if (args.quiet or args.json) else sys.stderr, progress, names, start)
+              None if (args.quiet or args.json) else sys.stderr, progress, names, start,
+              args.converge)
     out = {**header, **res, "complete": True}
     ref = (res["ccx"] or (json.loads(OUT.read_text())["ccx"] if OUT.exists() else {})
            ).get(REFERENCE)
-    if ref is not None and "error" not in ref:
+    if args.converge:
+        out["converged"] = summarise(out)
+    if ref is not None and "error" not in ref and not args.converge:
         out["comparison"] = {f"{name} vs ccx {REFERENCE}": compare(r, ref)
                              for name, r in res["exofric"].items()}
     if target is not None and str(target) != "-":

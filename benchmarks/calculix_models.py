@@ -130,12 +130,15 @@ def polar_quad8(
     first_element: int = 1,
     n_circ0: int = 0,
     grading0: float = 1.0,
+    radial_grading: float = 1.0,
 ) -> tuple[dict[int, tuple[float, float]], dict[int, list[int]], np.ndarray]:
     """Structured 8-node quad mesh of an annular sector (CalculiX ``CPE8`` node order).
 
     Element angles shrink geometrically toward ``theta1`` (largest/smallest = ``grading``);
     with ``n_circ0 > 0`` the first ``n_circ0`` elements shrink toward ``theta0`` instead
     (ratio ``grading0``). Every node lies on its circle; mid-nodes at mid-radius/mid-angle.
+    ``radial_grading`` > 1: the rings' widths shrink geometrically from the inner to the outer
+    radius (largest/smallest); 1 (default): uniform.
 
     Returns
     -------
@@ -154,7 +157,12 @@ def polar_quad8(
     else:
         sizes = _sizes(n_circ, grading)
     tb = theta0 + np.concatenate([[0.0], np.cumsum(sizes)]) / sizes.sum() * (theta1 - theta0)
-    rb = np.linspace(inner_radius, outer_radius, n_radial + 1)
+    if radial_grading == 1.0:
+        rb = np.linspace(inner_radius, outer_radius, n_radial + 1)
+    else:
+        w = _sizes(n_radial, radial_grading)
+        rb = inner_radius + np.concatenate([[0.0], np.cumsum(w)]) / w.sum() * (
+            outer_radius - inner_radius)
     radii = np.sort(np.concatenate([rb, 0.5 * (rb[1:] + rb[:-1])]))
     angles = np.sort(np.concatenate([tb, 0.5 * (tb[1:] + tb[:-1])]))
     grid = np.zeros((radii.size, angles.size), dtype=int)
@@ -374,6 +382,7 @@ def squeeze_deck(
     mu_wire: float = 0.0,
     stick_slope: float = STICK_SLOPE,
     node_forces: bool = False,
+    radial_grading: float = 1.0,
 ) -> CcxDeck:
     """Deck of the tube-wire-hole squeeze, half model x >= 0, rigid hole and wire.
 
@@ -415,6 +424,9 @@ def squeeze_deck(
         (radial and circumferential about the circle's centre). (``*CONTACT PRINT`` does
         not give them for node-to-surface contact: its ``CF`` statistics are zero there and
         ccx 2.20 crashed after four outputs; ``CSTR`` gives stresses without areas.)
+    radial_grading : float
+        Widest (at the bore) / narrowest (at the outer surface) ring of elements through the
+        wall; 1 (default): uniform.
 
     Returns
     -------
@@ -432,7 +444,7 @@ def squeeze_deck(
     yc = -(0.5 * hole_mm - b)
     half = 0.5 * np.pi
     nodes, elems, grid = polar_quad8(a, b, n_radial, n_circ, -half, half, grading=grading,
-                                     center=(0.0, yc))
+                                     center=(0.0, yc), radial_grading=radial_grading)
     for k in np.concatenate([grid[:, 0], grid[:, -1]]):
         if k:
             nodes[k] = (0.0, nodes[k][1])
@@ -485,6 +497,8 @@ def squeeze_deck(
     mesh = {"element": element, "n_radial": n_radial, "n_circ": n_circ, "grading": grading,
             "penalty": penalty, "rigid_elements": rigid_elements, "contact": contact,
             "controls": controls}
+    if radial_grading != 1.0:
+        mesh["radial_grading"] = float(radial_grading)
     if mu_wall > 0.0 or mu_wire > 0.0:
         mesh.update(mu_wall=float(mu_wall), mu_wire=float(mu_wire),
                     stick_slope=float(stick_slope))

@@ -17,6 +17,18 @@ FElupe's linear solves of failed, cut-back attempts and are harmless)::
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/make_squeeze_reference.py --jobs 2
 
+Issue 35's thick walls (``--set onset``, ``tests/data/squeeze_reference_felupe_onset.json``):
+the five :data:`ONSET_STRUCTURES` on the reference mesh at every output pressure and on the
+finer mesh up to :data:`ONSET_STUDY_SPAN_MPA` past each 1D onset (the first three significant
+outputs of each). Run 2026-11-27 in one process, about 16 min on a shared 2-core machine (per
+structure 100-169 s + 55-82 s)::
+
+    OPENBLAS_NUM_THREADS=1 nice .venv/bin/python benchmarks/make_squeeze_reference.py \
+        --set onset --jobs 1 --cache /tmp/onset.jsonl
+
+Measured: changes to the finer mesh <= 0.037 % where N >= 1 % of N(0.6 MPa); against exofric's
+own 8 x 192 convergence study (``--set onset-convergence``) <= 0.131 %.
+
 Units: mm, N, MPa, s; forces per unit depth in N/mm, full section (2 x half model).
 """
 
@@ -200,7 +212,7 @@ def solve(task: dict[str, Any]) -> dict[str, Any]:
         "squeeze_force_n_per_mm": np.maximum(r.squeeze_force_n_per_mm, 0.0).tolist(),
         "wall_force_n_per_mm": r.wall_force_n_per_mm.tolist(),
         "equilibrium_n_per_mm": r.equilibrium_n_per_mm.tolist(),
-        "max_penetration_mm": r.contact.max_penetration_mm.tolist(),
+        "max_penetration_mm": r.max_penetration_mm.tolist(),
         "newton_iterations": r.newton_iterations.tolist(),
         "dofs": r.dofs,
         "solve_time_s": r.solve_time_s,

@@ -62,9 +62,19 @@ def _significant(n: np.ndarray) -> np.ndarray:
 
 
 @cache
+def _solve(dims: tuple[float, float, float, float, float], name: str) -> SqueezeResult:
+    """exofric's weightless squeeze at the default accuracy (cached per structure, mm)."""
+    return squeeze(Structure(*dims, name), MAT, P, gravity="none", keep_fields=False)
+
+
+def _dims(d: dict[str, Any]) -> tuple[float, float, float, float, float]:
+    """(hole, tube OD, tube ID, wire, length) in mm of a stored reference structure."""
+    return (d["hole_mm"], d["tube_od_mm"], d["tube_id_mm"], d["wire_mm"], d["length_mm"])
+
+
 def _exofric(name: str) -> SqueezeResult:
-    """exofric's weightless squeeze at the default accuracy (cached per structure)."""
-    return squeeze(_structure(name), MAT, P, gravity="none", keep_fields=False)
+    """exofric's weightless squeeze of a Table 3 reference case (cached)."""
+    return _solve(_dims(REF["structures"][name]), name)
 
 
 def test_reference_is_mesh_converged_and_weightless() -> None:
@@ -162,9 +172,107 @@ def test_felupe_reproduces_the_stored_reference() -> None:
 
 # --- issue 35: contact onset, the estimate's reliability, the interpolated patch edge ----------
 
-# The independent FElupe reference of the thick-wall structures
-# (`benchmarks/make_squeeze_reference.py --set onset`, hours on this machine) is not generated
-# yet; the thick-wall tests run against exofric's own mesh-convergence study (below).
+#: The independent FElupe reference of issue 35's thick-wall structures (ID/OD 0.54-0.55, larger
+#: clearances, wires 1.1-2 mm): ``benchmarks/make_squeeze_reference.py --set onset``.
+ONSET_DATA = DATA.with_name("squeeze_reference_felupe_onset.json")
+#: exofric's own mesh-convergence study of the same structures (not independent: kept as a
+#: second, finer-grained check and compared with the FElupe file)
+CONVERGENCE_DATA = DATA.with_name("squeeze_reference_onset_convergence.json")
+ONSET: dict[str, Any] = json.loads(ONSET_DATA.read_text())
+ONSET_NAMES = list(ONSET["structures"])
+#: The reference's own mesh error where the acceptance is tested: its change to the 1.5x finer
+#: mesh (12 x 240 vs 8 x 160) from the first significant pressure (the finer mesh is run up to
+#: 0.16 MPa past the 1D onset, where the Table 3 file's study shows the largest changes).
+ONSET_MESH_TOL_PCT = 0.2
+
+
+def _change_pct(d: dict[str, Any], key: str) -> np.ndarray:
+    """A stored mesh study's change (%) per pressure, NaN where it was not computed."""
+    return np.array([np.nan if c is None else c for c in d["mesh_study"][key]], dtype=float)
+
+
+def test_onset_reference_is_mesh_converged() -> None:
+    """The thick-wall FElupe reference: mesh study and penalty penetration (no solve)."""
+    assert ONSET["model"]["code"].startswith("FElupe")
+    for name, d in ONSET["structures"].items():
+        n = np.array(d["squeeze_force_n_per_mm"])
+        change = _change_pct(d, "change_to_finer_pct")[_significant(n)]
+        assert np.isfinite(change[:2]).all(), name  # the first two significant outputs studied
+        assert np.nanmax(change) <= ONSET_MESH_TOL_PCT, (name, change)
+        assert max(d["max_penetration_mm"]) < 1e-3
+
+
+@pytest.mark.parametrize("name", ONSET_NAMES)
+def test_onset_reference_matches_free_inflation(name: str) -> None:
+    """FElupe's first wire contact brackets the 1D free-inflation onset (OD = D - d2)."""
+    d = ONSET["structures"][name]
+    n = np.array(d["squeeze_force_n_per_mm"])
+    assert np.all(n[P < d["onset_1d_mpa"]] == 0.0)
+    assert np.all(n[P > d["onset_1d_mpa"]] > 0.0)
+
+
+def _acceptance_cases() -> list[tuple[str, dict[str, Any], np.ndarray]]:
+    """(name, stored structure, the reference's own error in %) of both FElupe files."""
+    out = []
+    for ref in (REF, ONSET):
+        for name, d in ref["structures"].items():
+            out.append((name, d, np.nan_to_num(_change_pct(d, "change_to_finer_pct"))))
+    return out
+
+
+def test_issue35_acceptance_against_independent_references() -> None:
+    """Issue 35's acceptance over 11 structures and both FElupe references (6 Table 3: thin
+    walls ID/OD 0.60; 5 thick: ID/OD 0.54-0.55; both with clearances D - d1 - d2 of 0.1-0.6 mm
+    and wires of 1.1-2 mm): 'standard' within 1 % wherever N >= 1 % of N(0.6 MPa), and its
+    error estimate >= the actual error at every such pressure, flagged unreliable or not.
+
+    Tolerances: the 1 % is the issue's; the estimate is granted the reference's own mesh error
+    (its change to the 1.5x finer FElupe mesh, <= 0.2 %; 0 where that mesh was not run), nothing
+    more. The number of significant pressures whose estimate is flagged unreliable (the nested
+    coarse mesh's wire patch has < 2 nodes) is pinned: it is the first significant pressure of
+    the structures whose contact is born just before it.
+    """
+    cases = _acceptance_cases()
+    ratios = {d["tube_id_mm"] / d["tube_od_mm"] for _, d, _ in cases}
+    assert len(cases) >= 10 and min(ratios) < 0.56 and max(ratios) > 0.59
+    assert {min(d["wire_mm"] for _, d, _ in cases), max(d["wire_mm"] for _, d, _ in cases)} \
+        == {1.1, 2.0}
+    worst, flagged, points = 0.0, 0, 0
+    for name, d, ref_err in cases:
+        r = _solve(_dims(d), name)
+        n_ref = np.array(d["squeeze_force_n_per_mm"])
+        sig = _significant(n_ref)
+        err = 100.0 * np.abs(r.squeeze_force_n_per_mm[sig] / n_ref[sig] - 1.0)
+        assert r.estimate.pct is not None and r.estimate.reliable is not None
+        assert np.all(err <= 100.0 * REL_TOL), (name, err)
+        assert np.all(r.estimate.pct[sig] + ref_err[sig] >= err), (name, err, r.estimate.pct)
+        worst = max(worst, float(err.max()))
+        flagged += int(np.sum(~r.estimate.reliable[sig]))
+        points += int(sig.sum())
+    # measured 2026-11-27: 5 of 101 flagged (the first significant pressure of test 1 and of the
+    # thick walls d2 = 1.6, d2 = 1.1, D = 10.2 and test 2), their estimates 4.1-13.6 % against
+    # errors <= 0.58 %; the estimate / error ratio is >= 2.0 everywhere; worst error 0.575 %
+    # (thick, d2 = 1.1 at 0.35 MPa, 0.03 MPa after its onset)
+    assert flagged <= 5 and points == 101, (flagged, points)
+    assert worst < 100.0 * REL_TOL
+
+
+def test_onset_references_agree() -> None:
+    """The independent FElupe reference and exofric's own convergence study (8 x 192, a
+    different element, contact and mesh) agree where N is significant (no solve).
+
+    Measured: <= 0.131 % (at the first significant pressure, 0.03-0.05 MPa after the onset),
+    <= 0.03 % from the second on. Tolerance 0.2 %: the convergence study's own change from its
+    half mesh is up to 0.47 % there, FElupe's to its finer mesh <= 0.04 %; 0.2 % is what both
+    codes being right within their studies allows without letting a real 1 % error through.
+    """
+    conv = json.loads(CONVERGENCE_DATA.read_text())["structures"]
+    assert set(conv) == set(ONSET_NAMES)
+    for name, d in ONSET["structures"].items():
+        n = np.array(d["squeeze_force_n_per_mm"])
+        c = np.array(conv[name]["squeeze_force_n_per_mm"])
+        sig = _significant(n)
+        np.testing.assert_allclose(c[sig], n[sig], rtol=0.002, err_msg=name)
 
 
 def test_patch_edge_is_exact_for_a_hertz_patch() -> None:
@@ -216,9 +324,6 @@ def test_reference_estimate_flags() -> None:
         assert r.to_dict()["n_error_estimate_reliable"] == [bool(v) for v in r.estimate.reliable]
 
 
-CONVERGENCE_DATA = DATA.with_name("squeeze_reference_onset_convergence.json")
-
-
 def _onset_cases(path: Path) -> list[tuple[str, dict[str, Any]]]:
     """(name, stored structure) of an issue-35 reference file, [] if it is not there."""
     if not path.exists():
@@ -228,10 +333,8 @@ def _onset_cases(path: Path) -> list[tuple[str, dict[str, Any]]]:
 
 def _check_thick(name: str, d: dict[str, Any], ref_err_pct: np.ndarray) -> None:
     """'standard' within 1% where N >= 1% of N(0.6); the estimate >= the error there."""
-    s = Structure(d["hole_mm"], d["tube_od_mm"], d["tube_id_mm"], d["wire_mm"],
-                  d["length_mm"], name)
     n_ref = np.array(d["squeeze_force_n_per_mm"])
-    r = squeeze(s, MAT, P, gravity="none", keep_fields=False)
+    r = _solve(_dims(d), name)
     sig = _significant(n_ref)
     np.testing.assert_allclose(r.squeeze_force_n_per_mm[sig], n_ref[sig], rtol=REL_TOL)
     err = 100.0 * np.abs(r.squeeze_force_n_per_mm[sig] / n_ref[sig] - 1.0)
@@ -253,3 +356,19 @@ def test_thick_walls_against_the_convergence_reference(name: str, d: dict[str, A
     # pressure, <= 0.13% from the third on (order ~1.2: its own error is smaller still)
     assert np.nanmax(change[_significant(np.array(d["squeeze_force_n_per_mm"]))]) <= 0.5
     _check_thick(name, d, np.nan_to_num(change))
+
+
+def test_cli_table_marks_unreliable_estimates(cli: Any) -> None:
+    """`exofric squeeze`'s table marks an estimate flagged unreliable with '*' and says why
+    in a footnote; the JSON's flags are the same pressures (base group, draft: at 0.15 MPa the
+    nested 1 x 12 mesh's wire patch is one node, at 0.16 MPa two)."""
+    args = ["squeeze", "--hole", "10", "--tube-od", "8.3", "--tube-id", "4.97", "--wire", "1.6",
+            "--shore", "62.5", "--pressures", "0.15,0.16", "--accuracy", "draft"]
+    d = cli([*args, "--json"]).json()
+    assert d["n_error_estimate_reliable"] == [False, True]
+    r = cli(args)
+    assert r.code == 0, r.err
+    rows = [ln for ln in r.out.splitlines() if ln.lstrip("│ ").startswith(("0.15 ", "0.16 "))]
+    assert len(rows) == 2
+    assert rows[0].rstrip(" │").endswith("*") and not rows[1].rstrip(" │").endswith("*")
+    assert "* estimate unreliable at 1 pressure(s)" in r.out

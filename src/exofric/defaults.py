@@ -62,9 +62,9 @@ SQUEEZE_MESH: Final[MappingProxyType[str, Any]] = MappingProxyType(
 #: toward the hole wall (ratio ``wall_grading``), the rest toward the wire (``grading``).
 #: Largest error from the first pressure where N >= 1% of N(0.6 MPa) against the independent
 #: FElupe reference (tests/data/squeeze_reference_felupe.json, six Table 3 structures) and
-#: against the thick-wall convergence reference (squeeze_reference_onset_convergence.json, five
-#: structures, ID/OD 0.54): "draft" 0.81% / 1.56%, "standard" 0.47% / 0.50%, "fine" 0.16% /
-#: 0.45% (docs/formulation.md section 6; before issue 35 "standard" was 0.63% / 3.8%).
+#: against the independent thick-wall FElupe reference (squeeze_reference_felupe_onset.json, five
+#: structures, ID/OD 0.54): "draft" 0.81% / 1.47%, "standard" 0.47% / 0.58%, "fine" 0.16% /
+#: 0.59% (docs/formulation.md section 6; before issue 35 "standard" was 0.63% / 3.7%).
 SQUEEZE_ACCURACY: Final[MappingProxyType[str, MappingProxyType[str, Any]]] = MappingProxyType({
     "draft": MappingProxyType({"n_radial": 2, "n_circ": 24, "grading": 6.0, "wall_elements": 8,
                                "wall_grading": 4.0, "coarsen": (2, 2)}),

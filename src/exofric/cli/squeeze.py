@@ -117,6 +117,7 @@ def _render(res: Any, st: Any, p: list[float], out: dict[str, Any]) -> None:
     )
     ndir = res.squeeze_force_direction_deg if res.wire_angle_deg else None
     est = res.estimate.pct
+    unreliable = set(res.estimate.unreliable_outputs)
     cols = ["P (MPa)", "N (N)", "N (N/mm)", "wall (N)", "wire half-width (mm)"]
     if ndir is not None:
         cols.append("N dir. (deg)")
@@ -154,7 +155,7 @@ def _render(res: Any, st: Any, p: list[float], out: dict[str, Any]) -> None:
             row.append(f"{res.axial_stretch[i]:.4f}")
         if est is not None:
             row.append("-" if res.squeeze_force_n_per_mm[i] == 0.0 and est[i] == 0.0
-                       else f"{est[i]:.2g}")
+                       else f"{est[i]:.2g}" + ("*" if i in unreliable else ""))
         t.add_row(*row)
     console.print(t)
     if fric:
@@ -178,6 +179,10 @@ def _render(res: Any, st: Any, p: list[float], out: dict[str, Any]) -> None:
         assert cm is not None
         console.print(f"[dim]error estimate: 3 x |N - N({cm.n_radial} x {cm.n_circ} "
                       "nested mesh)| (two-grid GCI); --accuracy fine for less.[/dim]")
+        if unreliable:
+            console.print(f"* estimate unreliable at {len(unreliable)} pressure(s): the "
+                          "nested mesh does not resolve the wire contact patch (or only one "
+                          "mesh touches the wire); the error may be larger: --accuracy fine.")
     for k in ("plot", "contact_plot", "vtu"):
         if k in out:
             console.print(f"wrote {out[k]}")

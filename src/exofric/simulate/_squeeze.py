@@ -283,7 +283,7 @@ def _bracket_onset(sol: _MeshSolution, s: NewtonSettings, tol_mpa: float) -> flo
     gravity "none" the floating-mode spring carries no force before the touch, so the path's
     states are the unregularised ones there.)
     """
-    from scipy.optimize import brentq
+    from exofric._roots import brentq  # not scipy.optimize: 0.15 s of start-up
 
     prob = sol.prob
     path = [(lam, u) for lam, u in sol.path if lam <= sol.p[-1] + 1e-15]
@@ -330,30 +330,30 @@ def _relative_pct(fine: np.ndarray, coarse: np.ndarray) -> np.ndarray:
 def _solve_levels(
     setup: SqueezeSetup, p: np.ndarray, spec: MeshSpec, coarse_spec: MeshSpec | None,
     s: NewtonSettings,
-) -> tuple[_MeshSolution, float | None, np.ndarray | None, np.ndarray | None,
-           np.ndarray | None, np.ndarray | None]:
-    """(solution, onset MPa, coarse N N/mm, estimate %, estimate N/mm, reliable?)."""
+) -> tuple[_MeshSolution, float | None, dict[str, Any]]:
+    """(solution, onset MPa, the :class:`ErrorEstimate` fields from the nested mesh)."""
     sol = _solve_mesh(setup, p, spec, s)
-    est_pct: np.ndarray | None = None
-    est_abs: np.ndarray | None = None
-    reliable: np.ndarray | None = None
-    coarse_n: np.ndarray | None = None
     if coarse_spec is None:
-        onset = _bracket_onset(sol, s, setup.onset_tol_mpa)
-    else:
-        # The coarse mesh only serves the estimate: its states keep the floating-mode spring
-        # (a share ~ spring / contact stiffness ~ 1e-4 of N, far below the estimate's size),
-        # and it brackets the onset, which is geometric (the free tube spanning wall to wire):
-        # the two meshes' onsets agree to ~1e-5 MPa, bracketed to onset_tol_mpa on the cheaper.
-        # its N enters only the estimate (% level): Newton to 1e-7 instead of 1e-9 suffices
-        loose = replace(s, tol_r=max(s.tol_r, 1e-7), tol_u=max(s.tol_u, 1e-8))
-        coarse = _solve_mesh(setup, p, coarse_spec, loose, release=False)
-        onset = _bracket_onset(coarse, s, setup.onset_tol_mpa)
-        coarse_n = coarse.n.copy()
-        est_pct, reliable = _estimate(p, sol.n, coarse.n, np.array(coarse.patch_nodes))
-        est_abs = np.where(sol.n > 0.0, 0.01 * est_pct * sol.n,
-                           defaults.ESTIMATE_SAFETY_FACTOR * np.abs(sol.n - coarse.n))
-    return sol, onset, coarse_n, est_pct, est_abs, reliable
+        return sol, _bracket_onset(sol, s, setup.onset_tol_mpa), {}
+    # The coarse mesh only serves the estimate: its states keep the floating-mode spring
+    # (a share ~ spring / contact stiffness ~ 1e-4 of N, far below the estimate's size),
+    # and it brackets the onset, which is geometric (the free tube spanning wall to wire):
+    # the two meshes' onsets agree to ~1e-5 MPa, bracketed to onset_tol_mpa on the cheaper.
+    # its N enters only the estimate (% level): Newton to 1e-7 instead of 1e-9 suffices
+    loose = replace(s, tol_r=max(s.tol_r, 1e-7), tol_u=max(s.tol_u, 1e-8))
+    coarse = _solve_mesh(setup, p, coarse_spec, loose, release=False)
+    onset = _bracket_onset(coarse, s, setup.onset_tol_mpa)
+    patch = np.array(coarse.patch_nodes)
+    est_pct, reliable = _estimate(p, sol.n, coarse.n, patch)
+    est_abs = np.where(sol.n > 0.0, 0.01 * est_pct * sol.n,
+                       defaults.ESTIMATE_SAFETY_FACTOR * np.abs(sol.n - coarse.n))
+    # the friction force along the wire's arc (issue 35): the same two-mesh estimate of its
+    # own (it converges far more slowly than N: a traction, not a resultant, on 2-5 nodes)
+    t, t_coarse = sol.interfaces[:, 2], coarse.interfaces[:, 2]
+    t_pct = (_estimate(p, t, t_coarse, patch)[0]
+             if np.any(t > 0.0) or np.any(t_coarse > 0.0) else None)
+    return sol, onset, {"pct": est_pct, "n_per_mm": est_abs, "coarse_n_per_mm": coarse.n.copy(),
+                        "reliable": reliable, "wire_tangential_pct": t_pct}
 
 
 def _estimate(p: np.ndarray, n: np.ndarray, n_coarse: np.ndarray,
@@ -538,8 +538,7 @@ def solve_setup(setup: SqueezeSetup, pressures_mpa: Any) -> SqueezeResult:
     level, spec, coarse_spec = setup.levels()
     t0 = time.perf_counter()
     with collect_stats() as counted:
-        sol, onset, coarse_n, est_pct, est_abs, reliable = _solve_levels(
-            setup, p, spec, coarse_spec, setup.newton)
+        sol, onset, est = _solve_levels(setup, p, spec, coarse_spec, setup.newton)
     dt = time.perf_counter() - t0
     prob = sol.prob
     L = structure.length_mm
@@ -574,8 +573,7 @@ def solve_setup(setup: SqueezeSetup, pressures_mpa: Any) -> SqueezeResult:
         elements=prob.mesh.elements.copy(),
         displacements=disp,
         von_mises_mpa=vm,
-        estimate=ErrorEstimate(accuracy=level, mesh=coarse_spec, pct=est_pct, n_per_mm=est_abs,
-                               coarse_n_per_mm=coarse_n, reliable=reliable),
+        estimate=ErrorEstimate(accuracy=level, mesh=coarse_spec, **est),
         solver_stats=counted.stats,
         squeeze_force_direction_deg=sol.n_dir,
         wall_force_direction_deg=sol.wall_dir,

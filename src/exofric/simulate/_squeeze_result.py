@@ -19,6 +19,7 @@ import numpy as np
 
 from exofric import defaults
 from exofric._display import DisplayMixin
+from exofric._validate import checked_init
 from exofric.fe import MeshSpec, SolverStats
 from exofric.geometry import Structure
 from exofric.material import HyperelasticModel, MooneyRivlin
@@ -44,6 +45,7 @@ def _opt_col(a: np.ndarray | None, like: np.ndarray) -> np.ndarray:
     return np.full(len(like), np.nan) if a is None else np.asarray(a, dtype=float)
 
 
+@checked_init
 @dataclass(frozen=True)
 class ContactOutputs:
     """What the tube-wire and tube-wall contacts carry, per pressure (mm, N/mm, unitless).
@@ -107,6 +109,7 @@ class ContactOutputs:
     friction_dissipation_n_per_mm: np.ndarray | None = field(default=None, repr=False)
 
 
+@checked_init
 @dataclass(frozen=True)
 class ErrorEstimate:
     """The two-mesh discretisation error of the squeezing force N, per pressure (%, N/mm).
@@ -134,6 +137,11 @@ class ErrorEstimate:
         coarse mesh does not resolve the wire's contact patch, or only one mesh has wire
         contact: typically the first pressure or two after the contact onset); the number is
         then indicative only (docs/formulation.md section 6). None for an explicit mesh.
+    wire_tangential_pct : ndarray or None
+        The same two-mesh estimate (%) of the friction force along the wire's contact arc
+        (``contact.wire_tangential_force_n_per_mm``), with the same window, floor, cap and
+        ``reliable`` flags; None without friction on the wire or for an explicit mesh. It is
+        far larger than N's near the onset (a traction on 2-5 nodes of the arc, issue 35).
 
     Examples
     --------
@@ -151,6 +159,7 @@ class ErrorEstimate:
     n_per_mm: np.ndarray | None = None
     coarse_n_per_mm: np.ndarray | None = field(default=None, repr=False)
     reliable: np.ndarray | None = None
+    wire_tangential_pct: np.ndarray | None = None
 
     @property
     def unreliable_outputs(self) -> tuple[int, ...]:
@@ -160,6 +169,7 @@ class ErrorEstimate:
         return tuple(int(i) for i in np.flatnonzero(~np.asarray(self.reliable, bool)))
 
 
+@checked_init
 @dataclass(frozen=True)
 class SqueezeResult(DisplayMixin):
     """Squeeze of the wire by the inflated tube, per pressure (paper Figs 6-7).
@@ -389,6 +399,7 @@ class SqueezeResult(DisplayMixin):
             "n_error_estimate_reliable": (None if e.reliable is None
                                           else [bool(x) for x in e.reliable]),
             "coarse_squeeze_force_n_per_mm": opt_list(e.coarse_n_per_mm),
+            "wire_tangential_force_error_estimate_pct": opt_list(e.wire_tangential_pct),
             "solver_stats": self.solver_stats.to_dict(),
             "wire_angle_deg": self.wire_angle_deg,
             "squeeze_force_direction_deg": _nan_list(self.squeeze_force_direction_deg),
@@ -453,6 +464,8 @@ class SqueezeResult(DisplayMixin):
             "wire_pressure_integral_n_per_mm": _opt_col(c.wire_pressure_integral_n_per_mm, p),
             "wall_pressure_integral_n_per_mm": _opt_col(c.wall_pressure_integral_n_per_mm, p),
             "wire_tangential_force_n_per_mm": _opt_col(c.wire_tangential_force_n_per_mm, p),
+            "wire_tangential_force_error_estimate_pct": _opt_col(
+                self.estimate.wire_tangential_pct, p),
             "wall_tangential_force_n_per_mm": _opt_col(c.wall_tangential_force_n_per_mm, p),
             "stick_fraction_wire": _opt_col(c.stick_fraction_wire, p),
             "stick_fraction_wall": _opt_col(c.stick_fraction_wall, p),
