@@ -47,8 +47,10 @@ Model (units mm, N, MPa, s; half model x >= 0)
   (in-plane 0.1-0.25 mm at the wire: aspect ratios 10-40) stalled in the inflation (the
   node-to-surface contact set chattering between ~50 and ~200 elements, increments cut to
   1e-6, "increment size smaller than minimum"), with the rigid faces 0.5 mm long as well; a
-  1 mm tube with two elements converged like the slice. ``bench_pullout_ccx.py`` therefore
-  uses 1 mm elements along z and short tubes (5 and 10 mm).
+  1 mm tube with two elements converged like the slice, and so did 5 mm tubes with 0.25-1 mm
+  elements. A 30 mm tube with 20 elements graded from 0.68 mm (held faces) to 2.7 mm stalled
+  the same way past 0.65 P. ``bench_pullout_ccx.py`` therefore uses elements of at most 1 mm
+  along z and short tubes (5 and 10 mm).
 * The pull's first increment is 1e-5 mm: with ~1e-3 mm ccx 2.20 lost the contact on the
   2 x 20 and 3 x 30 meshes (residual ~1e3 N, the contact elements doubling then vanishing).
 * Bottom line: the tube's outer nodes at -90 deg (on the symmetry line, pressed on the wall)

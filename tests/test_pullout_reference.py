@@ -17,18 +17,22 @@ pressures (no reverse coupling) are what is tested.
   ``section_pullout(..., ends="free")`` (a periodic slice has no end fittings) at 0.2, 0.4,
   0.6 MPa on the base group (Table 3 test 1) and test 3, mu_wire_wall = 0 (two rigid bodies
   have no line contact in the 3-D model).
-* Held tube (``tests/data/ccx_pullout_tube.json``): base group, 0.6 MPa, 5 and 10 mm with
-  the end faces held axially (u_z = 0; 2 x 20 mesh, 1 mm elements along z; the 5 mm tube also
-  with 0.5 mm), compared with ``pullout(..., ends="fixed", cable_ea_n=1e5)`` on the same length
-  (the 3-D wire is rigid; EA / L >= 1e4 N/mm against the tube's ~15 N/mm): the sliding force,
-  and the secant F / delta at 0.2 mm (the 3-D end rows, held against the moving wire, slip at
-  once, so the early F / delta is no elastic stiffness). The reduced model solves the zones
-  next to the held faces in 3-D (scalar, E_z = 3 G; docs/formulation.md section 12, "Held end
-  zones"). The 3-D secant moves +0.9 % from 1 to 0.5 mm elements along z (5 mm tube; the end
-  rows' jump halves, 0.24 -> 0.14 N); the reduced model's is +5.6 % (5 mm, against the refined
-  run) and +6.1 % (10 mm) above it: the issue's 5 % is not met, the scalar kinematics (no
-  in-plane displacement driven by axial gradients) being the likely excess; tested at 7 %
-  (the smeared foundation before: -8.9 / -17 %).
+* Held tubes (``tests/data/ccx_pullout_tube.json``, ``runs``): 5 and 10 mm of the base group
+  and 5 mm of test 3 at 0.6 MPa, the end faces held axially (u_z = 0, in-plane free), the rigid
+  wire pulled to full sliding; the 5 mm base tube also refined along z (0.5, 0.25 mm
+  elements) and in the plane (3 x 30), pulled to 0.4 mm (F(0.2 mm) as the 2 mm run's to 0.03
+  %). Compared with ``pullout(..., ends="fixed", cable_ea_n=1e5)`` on the same length (the
+  3-D wire is rigid; EA / L >= 3e3 N/mm against the tube's <= 40 N/mm): the sliding force
+  (finest full-travel run) and the secant F / delta at 0.2 mm (finest run: most equations;
+  the 3-D end rows, held against the moving wire, slip at once, so the early F / delta is no
+  elastic stiffness). The reduced model solves the zones next to the held faces in 3-D
+  (scalar, E_z = 3 G; docs/formulation.md section 12, "Held end zones"). The 3-D secant is not
+  converged along z: +0.9 / +1.0 % per halving of the elements (1 -> 0.5 -> 0.25 mm), +0.8 %
+  from 2 x 20 to 3 x 30 in the plane, rising monotonically; so an error against the finest run
+  is an upper estimate. Measured: +4.6 % against the 0.25 mm run of the 5 mm base tube (tested
+  at the issue's 5 %), +6.0 % against the 1 mm run of the 10 mm base tube and +6.2 % against
+  the 0.5 mm run of the 5 mm test-3 tube (tested at HELD_K_TOL 7 %; +3.3 / +4.3 % with the
+  5 mm base tube's further refinement factors).
 
 Measures: sliding force = force at the end of the travel (flat to 4e-6); initial stiffness =
 F / delta at delta = 5e-4 x the travel (constant to 4e-7 over the next outputs: all stuck).
@@ -42,10 +46,12 @@ or 3000 instead of 1e3 MPa/mm: k0 -0.44 % / +0.14 %, sliding 0. In 3-D the wire 
 force integral moves by at most 0.23 % during the pull.
 
 Tolerances: the issue's, from 0.2 MPa: sliding force within 2 %, initial stiffness within 5 %.
-Measured (exofric standard mesh vs 3-D, 0.2 / 0.4 / 0.6 MPa): sliding force +0.03 / +0.56 /
-+0.46 % (base), +0.01 / +0.33 / +0.31 % (test 3); initial stiffness +2.20 / -2.34 / +0.34 %
-(base), +2.18 / -2.35 / +0.32 % (test 3); held 5 / 10 mm tubes' sliding force +0.38 / +0.54 %,
-secant to 0.2 mm +5.6 / +6.1 % (HELD_K_TOL 7 %: the issue's 5 % is not met).
+Measured (exofric standard mesh vs 3-D, 0.2 / 0.4 / 0.6 MPa) on the code of 2026-11-27
+(session 43; exofric's section has moved since the reference was stored, the 3-D numbers did
+not): sliding force -0.27 / +0.61 / +0.40 % (base), -0.22 / +0.38 / +0.28 % (test 3); initial
+stiffness +2.15 / -4.11 / -0.38 % (base), +4.91 / -0.59 / +1.72 % (test 3) (when stored: +2.20
+/ -2.34 / +0.34 % and +2.18 / -2.35 / +0.32 %); held tubes' sliding force +0.38 / +0.54 /
++0.59 % (5, 10 mm base, 5 mm test 3), secant as above.
 The k0 errors are of the size of either code's discretisation (exofric's k0 moves by up to 2.4
 % between its standard and fine meshes).
 """
@@ -128,55 +134,125 @@ def test_3d_pressures_barely_move_during_the_pull() -> None:
 
 TUBE_REF = Path(__file__).parent / "data" / "ccx_pullout_tube.json"
 TUBE_DATA = json.loads(TUBE_REF.read_text()) if TUBE_REF.exists() else {}
-TUBES = TUBE_DATA.get("tubes", {})
-#: the held tubes' secant to 0.2 mm: the issue asks for 5 %; measured +5.6 % (5 mm, against
-#: the 3-D run refined along z) and +6.1 % (10 mm): see the module docstring
+#: the held tubes' secant to SECANT_MM against the finest 3-D run: see the module docstring
 HELD_K_TOL = 0.07
-SECANT_MM = 0.2
+SECANT_MM = TUBE_DATA.get("model", {}).get("secant_mm", 0.2)
 
 
-def _finest(length: float) -> dict[str, Any]:
-    """The stored 3-D held tube of ``length`` (mm) with the most elements along z."""
-    runs = [r for r in [*TUBES.get("test 1", []), *TUBE_DATA.get("z_convergence", [])]
-            if r["options"]["depth_mm"] == length]
-    return max(runs, key=lambda r: r["options"]["n_z"])
+def _fineness(r: dict[str, Any]) -> int:
+    """A stored run's number of equations (the finest run of a tube has the most)."""
+    return int(r["equations"])
 
 
-@pytest.fixture(scope="module")
-def held() -> dict[float, Any]:
-    """``pullout(..., ends="fixed")`` on each stored held tube's length (base group, 0.6 MPa,
-    cable EA 1e5 N: rigid against the tube, EA / L = 2e4 N/mm vs ~15 N/mm)."""
-    assert TUBES, "no held-tube reference stored (bench_pullout_ccx.py --tubes-only)"
-    mat = _material()
-    st = _structure("test 1")
-    out = {}
-    for r in TUBES["test 1"]:
-        length = r["options"]["depth_mm"]
-        st_l = dataclasses.replace(st, length_mm=length)
-        sq = squeeze(st_l, mat, [r["pressure_mpa"]], gravity="none", keep_fields=True)
-        setup = PulloutSetup(st_l, mat, mu_wire=MU["mu_wire"], mu_wall=MU["mu_wall"],
-                             mu_wire_wall=0.0, ends="fixed", cable_ea_n=1e5)
-        out[length] = pullout(setup, r["pressure_mpa"], displacement_mm=r["delta_mm"][-1],
-                              cycles=0, squeeze_result=sq)
+def _groups() -> dict[tuple[str, float, float], list[dict[str, Any]]]:
+    """The stored 3-D held-tube runs by (structure, length mm, pressure MPa)."""
+    out: dict[tuple[str, float, float], list[dict[str, Any]]] = {}
+    for r in TUBE_DATA.get("runs", []):
+        sp = r["spec"]
+        out.setdefault((sp["structure"], sp["length_mm"], sp["pressure_mpa"]), []).append(r)
     return out
 
 
-def test_held_tube_sliding_force_matches_3d(held: dict[float, Any]) -> None:
-    """5 and 10 mm tubes held at their end faces (u_z = 0), rigid wire pulled 2 mm at 0.6 MPa:
-    the pulled-end force of ``pullout(..., ends="fixed")`` at the end of the travel within 2 %
-    of the 3-D one."""
-    for r in TUBES["test 1"]:
-        t = held[r["options"]["depth_mm"]]
-        rel = abs(t.force_n[-1] / r["sliding_force"] - 1.0)
-        assert rel < SLIDE_TOL, (r["options"]["depth_mm"], rel)
+GROUPS = _groups()
 
 
-def test_held_tube_secant_matches_3d(held: dict[float, Any]) -> None:
-    """The same tubes' secant F / delta at 0.2 mm (N/mm), where the slip has begun at the held
-    faces, against the 3-D run with the most elements along z: the held end zones (3-D scalar
-    model, E_z = 3 G) within HELD_K_TOL (the old smeared foundation was -8.9 / -17 %)."""
-    for length, t in held.items():
-        ref = _finest(length)
+def _sliding_ref(runs: list[dict[str, Any]]) -> dict[str, Any] | None:
+    """The finest run pulled to full sliding (``travel_mm`` None), if any."""
+    full = [r for r in runs if r["spec"]["travel_mm"] is None]
+    return max(full, key=_fineness) if full else None
+
+
+@pytest.fixture(scope="module")
+def held() -> dict[tuple[str, float, float], Any]:
+    """``pullout(..., ends="fixed")`` on each stored held tube's structure, length and pressure
+    (cable EA 1e5 N: rigid against the tube, EA / L >= 3e3 N/mm vs <= 40 N/mm)."""
+    assert GROUPS, "no held-tube reference stored (bench_pullout_ccx.py --tubes-only)"
+    mat = _material()
+    out = {}
+    for (name, length, pressure), runs in GROUPS.items():
+        st_l = dataclasses.replace(_structure(name), length_mm=length)
+        sq = squeeze(st_l, mat, [pressure], gravity="none", keep_fields=True)
+        setup = PulloutSetup(st_l, mat, mu_wire=MU["mu_wire"], mu_wall=MU["mu_wall"],
+                             mu_wire_wall=0.0, ends="fixed", cable_ea_n=1e5)
+        travel = max(r["delta_mm"][-1] for r in runs)
+        out[(name, length, pressure)] = pullout(setup, pressure, displacement_mm=travel,
+                                                cycles=0, squeeze_result=sq)
+    return out
+
+
+def test_held_tubes_cover_two_structures() -> None:
+    """The issue asks for the base group and one other Table 3 structure: both have a held
+    tube pulled to full sliding."""
+    names = {k[0] for k, runs in GROUPS.items() if _sliding_ref(runs) is not None}
+    assert {"test 1", "test 3"} <= names, names
+
+
+def test_held_tube_sliding_force_matches_3d(held: dict[tuple[str, float, float], Any]) -> None:
+    """Tubes held at their end faces (u_z = 0), rigid wire pulled to full sliding: the
+    pulled-end force of ``pullout(..., ends="fixed")`` at the end of the travel within 2 % of
+    the 3-D one (the finest full-travel run)."""
+    for key, runs in GROUPS.items():
+        ref = _sliding_ref(runs)
+        if ref is None:
+            continue
+        t = held[key]
+        rel = abs(float(np.interp(ref["delta_mm"][-1], t.displacement_mm, t.force_n))
+                  / ref["sliding_force"] - 1.0)
+        assert rel < SLIDE_TOL, (key, rel)
+
+
+def test_held_tube_secant_matches_3d(held: dict[tuple[str, float, float], Any]) -> None:
+    """The same tubes' secant F / delta at SECANT_MM (N/mm), where the slip has begun at the
+    held faces, against the finest 3-D run (most equations): within HELD_K_TOL."""
+    for key, runs in GROUPS.items():
+        ref = max(runs, key=_fineness)
         k_ref = float(np.interp(SECANT_MM, ref["delta_mm"], ref["force"])) / SECANT_MM
+        t = held[key]
         k = float(np.interp(SECANT_MM, t.displacement_mm, t.force_n)) / SECANT_MM
-        assert abs(k / k_ref - 1.0) < HELD_K_TOL, (length, k, k_ref)
+        assert abs(k / k_ref - 1.0) < HELD_K_TOL, (key, k, k_ref)
+
+
+#: the 5 mm base tube's reference refined along z (0.25 mm elements at the held faces): the
+#: issue's 5 % holds against it (measured +4.6 %; +3.7 % with the in-plane refinement)
+REFINED = ("test 1", 5.0, 0.6)
+
+
+def test_held_tube_secant_within_5pct_of_refined_reference(
+        held: dict[tuple[str, float, float], Any]) -> None:
+    """The 5 mm base tube against its 3-D run with 0.25 mm elements along z (the reference
+    still rises ~1 % per halving, so the error is an upper estimate): within the issue's 5 %."""
+    runs = GROUPS[REFINED]
+    ref = max(runs, key=_fineness)
+    assert ref["spec"]["n_z"] / ref["spec"]["length_mm"] >= 4.0, ref["tag"]
+    k_ref = float(np.interp(SECANT_MM, ref["delta_mm"], ref["force"])) / SECANT_MM
+    t = held[REFINED]
+    k = float(np.interp(SECANT_MM, t.displacement_mm, t.force_n)) / SECANT_MM
+    assert abs(k / k_ref - 1.0) < K0_TOL, (k, k_ref)
+
+
+def test_held_tube_reference_rises_with_refinement() -> None:
+    """The stored 3-D secants of the 5 mm base tube (to 0.4 mm, 2 x 20) rise monotonically as
+    the elements along z halve (1 -> 0.5 -> 0.25 mm, by at most 1.5 % per halving) and in the
+    plane (2 x 20 -> 3 x 30 at 1 mm, by less than 1.5 %): the basis of reading the finest
+    run's error as an upper estimate (a data check; the runs are CalculiX's)."""
+    runs = {(r["mesh"], r["spec"]["n_z"]): r["secant_n_per_mm"] for r in GROUPS[REFINED]
+            if r["spec"]["travel_mm"] is not None or r["spec"]["n_z"] == 10}
+    z = [runs["2x20", n] for n in (5, 10, 20)]
+    steps = np.diff(z) / z[:-1]
+    assert np.all(steps > 0.0) and np.all(steps < 0.015), steps
+    plane = runs["3x30", 5] / runs["2x20", 5] - 1.0
+    assert 0.0 < plane < 0.015, plane
+
+
+def test_scalar_zone_kinematics_are_softer_than_3d_on_a_held_annulus() -> None:
+    """The stored CalculiX check behind docs/formulation.md's statement on the zone's scalar
+    kinematics (``benchmarks/calculix_heldzone.py``; a data check, no exofric): on held
+    axisymmetric annuli the scalar equation (u_r = 0, E_z = 3 G) carries less force than linear
+    3-D elasticity in every variant, by more than the 3-D mesh change (1.8 %)."""
+    data = json.loads((Path(__file__).parent / "data" / "ccx_pullout_heldzone.json").read_text())
+    ratios = [v["scalar_over_3d"] for k, r in data.items() if k.startswith("L")
+              for v in r["variants"]]
+    assert len(ratios) == 4 and max(ratios) < 0.9, ratios
+    for k, r in data.items():
+        if k.startswith("L"):
+            assert abs(r["unit_check_scalar_over_closed_form"] - 1.0) < 1e-5, k

@@ -18,7 +18,9 @@ On a held face the wire-arc nodes are held against the moving wire: they slide a
 carry their Coulomb capacity over half an element (rigid-plastic; it vanishes as h -> 0).
 
 Neglected: the in-plane displacements that axial gradients drive (E_z = 3 G is the laterally
-free rod; the 3-D check brackets the choice: E_z = G gives a 15-18 % softer secant).
+free rod; E_z = G gives a 15-18 % softer secant). On held axisymmetric annuli this makes the
+zone softer than linear 3-D elasticity, not stiffer (scalar / 3-D force 0.6-0.84,
+``benchmarks/calculix_heldzone.py``; docs/formulation.md section 12).
 
 Units: mm, N, MPa.
 """
