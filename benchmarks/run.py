@@ -317,6 +317,15 @@ def run_all(names: list[str], as_json: bool) -> int:
 def main(argv: list[str] | None = None) -> int:
     """The target table (default) or the benchmarks' own mains (``--all`` / names)."""
     args = list(sys.argv[1:] if argv is None else argv)
+    if {"-h", "--help"} & set(args):
+        print(__doc__)
+        return 0
+    stray = [a for a in args if a.startswith("-") and a not in ("--json", "--quick", "--only",
+                                                                 "--all")]
+    if stray:
+        print(f"run.py: error: unknown option(s) {stray}; options: --quick, --json, --only KEY "
+              "..., --all, NAME ... (--help)", file=sys.stderr)
+        return 2
     as_json, quick = "--json" in args, "--quick" in args
     only = None
     if "--only" in args:
