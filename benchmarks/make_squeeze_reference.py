@@ -159,6 +159,15 @@ CONVERGENCE_MESHES: dict[str, dict[str, Any]] = {
 OUT_CONVERGENCE = ROOT / "tests" / "data" / "squeeze_reference_onset_convergence.json"
 
 
+def _structure_entry(s: Structure, mat: MooneyRivlin, nref: np.ndarray) -> dict[str, Any]:
+    """A structure's sizes (mm), 1D onset (MPa) and reference curve (N/mm): every set's keys."""
+    return {"hole_mm": s.hole_mm, "tube_od_mm": s.tube_od_mm, "tube_id_mm": s.tube_id_mm,
+            "wire_mm": s.wire_mm, "length_mm": s.length_mm,
+            "onset_1d_mpa": onset_1d_mpa(s, mat),
+            "squeeze_force_n_per_mm": nref.tolist(),
+            "first_significant_pressure_mpa": first_significant_mpa(nref)}
+
+
 def convergence_reference(structs: dict[str, Structure], mat: MooneyRivlin,
                           argv: list[str]) -> dict[str, Any]:
     """exofric's mesh-convergence reference of the onset structures (N/mm, full section)."""
@@ -182,11 +191,7 @@ def convergence_reference(structs: dict[str, Structure], mat: MooneyRivlin,
             print(f"{n}|{key}: {out[key][1]:.0f} s", flush=True)
         nref, nhalf = out["reference"][0], out["half"][0]
         doc["structures"][n] = {
-            "hole_mm": s.hole_mm, "tube_od_mm": s.tube_od_mm, "tube_id_mm": s.tube_id_mm,
-            "wire_mm": s.wire_mm, "length_mm": s.length_mm,
-            "onset_1d_mpa": onset_1d_mpa(s, mat),
-            "squeeze_force_n_per_mm": nref.tolist(),
-            "first_significant_pressure_mpa": first_significant_mpa(nref),
+            **_structure_entry(s, mat, nref),
             "mesh_study": {"half_squeeze_force_n_per_mm": nhalf.tolist(),
                            "change_to_half_pct": _rel_pct(nhalf, nref)},
             "cpu_time_s": out["reference"][1],
@@ -249,11 +254,7 @@ def assemble_onset(results: dict[str, dict[str, Any]], structs: dict[str, Struct
         nfin[:len(fin["squeeze_force_n_per_mm"])] = fin["squeeze_force_n_per_mm"]
         change = _rel_pct(nref, nfin)
         doc["structures"][n] = {
-            "hole_mm": s.hole_mm, "tube_od_mm": s.tube_od_mm, "tube_id_mm": s.tube_id_mm,
-            "wire_mm": s.wire_mm, "length_mm": s.length_mm,
-            "onset_1d_mpa": onset_1d_mpa(s, mat),
-            "squeeze_force_n_per_mm": nref.tolist(),
-            "first_significant_pressure_mpa": first_significant_mpa(nref),
+            **_structure_entry(s, mat, nref),
             "mesh_study": {
                 "finer_squeeze_force_n_per_mm": [None if np.isnan(x) else float(x)
                                                  for x in nfin],
@@ -351,11 +352,7 @@ def assemble(results: dict[str, dict[str, Any]], structs: dict[str, Structure],
         nref = np.array(ref["squeeze_force_n_per_mm"])
         nfin = np.array(fin["squeeze_force_n_per_mm"])
         doc["structures"][n] = {
-            "hole_mm": s.hole_mm, "tube_od_mm": s.tube_od_mm, "tube_id_mm": s.tube_id_mm,
-            "wire_mm": s.wire_mm, "length_mm": s.length_mm,
-            "onset_1d_mpa": onset_1d_mpa(s, mat),
-            "squeeze_force_n_per_mm": nref.tolist(),
-            "first_significant_pressure_mpa": first_significant_mpa(nref),
+            **_structure_entry(s, mat, nref),
             "mesh_study": {
                 "finer_squeeze_force_n_per_mm": nfin.tolist(),
                 "change_to_finer_pct": _rel_pct(nref, nfin),
