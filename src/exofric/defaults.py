@@ -481,9 +481,29 @@ PULLOUT_PATH_STEPS: Final = 60
 #: (unitless). The reported secant stiffness converges as it grows (tests/test_pullout.py).
 PULLOUT_LINE_STICK_REL: Final = 1e3
 
-__all__ += ["CABLE_EA_N", "PULLOUT_CREEP_TOL_MM", "PULLOUT_LINE_STICK_REL",
-            "PULLOUT_PATH_STEPS", "PULLOUT_SECTION_STEPS", "PULLOUT_STICK_PENALTY_N_PER_MM3",
-            "PULLOUT_Z_ELEMENTS"]
+#: Held end zones (``ends="fixed"``; docs/formulation.md section 12): length of a zone (mm),
+#: over which a held face's influence decays (~ the wall thickness). 5 -> 8 mm moves F(0.5 mm)
+#: of a 30 / 116 mm tube by 0.2-0.5 %.
+PULLOUT_HELD_ZONE_MM: Final = 5.0
+#: First element along z at a held face (mm) and the growth of the next ones (unitless).
+#: Convergence of the held 5 mm base tube's secant to 0.2 mm at 0.6 MPa (first / growth
+#: 0.25 / 1.5, 0.125 / 1.25, 0.0625 / 1.125, 0.03125 / 1.0625): 12.331, 12.274, 12.262,
+#: 12.258 N/mm, so these defaults are +0.6 % above the converged zone (10 mm base and 5 mm
+#: test 3: +0.7 %); the K(P) of the 116 mm tube moves by 0.1-0.2 % for +20-40 % CPU, which
+#: is why they stay (tests/test_pullout_held_zone.py).
+PULLOUT_HELD_DZ_MM: Final = 0.25
+PULLOUT_HELD_DZ_GROWTH: Final = 1.5
+#: The zone's rod modulus along z over the shear modulus (unitless): the laterally free,
+#: incompressible rod (E_z = 3 G; E_z = G gives a 15-18 % softer secant on the held tubes).
+PULLOUT_EZ_OVER_G: Final = 3.0
+#: The zone's law is solved at displacements PULLOUT_HELD_GRID_MM (k / m)^2 (mm), k = 0, 1, ...,
+#: continued to the travel (fixed points: smooth in the coefficients for the calibration).
+PULLOUT_HELD_GRID_MM: Final = 2.0
+
+__all__ += ["CABLE_EA_N", "PULLOUT_CREEP_TOL_MM", "PULLOUT_EZ_OVER_G", "PULLOUT_HELD_DZ_GROWTH",
+            "PULLOUT_HELD_DZ_MM", "PULLOUT_HELD_GRID_MM", "PULLOUT_HELD_ZONE_MM",
+            "PULLOUT_LINE_STICK_REL", "PULLOUT_PATH_STEPS", "PULLOUT_SECTION_STEPS",
+            "PULLOUT_STICK_PENALTY_N_PER_MM3", "PULLOUT_Z_ELEMENTS"]
 
 
 # --- The paper's two constants that serve as defaults ----------------------------------------

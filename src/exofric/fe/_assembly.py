@@ -332,24 +332,25 @@ class Factorization:
 
         Parameters
         ----------
-        rhs : ndarray (nf,)
-            Right-hand side over the free dofs.
+        rhs : ndarray (nf,) or (nf, k)
+            Right-hand side(s) over the free dofs (k columns: one sweep for all).
 
         Returns
         -------
-        ndarray (nf,)
+        ndarray (nf,) or (nf, k)
         """
         a = self._asm
+        rhs = np.asarray(rhs, dtype=float)
         if not isinstance(self._inner, _BandFactor):  # SuperLU (wide band)
-            return np.asarray(self._inner.solve(np.asarray(rhs, dtype=float)))
+            return np.asarray(self._inner.solve(rhs))
         y = self._inner.solve(rhs[a.ints])
         if self._border is None or self._schur_inv is None:
-            x = np.empty(a.nf)
+            x = np.empty(rhs.shape)
             x[a.ints] = y
             return x
         kbi, kib_y = self._border
         xb = self._schur_inv @ (rhs[a.border] - kbi @ y)
-        x = np.empty(a.nf)
+        x = np.empty(rhs.shape)
         x[a.ints] = y - kib_y @ xb
         x[a.border] = xb
         return x

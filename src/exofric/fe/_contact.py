@@ -377,13 +377,13 @@ class _SlipGeometry:
         slip = on & ~stick
         energy = float(np.sum(np.where(stick, 0.5 * kw * gt**2, 0.0))
                        + np.sum(np.where(slip, bound * np.abs(gt) - bound**2 / (2.0 * kw), 0.0)))
-        blocks = np.zeros((len(gt), 2, 2))
-        if self.tangent:
-            stick_b = (kw * rc**2)[:, None, None] * (gth[:, :, None] * gth[:, None, :])
-            slip_b = mu_b * (sgn * rc)[:, None, None] * (gth[:, :, None] * self.dfn[:, None, :])
-            blocks = (np.where(stick[:, None, None], stick_b, 0.0)
-                      + np.where(slip[:, None, None], slip_b, 0.0)
-                      + (T * rc)[:, None, None] * self.hess)
+        if not self.tangent:
+            return energy, force, np.zeros((len(gt), 2, 2)), T, stick
+        # stick: kw rc^2 gth gth^T; slip: mu_b sgn rc gth dfn^T; both: T rc hess(theta)
+        c_stick = np.where(stick, kw * rc**2, 0.0)[:, None]
+        c_slip = np.where(slip, mu_b * sgn * rc, 0.0)[:, None]
+        blocks = gth[:, :, None] * (c_stick * gth + c_slip * self.dfn)[:, None, :]
+        blocks += (T * rc)[:, None, None] * self.hess
         return energy, force, blocks, T, stick
 
 

@@ -110,7 +110,10 @@ class NewtonSettings:
         Line-search evaluations allowed after the full Newton step (halvings, or steps of
         the bracketing search for the energy minimum along the step), >= 0.
     extrapolate : bool
-        Start each sub-step from a secant predictor.
+        Start each sub-step from a secant predictor (not for frictional problems). An
+        attempt from the predictor takes full Newton steps only; when it fails, the sub-step
+        is retried from the last converged state and the rest of the path goes without the
+        predictor.
     active_set_iterations : int
         Re-solves of a Newton direction allowed to a problem with contact
         (``refine_direction``): nodes that the linearised step would run into an obstacle
@@ -376,10 +379,11 @@ class _Linear:
         ``A = K + U C U^T`` with ``U`` the unit columns of the p dofs whose rows or columns
         differ (a node entering contact, a stick/slip switch: 2 dofs a node) and ``C`` the
         difference there; then ``x = x0 - Z C (I + Z_J C)^-1 x0_J`` with ``x0 = K^-1 b``,
-        ``Z = K^-1 U`` (p + 1 solves with the factors: ~1/15-1/30 of a factorisation each on
-        the squeeze's meshes) and ``_J`` the rows of those dofs. None (factorise instead) for
-        another pattern, more than ``_UPDATE_DOFS`` dofs, or a solution whose residual is
-        above ``_UPDATE_RTOL`` of ``|A| |x| + |b|`` (an ill-conditioned update).
+        ``Z = K^-1 U`` (one sweep of the factors with p + 1 right-hand sides; a single one
+        costs ~1/15-1/30 of a factorisation on the squeeze's meshes) and ``_J`` the rows of
+        those dofs. None (factorise instead) for another pattern, more than ``_UPDATE_DOFS``
+        dofs, or a solution whose residual is above ``_UPDATE_RTOL`` of ``|A| |x| + |b|`` (an
+        ill-conditioned update).
         """
         K, f = self.K, self.factor
         if (K is None or f is None or A.shape != K.shape or A.nnz != K.nnz
@@ -395,12 +399,11 @@ class _Linear:
             return None
         C = np.zeros((dofs.size, dofs.size))
         np.add.at(C, (np.searchsorted(dofs, rows), np.searchsorted(dofs, cols)), diff[nz])
-        x0 = f.solve(b)
-        Z = np.zeros((b.size, dofs.size))
-        for k, j in enumerate(dofs):
-            e = np.zeros(b.size)
-            e[j] = 1.0
-            Z[:, k] = f.solve(e)
+        rhs = np.zeros((b.size, dofs.size + 1))  # b and the unit columns: one sweep
+        rhs[:, 0] = b
+        rhs[dofs, np.arange(1, dofs.size + 1)] = 1.0
+        sol = f.solve(rhs)
+        x0, Z = sol[:, 0], sol[:, 1:]
         try:
             y = np.linalg.solve(np.eye(dofs.size) + Z[dofs] @ C, x0[dofs])
         except LinAlgError:
@@ -447,15 +450,17 @@ _CHORD_MARGIN = 3
 
 
 def _newton(
-    problem: Problem, u: np.ndarray, load: float, s: NewtonSettings
+    problem: Problem, u: np.ndarray, load: float, s: NewtonSettings, predicted: bool = False
 ) -> tuple[np.ndarray, int] | None:
     """Newton iterations at a fixed load from ``u``: (converged u, iterations) or None.
 
-    Each call is one attempt in the statistics of :func:`collect_stats`.
+    ``predicted``: ``u`` is a load-step predictor, and the attempt takes full Newton steps
+    only (see :func:`_newton_attempt`). Each call is one attempt in the statistics of
+    :func:`collect_stats`.
     """
     t0 = time.perf_counter()
     counter = [0, 0]  # iterations, linear solves
-    out = _newton_attempt(problem, u, load, s, counter)
+    out = _newton_attempt(problem, u, load, s, counter, predicted)
     if collecting():
         record_attempt(out is not None, counter[0], counter[1], time.perf_counter() - t0)
     return out
@@ -481,9 +486,17 @@ def _direction(problem: Problem, u: np.ndarray, rf: np.ndarray, K: sp.csc_matrix
 
 
 def _newton_attempt(
-    problem: Problem, u: np.ndarray, load: float, s: NewtonSettings, counter: list[int]
+    problem: Problem, u: np.ndarray, load: float, s: NewtonSettings, counter: list[int],
+    predicted: bool = False,
 ) -> tuple[np.ndarray, int] | None:
     """The iterations of :func:`_newton`; ``counter`` gets [iterations, linear solves].
+
+    From a predictor (``predicted``) only full Newton steps are taken: the first step the
+    line search would have to shorten ends the attempt, and the caller retries from the last
+    converged state (whose first Newton step is the tangent predictor). A predictor that
+    needs damping has left Newton's basin; on the base group's 8 x 128 squeeze the damped
+    predicted attempts either failed after 5-15 iterations or converged more slowly than
+    the retry (issue 37).
 
     Work saved (issue 37): the line search's trials are evaluated without a tangent unless
     the full step is likely the next iterate that needs one (see :func:`_line_search`), the
@@ -538,7 +551,8 @@ def _newton_attempt(
         # no chord steps near the iteration limit: there, quadratic convergence counts
         short = d_max <= s.chord_step * lscale and it < s.max_iter - _CHORD_MARGIN
         ls = _line_search(problem, u, step, load, energy, rnorm, float(rf @ d),
-                          s.tol_r * fscale, s.line_search_halvings, not short)
+                          s.tol_r * fscale, 0 if predicted else s.line_search_halvings,
+                          not short)
         if ls is None:
             if K is None:  # a chord direction failed (e.g. a contact changed): a tangent now
                 chord = False
@@ -645,6 +659,10 @@ def _follow(
     u_prev: np.ndarray | None = None
     lam_prev = lam
     step = s.max_step
+    # secant predictor; not for frictional problems: it extrapolates the displacements but
+    # not the slip state, and the sliding wall arc is predicted past its edge (base group,
+    # mu 0.3: failed attempts 16 -> 4 of ~80, iterations -20 %)
+    predict = s.extrapolate and not getattr(problem, "frictional", False)
     out: list[PathPoint] = []
     # equilibrium at the starting load first (e.g. the squeezed tube under its own weight at
     # P = 0): a requested load equal to it must not return an unsolved state
@@ -670,18 +688,17 @@ def _follow(
             h = rest if rest <= step * (1.0 + _SNAP) else step
             trial_lam = target if h == rest else lam + h
             guess = u
-            # no secant predictor for frictional problems: it extrapolates the displacements
-            # but not the slip state, and the sliding wall arc is predicted past its edge
-            # (base group, mu 0.3: failed attempts 16 -> 4 of ~80, iterations -20 %)
-            if (s.extrapolate and not getattr(problem, "frictional", False)
-                    and u_prev is not None and lam > lam_prev):
-                # secant predictor (a Newton failure from it is retried from the last state)
+            if predict and u_prev is not None and lam > lam_prev:
                 guess = u + (u - u_prev) * (h / (lam - lam_prev))
                 limit = getattr(problem, "limit_predictor", None)
                 if limit is not None:  # e.g. stop the predictor where a new contact begins
                     guess = limit(u, guess)
-            res = _newton(problem, guess, trial_lam, s)
+            res = _newton(problem, guess, trial_lam, s, predicted=guess is not u)
             if res is None and guess is not u:
+                # retried from the last state; the rest of the path goes without the
+                # predictor: once it has failed, its region (e.g. the wall arc's edge running
+                # over a fine mesh's nodes) goes on failing (8 x 128 base squeeze: -25 % CPU)
+                predict = False
                 res = _newton(problem, u, trial_lam, s)
             if res is None:
                 cut += 1

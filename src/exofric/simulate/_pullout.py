@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 
+from exofric import defaults
 from exofric._display import DisplayMixin
 from exofric._validate import checked_init
 from exofric.errors import ConvergenceError, InputError
@@ -41,13 +42,7 @@ from exofric.simulate._antiplane import (
     solve_friction_steps,
 )
 from exofric.simulate._pullout_setup import PulloutSetup
-from exofric.simulate._shear_lag import (
-    EZ_OVER_G,
-    HELD_GRID_MM,
-    HELD_ZONE_MM,
-    HeldEnds,
-    zone_curve,
-)
+from exofric.simulate._shear_lag import HeldEnds, zone_curve
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -376,7 +371,7 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float,
     K = K.tocsr()
     wire, caps, lengths = np.concatenate(on_wire), np.concatenate(cap), np.concatenate(length)
     held = HeldEnds(K_free, area, CondensedSection(np.zeros((0, 0)), wire, caps, lengths),
-                    c_idx, fac, EZ_OVER_G * g)
+                    c_idx, fac, defaults.PULLOUT_EZ_OVER_G * g)
     sec = _Section(condense(K, c_idx), wire, caps, lengths, held)
     return sec, fac, g, s["wire"], s["wall"], note, ratio, K, c_idx
 
@@ -828,11 +823,12 @@ def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float,
 
 def _held_zones(sec: SectionPullout, law: _Iwan, lengths: tuple[float, float],
                 counts: tuple[int, int], line: tuple[float, float]) -> _Iwan:
-    """The section law with the held end zones' law on the stations within ``HELD_ZONE_MM``
+    """The section law with the held end zones' law on the stations within
+    :data:`~exofric.defaults.PULLOUT_HELD_ZONE_MM`
     of either end (weights by the share of each station's tributary length in a zone).
 
     Each zone is the 3-D scalar problem of :mod:`exofric.simulate._shear_lag` (held face,
-    symmetry face at the zone's end; a tube of at most 2 ``HELD_ZONE_MM`` is two zones of half
+    symmetry face at the zone's end; a tube of at most 2 zone lengths is two zones of half
     its length), its force per unit length an Iwan law like the section's; the held faces'
     end rows (sliding at once) join the line contact's rigid-plastic element. ``lengths``:
     the tube's length and the path's largest displacement (mm); ``counts``: n_z, n_path.
@@ -843,14 +839,15 @@ def _held_zones(sec: SectionPullout, law: _Iwan, lengths: tuple[float, float],
     L, top = lengths
     n, n_path = counts
     # a tube of at most two zones: half of it, held face to the (symmetric) middle
-    short = L <= 2.0 * HELD_ZONE_MM
-    lz = 0.5 * L if short else HELD_ZONE_MM
+    zone, grid = defaults.PULLOUT_HELD_ZONE_MM, defaults.PULLOUT_HELD_GRID_MM
+    short = L <= 2.0 * zone
+    lz = 0.5 * L if short else zone
     # the zone's law on a fixed grid (smooth in the coefficients, the same points whatever
-    # the travel), quadratic (fine where the law bends most) to HELD_GRID_MM in n_path / 2
+    # the travel), quadratic (fine where the law bends most) to the grid's end in n_path / 2
     # steps, continued to the travel: force at 0.2 mm 0.35 % below 121 points; 61: 0.01 %
     m = min(max(n_path // 2, 12), 40)
-    k = np.arange(int(np.ceil(m * math.sqrt(max(top, 1e-9) / HELD_GRID_MM))) + 1)
-    deltas = HELD_GRID_MM * (k / m) ** 2
+    k = np.arange(int(np.ceil(m * math.sqrt(max(top, 1e-9) / grid))) + 1)
+    deltas = grid * (k / m) ** 2
     f, end = zone_curve(held, lz, (True, False), deltas)
     zlaw = _iwan(deltas, (f - np.where(deltas > 0, end, 0.0)) / lz, line[0] + end / lz,
                  line[1])

@@ -32,20 +32,10 @@ from typing import Any
 
 import numpy as np
 
+from exofric import defaults
 from exofric.simulate._antiplane import CondensedSection, condense, solve_friction_steps
 
 __all__: list[str] = []
-
-#: first element length along z at a held face (mm), and the growth of the following ones
-#: (unitless; the held face's influence decays over ~ the wall thickness)
-HELD_DZ_MM = 0.25
-HELD_DZ_GROWTH = 1.5
-#: length of an end zone (mm): the held face's influence decays over ~ the wall thickness
-HELD_ZONE_MM = 5.0
-#: rod modulus along z over the shear modulus (unitless): laterally free, incompressible
-EZ_OVER_G = 3.0
-#: the zone's law is solved at HELD_GRID_MM (k / m)^2 (mm), k = 0, 1, ... up to the travel
-HELD_GRID_MM = 2.0
 
 
 @dataclass(frozen=True)
@@ -80,15 +70,18 @@ class HeldEnds:
     creep_tol_mm: float = 1e-9
 
 
-def z_elements(length: float, first: float = HELD_DZ_MM,
-               growth: float = HELD_DZ_GROWTH) -> np.ndarray:
-    """Element lengths (mm) from a held face: ``first`` x ``growth`` ** k, scaled to fit.
+def z_elements(length: float, first: float | None = None,
+               growth: float | None = None) -> np.ndarray:
+    """Element lengths (mm) from a held face: ``first`` x ``growth`` ** k, scaled to fit
+    (defaults :data:`exofric.defaults.PULLOUT_HELD_DZ_MM` and ``PULLOUT_HELD_DZ_GROWTH``).
 
     Examples
     --------
     >>> z_elements(5.0).round(3).tolist()
     [0.241, 0.361, 0.541, 0.812, 1.218, 1.827]
     """
+    first = defaults.PULLOUT_HELD_DZ_MM if first is None else first
+    growth = defaults.PULLOUT_HELD_DZ_GROWTH if growth is None else growth
     sizes = first * growth ** np.arange(64)
     n = int(np.searchsorted(np.cumsum(sizes), length - 1e-12)) + 1
     sizes = sizes[:n]
