@@ -17,7 +17,7 @@ import contextlib
 import time
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 import numpy as np
@@ -111,9 +111,9 @@ class NewtonSettings:
         the bracketing search for the energy minimum along the step), >= 0.
     extrapolate : bool
         Start each sub-step from a secant predictor (not for frictional problems). An
-        attempt from the predictor takes full Newton steps only; when it fails, the sub-step
-        is retried from the last converged state and the rest of the path goes without the
-        predictor.
+        attempt from the predictor takes full Newton steps only, with at most two active-set
+        re-solves per direction; when it fails, the sub-step is retried from the last
+        converged state and the rest of the path goes without the predictor.
     active_set_iterations : int
         Re-solves of a Newton direction allowed to a problem with contact
         (``refine_direction``): nodes that the linearised step would run into an obstacle
@@ -454,13 +454,18 @@ def _newton(
 ) -> tuple[np.ndarray, int] | None:
     """Newton iterations at a fixed load from ``u``: (converged u, iterations) or None.
 
-    ``predicted``: ``u`` is a load-step predictor, and the attempt takes full Newton steps
-    only (see :func:`_newton_attempt`). Each call is one attempt in the statistics of
-    :func:`collect_stats`.
+    ``predicted``: ``u`` is a load-step predictor. Such an attempt takes full Newton steps
+    only, the first step the line search would have to shorten ends it, and its directions
+    get at most ``_PREDICTED_ACTIVE_SET`` active-set re-solves; the caller then retries from
+    the last converged state, whose first Newton step is the tangent predictor. Each call is
+    one attempt in the statistics of :func:`collect_stats`.
     """
+    if predicted:
+        s = replace(s, line_search_halvings=0, active_set_iterations=min(
+            s.active_set_iterations, _PREDICTED_ACTIVE_SET))
     t0 = time.perf_counter()
     counter = [0, 0]  # iterations, linear solves
-    out = _newton_attempt(problem, u, load, s, counter, predicted)
+    out = _newton_attempt(problem, u, load, s, counter)
     if collecting():
         record_attempt(out is not None, counter[0], counter[1], time.perf_counter() - t0)
     return out
@@ -486,17 +491,9 @@ def _direction(problem: Problem, u: np.ndarray, rf: np.ndarray, K: sp.csc_matrix
 
 
 def _newton_attempt(
-    problem: Problem, u: np.ndarray, load: float, s: NewtonSettings, counter: list[int],
-    predicted: bool = False,
+    problem: Problem, u: np.ndarray, load: float, s: NewtonSettings, counter: list[int]
 ) -> tuple[np.ndarray, int] | None:
     """The iterations of :func:`_newton`; ``counter`` gets [iterations, linear solves].
-
-    From a predictor (``predicted``) only full Newton steps are taken: the first step the
-    line search would have to shorten ends the attempt, and the caller retries from the last
-    converged state (whose first Newton step is the tangent predictor). A predictor that
-    needs damping has left Newton's basin; on the base group's 8 x 128 squeeze the damped
-    predicted attempts either failed after 5-15 iterations or converged more slowly than
-    the retry (issue 37).
 
     Work saved (issue 37): the line search's trials are evaluated without a tangent unless
     the full step is likely the next iterate that needs one (see :func:`_line_search`), the
@@ -551,8 +548,7 @@ def _newton_attempt(
         # no chord steps near the iteration limit: there, quadratic convergence counts
         short = d_max <= s.chord_step * lscale and it < s.max_iter - _CHORD_MARGIN
         ls = _line_search(problem, u, step, load, energy, rnorm, float(rf @ d),
-                          s.tol_r * fscale, 0 if predicted else s.line_search_halvings,
-                          not short)
+                          s.tol_r * fscale, s.line_search_halvings, not short)
         if ls is None:
             if K is None:  # a chord direction failed (e.g. a contact changed): a tangent now
                 chord = False
@@ -568,6 +564,15 @@ def _newton_attempt(
             return u, it
     return None
 
+
+#: Active-set re-solves allowed to an attempt from the load-step predictor (the settings'
+#: ``active_set_iterations`` otherwise), which also takes no damped step (:func:`_newton`).
+#: The predictor starts deep in the contact penalty (on the 8 x 128 base squeeze its residual
+#: is ~1e4 x the unpredicted start's): a predictor that needs damping has left Newton's basin,
+#: and its re-solves (factorisations on fine meshes) are what a failed attempt cost. Issue 37,
+#: base squeeze, 2 x 24 .. 8 x 128: failed-attempt time at most 6.3-8.2 % -> 1.6-3.3 %; the
+#: standard accuracy of the seven Table 3 structures unchanged (the same attempts).
+_PREDICTED_ACTIVE_SET = 2
 
 #: A sub-step within this fraction of the rest of the way to the requested load takes all of it.
 _SNAP = 1e-9
@@ -696,8 +701,8 @@ def _follow(
             res = _newton(problem, guess, trial_lam, s, predicted=guess is not u)
             if res is None and guess is not u:
                 # retried from the last state; the rest of the path goes without the
-                # predictor: once it has failed, its region (e.g. the wall arc's edge running
-                # over a fine mesh's nodes) goes on failing (8 x 128 base squeeze: -25 % CPU)
+                # predictor: where it has failed once (e.g. a contact edge running over a fine
+                # mesh's nodes) it tends to fail again (8 x 128 base squeeze: 4 more failures)
                 predict = False
                 res = _newton(problem, u, trial_lam, s)
             if res is None:
