@@ -492,6 +492,8 @@ PULLOUT_HELD_ZONE_MM: Final = 5.0
 #: test 3: +0.7 %); the K(P) of the 116 mm tube moves by 0.1-0.2 % for +20-40 % CPU, which
 #: is why they stay (tests/test_pullout_held_zone.py).
 PULLOUT_HELD_DZ_MM: Final = 0.25
+#: Growth of the held zone's elements along z away from the held face (unitless; see
+#: PULLOUT_HELD_DZ_MM for the convergence study).
 PULLOUT_HELD_DZ_GROWTH: Final = 1.5
 #: The zone's rod modulus along z over the shear modulus (unitless): the laterally free,
 #: incompressible rod (E_z = 3 G; E_z = G gives a 15-18 % softer secant on the held tubes).
