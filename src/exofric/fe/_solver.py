@@ -570,8 +570,9 @@ def _newton_attempt(
 #: The predictor starts deep in the contact penalty (on the 8 x 128 base squeeze its residual
 #: is ~1e4 x the unpredicted start's): a predictor that needs damping has left Newton's basin,
 #: and its re-solves (factorisations on fine meshes) are what a failed attempt cost. Issue 37,
-#: base squeeze, 2 x 24 .. 8 x 128: failed-attempt time at most 6.3-8.2 % -> 1.6-3.3 %; the
-#: standard accuracy of the seven Table 3 structures unchanged (the same attempts).
+#: base squeeze, 2 x 24 .. 8 x 128: failed-attempt time at most 6.3-8.2 % -> 1.6-3.3 %; on the
+#: standard accuracy of the seven Table 3 structures +1 to +3 iterations on five, one failed
+#: predicted attempt more on tests 6 and 7 (1.1-2.5 % of their time), N the same to 1e-6.
 _PREDICTED_ACTIVE_SET = 2
 
 #: A sub-step within this fraction of the rest of the way to the requested load takes all of it.
