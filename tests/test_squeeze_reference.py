@@ -368,7 +368,9 @@ def test_cli_table_marks_unreliable_estimates(cli: Any) -> None:
     assert d["n_error_estimate_reliable"] == [False, True]
     r = cli(args)
     assert r.code == 0, r.err
-    rows = [ln for ln in r.out.splitlines() if ln.lstrip("│ ").startswith(("0.15 ", "0.16 "))]
+    # table rows only: the title's wrapped "(solved in 0.16 s)" once matched the pressure
+    rows = [ln for ln in r.out.splitlines()
+            if ln.startswith("│") and ln.lstrip("│ ").startswith(("0.15 ", "0.16 "))]
     assert len(rows) == 2
     assert rows[0].rstrip(" │").endswith("*") and not rows[1].rstrip(" │").endswith("*")
     assert "* estimate unreliable at 1 pressure(s)" in r.out
