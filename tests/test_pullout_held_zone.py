@@ -50,3 +50,34 @@ def test_held_zone_converges_along_z_and_the_default_is_within_1pct(
     assert d1 > 0.0 and 0.0 < d2 < 0.5 * d1, s
     converged = s[2] - d2 * d2 / (d1 - d2)  # geometric tail of the steps
     assert 0.0 < s[0] / converged - 1.0 < 0.01, (s, converged)
+
+
+def test_pulls_from_a_stretched_state_say_their_held_zones_are_too_stiff() -> None:
+    """The scalar end zones do not see the inflation's stretch, and against CalculiX they are
+    4-10 % too stiff from a stretch of 1.47 (docs/formulation.md section 12): a pull with held
+    ends says so, with the stretch of the squeeze it starts from (the squeeze's own
+    ``max_stretch``, an independent output), only where that stretch is past
+    ``PULLOUT_HELD_STRETCH_NOTE`` and only with held ends; ``joint_stiffness`` says it once
+    for all its pressures."""
+    from exofric.friction import joint_stiffness
+
+    st = dataclasses.replace(BASE, length_mm=10.0)
+    pressures = [0.2, 0.6]
+    sq = squeeze(st, MAT, pressures, accuracy="draft", gravity="none", keep_fields=True)
+    assert sq.max_stretch[0] < defaults.PULLOUT_HELD_STRETCH_NOTE < sq.max_stretch[1]
+    for ends in ("fixed", "free"):
+        setup = PulloutSetup(st, MAT, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.2, ends=ends,
+                             accuracy="draft")
+        for k, p in enumerate(pressures):
+            r = pullout(setup, p, displacement_mm=0.3, cycles=0, squeeze_result=sq,
+                        squeeze_index=k, first_loading=True)
+            said = [n for n in r.notes if n.startswith("held end zones too stiff")]
+            assert r.section.max_stretch == pytest.approx(sq.max_stretch[k], rel=1e-12)
+            if ends == "fixed" and k == 1:
+                assert len(said) == 1 and f"largest {sq.max_stretch[1]:.2f}" in said[0], said
+            else:
+                assert said == [], (ends, p, said)
+    setup = PulloutSetup(st, MAT, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.2, accuracy="draft")
+    j = joint_stiffness(setup, [0.5, 0.6], radius_m=0.1, displacement_mm=0.5)
+    said = [n for n in j.notes if "held end zones too stiff" in n]
+    assert len(said) == 1 and said[0].startswith("P = 0.5, 0.6 MPa: held end zones"), j.notes

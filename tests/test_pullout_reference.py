@@ -365,3 +365,28 @@ def test_scalar_zone_kinematics_are_softer_than_3d_on_a_held_annulus() -> None:
     for k, r in data.items():
         if k.startswith("L"):
             assert abs(r["unit_check_scalar_over_closed_form"] - 1.0) < 1e-5, k
+
+
+def test_inflation_stretch_softens_the_3d_held_zone_and_pressure_hardly_moves_it() -> None:
+    """The stored CalculiX check behind docs/formulation.md's "The cause" (session 45; a data
+    check, no exofric): the held annulus inflated first loses stiffness at every step of the
+    bore's hoop stretch (1 -> 1.84: measured -27 / -36 % on 5 / 10 mm, tested > 20 %), while the
+    bore pressure itself moves it by < 5 % (measured -0.05 % unstretched, +2.1 / +3.7 % at
+    stretch 1.50); the exofric-like scalar zone (E_z = 3 G) is 19-27 % below 3-D unstretched and
+    within 1 % of it at 1.50; and the 3-D mesh moves the force by < 2.5 % (16 x 250 against 8 x
+    100: -1.8 %), a tenth of the stretch's effect."""
+    data = json.loads((Path(__file__).parent / "data" / "ccx_pullout_heldzone.json").read_text())
+    inf = data["inflated"]
+    assert len(inf["lengths"]) == 2
+    for row in inf["lengths"]:
+        f = np.array(row["force_by_ur0"])
+        assert np.all(np.diff(row["inner_stretch"]) > 0) and np.all(np.diff(f) < 0), f
+        assert f[-1] / f[0] < 0.8, f
+        for forces in row["force_by_pressure"].values():
+            assert max(abs(np.array(forces) / forces[0] - 1.0)) < 0.05, forces
+        scalar = row["scalar_by_ez_over_g"]["3"]
+        assert 0.7 < scalar / f[0] < 0.85, (scalar, f[0])
+        k = row["ur0_mm"].index(0.85)
+        assert abs(scalar / f[k] - 1.0) < 0.01, (scalar, f[k])
+    chk = inf["fine_mesh_check"]
+    assert abs(chk["force"] / chk["force_mesh"] - 1.0) < 0.025, chk

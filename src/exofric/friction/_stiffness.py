@@ -179,10 +179,12 @@ def joint_stiffness(
                        mesh=setup.mesh, keep_fields=True).solve(list(p))
     K, Tb, Ts, Fb, angs, tqs = [], [], [], [], [], []
     notes: list[str] = []
+    stiff_zones: list[tuple[float, str]] = []   # one note for all pressures (the last one's)
     for k in range(len(p)):
         r = pullout(setup, float(p[k]), displacement_mm=travel,
                     squeeze_result=res, squeeze_index=k, first_loading=True)
-        notes += [f"P = {p[k]:g} MPa: {n}" for n in r.notes]
+        stiff_zones += [(float(p[k]), n) for n in r.notes if n.startswith(_STIFF_ZONES)]
+        notes += [f"P = {p[k]:g} MPa: {n}" for n in r.notes if not n.startswith(_STIFF_ZONES)]
         if r.section.initial_stiffness_n_per_mm2 > 0 and r.slip_length_mm[-1] < L:
             notes.append(f"P = {p[k]:g} MPa: the whole length does not slide within "
                          f"{travel:g} mm: T_break is the largest torque reached "
@@ -196,9 +198,17 @@ def joint_stiffness(
         Fb.append(fb)
         angs.append(theta)
         tqs.append(torque)
+    if stiff_zones:
+        notes.append(f"P = {', '.join(f'{q:g}' for q, _ in stiff_zones)} MPa: "
+                     + stiff_zones[-1][1])
     return JointStiffness(p, np.array(K), np.array(Tb), np.array(Ts), np.array(Fb),
                           tuple(angs), tuple(tqs), r_m, float(wrap_deg), float(mu_arc), cap,
                           tuple(notes))
+
+
+#: how exofric.simulate's pull notes that its held end zones are too stiff (the start of
+#: ``exofric.simulate._pullout.held_stretch_note``; tests/test_pullout_held_zone.py checks it)
+_STIFF_ZONES = "held end zones too stiff"
 
 
 def _secant(theta: np.ndarray, torque: np.ndarray, level: float) -> float:

@@ -110,6 +110,10 @@ class SectionPullout(DisplayMixin):
     held_ends : HeldEnds or None
         What the length model needs to solve the zones next to held end faces (the section's
         stiffness without the fittings' foundation, its contact nodes; N/mm^2, mm).
+    max_stretch : float
+        Largest in-plane principal stretch of the squeeze state (unitless; NaN if unknown):
+        the inflation's stretch, which the held end zones do not see (a note from
+        :data:`~exofric.defaults.PULLOUT_HELD_STRETCH_NOTE`).
 
     Examples
     --------
@@ -145,6 +149,7 @@ class SectionPullout(DisplayMixin):
     axial_shear_max: float = 0.0
     in_plane_coupling_mpa: float = 0.0
     held_ends: HeldEnds | None = field(default=None, repr=False, compare=False)
+    max_stretch: float = float("nan")
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (unit-suffixed keys; per-step lists)."""
@@ -170,6 +175,7 @@ class SectionPullout(DisplayMixin):
             "stick_penalty_n_per_mm3": self.stick_penalty_n_per_mm3,
             "axial_shear_max": self.axial_shear_max,
             "in_plane_coupling_mpa": self.in_plane_coupling_mpa,
+            "max_stretch": None if not math.isfinite(self.max_stretch) else self.max_stretch,
             "notes": list(self.notes),
         }
 
@@ -456,6 +462,7 @@ def section_pullout(setup: PulloutSetup, pressure_mpa: float, *,
                          param="squeeze_result")
     p = float(res.pressure_mpa[squeeze_index])
     n_sq = float(res.squeeze_force_n_per_mm[squeeze_index])
+    stretch = float(res.max_stretch[squeeze_index])
     sec, fac, g, s_wire, s_wall, note, ratio, K_full, c_idx = _build_section(
         res, squeeze_index, mw, mh, ends)
     notes: list[str] = []
@@ -474,7 +481,8 @@ def section_pullout(setup: PulloutSetup, pressure_mpa: float, *,
         z = np.zeros(1)
         return SectionPullout(p, d, z, z, 0.0, float("nan"), 0.0, s_wire, s_wall, n_sq,
                               np.full(1, np.nan), np.full(1, np.nan), mw, mh, mww, ends, g,
-                              note, ratio, float(stick_penalty), tuple(notes))
+                              note, ratio, float(stick_penalty), tuple(notes),
+                              max_stretch=stretch)
     on = sec.on_wire
     k0 = fac * float(sec.K[np.ix_(on, on)].sum())  # all stuck: wire nodes at 1, wall at 0
     plateau_tube = cap_wire if (ends == "fixed" or cap_wall >= cap_wire) else cap_wall
@@ -521,7 +529,7 @@ def section_pullout(setup: PulloutSetup, pressure_mpa: float, *,
     return SectionPullout(p, deltas, force, q_tube, k0, slip_d, plateau_tube + q_line,
                           s_wire, s_wall, n_sq, stick_wire, stick_wall, mw, mh, mww, ends, g,
                           note, ratio, float(stick_penalty), tuple(notes), g_max,
-                          g * g_max ** 2, sec.coupling)
+                          g * g_max ** 2, sec.coupling, stretch)
 
 
 def _continue(sec: CondensedSection, out: dict[str, np.ndarray], deltas: np.ndarray,
@@ -811,6 +819,8 @@ def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float,
     if sec.ends == "fixed" and sec.held_ends is not None:
         law = _held_zones(sec, law, (L, float(np.abs(path).max())), (n_z, n_path),
                           (line_cap, line_rel * max(k0, 1e-12)))
+        if sec.max_stretch >= defaults.PULLOUT_HELD_STRETCH_NOTE:
+            notes.append(held_stretch_note(sec.max_stretch, L))
     forces, us, full = _shear_lag(law, ea, L, path, ratio, n_z)
     z = np.linspace(0.0, L, n_z + 1)
     slip_len = np.array([float(z[f].max()) + L / n_z / 2 if np.any(f) else 0.0 for f in full])
@@ -819,6 +829,27 @@ def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float,
     return PulloutResult(path, forces, float(np.max(forces[first])),
                          float(L * sec.sliding_force_n_per_mm), slip_len, L, ea, ms, sec,
                          tuple(notes))
+
+
+#: the start of :func:`held_stretch_note` (``joint_stiffness`` merges these notes)
+HELD_STRETCH_NOTE = "held end zones too stiff"
+
+
+def held_stretch_note(stretch: float, length_mm: float) -> str:
+    """The note of a pull with held ends from an inflated state stretched by ``stretch``
+    (largest in-plane principal stretch, unitless) on a tube of ``length_mm`` (mm).
+
+    Examples
+    --------
+    >>> held_stretch_note(1.76, 116.0).split(":")[0]
+    'held end zones too stiff'
+    """
+    zone = min(2.0 * defaults.PULLOUT_HELD_ZONE_MM, length_mm)
+    return (f"{HELD_STRETCH_NOTE}: the scalar end-zone model does not see the inflation's "
+            f"in-plane stretch (largest {stretch:.2f} here); against CalculiX, 5-10 mm held "
+            "tubes stretched 1.47-1.76 came out 4-10 % too stiff before they slide (sliding "
+            f"force within 0.6 %); it applies to the stiffness of the {zone:g} mm next to the "
+            "held end faces (docs/formulation.md section 12)")
 
 
 def _held_zones(sec: SectionPullout, law: _Iwan, lengths: tuple[float, float],

@@ -20,7 +20,12 @@ carry their Coulomb capacity over half an element (rigid-plastic; it vanishes as
 Neglected: the in-plane displacements that axial gradients drive (E_z = 3 G is the laterally
 free rod; E_z = G gives a 15-18 % softer secant). On held axisymmetric annuli this makes the
 zone softer than linear 3-D elasticity, not stiffer (scalar / 3-D force 0.6-0.84,
-``benchmarks/calculix_heldzone.py``; docs/formulation.md section 12).
+``benchmarks/calculix_heldzone.py``; docs/formulation.md section 12). The zone is written in
+the reference configuration, so it does not see the inflation's stretch, which in 3-D makes
+that in-plane flow cheaper: on the held annulus inflated first the 3-D force falls by a fifth
+to a quarter at the tube's stretches, the bore pressure itself moving it by 2 % at most. This
+is why the held tubes from 0.4 MPa are 4-10 % too stiff against CalculiX; pulls from a
+state stretched past ``defaults.PULLOUT_HELD_STRETCH_NOTE`` say so in their notes.
 
 Units: mm, N, MPa.
 """
