@@ -32,13 +32,12 @@ pressures (no reverse coupling) are what is tested.
   model solves the zones next to the held faces in 3-D (scalar, E_z = 3 G; docs/formulation.md
   section 12, "Held end zones"). Measured (exofric vs the finest run; base 0.2 / 0.4 / 0.6 MPa,
   10 mm base 0.6, test 3 0.2 / 0.4 / 0.6): sliding force -1.33 / +0.05 / +0.38, +0.54, -1.25 /
-  +0.03 / +0.59 %; k1 -3.30 / +8.15 / +9.73, +9.68, -1.19 / +6.56 / +10.36 %; k2 -0.23 / +7.05 /
-  +4.13, +5.15, +0.30 / +6.71 / +5.20 %. The 3-D k1 falls at every halving along z (-0.37 to -7.0
-  %; Richardson over three grids, indicative: exofric -0.5 / +11.3 / +9.95 % and +1.7 / +11.2 /
-  +12.1 %), so the k1 excess at 0.4-0.6 MPa is a lower estimate; k2 rises at 0.6 MPa, falls at
-  0.2 MPa, moves < 1 % at 0.4 MPa (no order). The 5 mm base tube at 0.6 MPa also on 0.125 mm
-  elements: k1 -0.37 %, k2 +0.40 % (after +0.89 / +1.00 %): both level off (Richardson: exofric
-  +9.95 / +3.85 %). The cases above 5 % are tested at their stated measured bounds
+  +0.03 / +0.59 %; k1 -3.30 / +7.40 / +9.73, +9.68, -1.19 / +6.56 / +10.36 %; k2 -0.23 / +6.60 /
+  +4.13, +5.15, +0.30 / +6.71 / +5.20 %. The 3-D k1 falls at every halving along z to 0.25 mm
+  (-1.0 to -7.0 %); k2 rises at 0.6 MPa, falls at 0.2 MPa, moves < 1 % at 0.4 MPa (no order).
+  The 5 mm base tube also on 0.125 mm elements: k1 -0.37 / +0.70 %, k2 +0.40 / +0.43 % at 0.6 /
+  0.4 MPa: the reference levels off (within 1 %), so the excess is not the reference's. The
+  cases above 5 % are tested at their stated measured bounds
   (``HELD_K_BOUNDS``): the issue's 5 % on the stiffness is met at 0.2 MPa and by k2 of the 5 mm
   base tube at 0.6 MPa, not at 0.4-0.6 MPa otherwise.
 
@@ -277,15 +276,16 @@ def test_every_finest_reference_is_refined_along_z() -> None:
 #: misses by more than the issue's 5 %: the stated measured error bound (reported, not hidden;
 #: see the module docstring and ``bench_pullout_ccx.py``). Every other case is within 5 %.
 HELD_K_BOUNDS: dict[tuple[str, float, float, int], float] = {
-    # k1 (~0.4 x the sliding force): the 3-D k1 falls at every refinement along z, so these are
-    # lower estimates of the error against a converged reference (module docstring)
-    ("test 1", 5.0, 0.4, 0): 0.085,   # measured +8.15 % (11.905 N/mm, 0.25 mm)
+    # k1 (~0.4 x the sliding force): the 3-D k1 falls at every refinement along z to 0.25 mm
+    # and levels off at 0.125 mm (-0.37 % at 0.6 MPa, +0.70 % at 0.4 MPa; module docstring)
+    ("test 1", 5.0, 0.4, 0): 0.085,   # measured +7.40 % (11.989 N/mm, 0.125 mm; +8.15 % 0.25 mm)
     ("test 3", 5.0, 0.4, 0): 0.07,    # measured +6.56 % (14.141 N/mm, 0.25 mm)
     ("test 1", 5.0, 0.6, 0): 0.10,    # measured +9.73 % (13.962 N/mm, 0.125 mm)
     ("test 1", 10.0, 0.6, 0): 0.10,   # measured +9.68 % (19.535 N/mm, graded)
     ("test 3", 5.0, 0.6, 0): 0.11,    # measured +10.36 % (16.405 N/mm, 0.25 mm)
     # k2 (~0.7 x the sliding force)
-    ("test 1", 5.0, 0.4, 1): 0.075,   # measured +7.05 % (9.855 N/mm; steps +0.22 / +0.26 %)
+    ("test 1", 5.0, 0.4, 1): 0.075,   # measured +6.60 % (9.897 N/mm, 0.125 mm; steps +0.22 /
+    #                                   +0.26 / +0.43 %)
     ("test 3", 5.0, 0.4, 1): 0.07,    # measured +6.71 % (11.540 N/mm; steps -0.90 / +0.49 %)
     ("test 1", 10.0, 0.6, 1): 0.055,  # measured +5.15 % (17.425 N/mm, graded; rising)
     ("test 3", 5.0, 0.6, 1): 0.055,   # measured +5.20 % (13.811 N/mm; +0.55 / +0.93 %)
@@ -337,20 +337,22 @@ def test_held_tube_reference_rises_with_refinement() -> None:
     assert 0.0 < k["3x30"] / k["2x20"] - 1.0 < 0.015, k
 
 
-def test_k1_reference_falls_with_refinement_along_z() -> None:
+def test_k1_reference_falls_with_refinement_along_z_then_levels_off() -> None:
     """Every tube's 3-D secant k1 (~0.4 x the sliding force) falls at every halving of the
-    elements along z (measured -0.37 to -7.0 %; the last halving -0.37 % to 0.125 mm on the 5 mm
-    base tube at 0.6 MPa, -1.0 to -3.8 % to 0.25 mm otherwise, tested < 4.5 % in size): where
-    exofric is above the finest run (0.4, 0.6 MPa) its k1 error against that run is a LOWER
-    estimate; where below (0.2 MPa) an upper estimate of its size (a data check; the runs are
-    CalculiX's)."""
+    elements along z down to 0.25 mm (measured -1.0 to -7.0 %, tested < 0 and the last < 4.5 %
+    in size), and the one halving past it, to 0.125 mm (the 5 mm base tube at 0.4 and 0.6 MPa),
+    moves it by less than 1 % (measured +0.70 / -0.37 %): the reference levels off, and exofric's
+    k1 error against its finest run is within ~1 % of that against a converged one (a data
+    check; the runs are CalculiX's)."""
     for key, runs in GROUPS.items():
         z = np.array(_uniform_z(runs, 0))
         if len(z) < 2:
             continue
         steps = np.diff(z) / z[:-1]
-        assert np.all(steps < 0.0), (key, steps)
-        assert abs(steps[-1]) < 0.045, (key, steps)
+        coarse, fine = steps[:2], steps[2:]   # 1 -> 0.5 -> 0.25 mm, then 0.125 mm
+        assert np.all(coarse < 0.0), (key, steps)
+        assert abs(coarse[-1]) < 0.045, (key, steps)
+        assert np.all(np.abs(fine) < 0.01), (key, steps)
 
 
 def test_scalar_zone_kinematics_are_softer_than_3d_on_a_held_annulus() -> None:
@@ -390,3 +392,35 @@ def test_inflation_stretch_softens_the_3d_held_zone_and_pressure_hardly_moves_it
         assert abs(scalar / f[k] - 1.0) < 0.01, (scalar, f[k])
     chk = inf["fine_mesh_check"]
     assert abs(chk["force"] / chk["force_mesh"] - 1.0) < 0.025, chk
+
+
+def test_the_held_tubes_excess_sits_in_the_zone_interior() -> None:
+    """Where along z the held tube's excess sits (docs/formulation.md section 12, session 45):
+    exofric's held zone now, against the stored 3-D friction force per slice of the 5 mm base
+    tube (``benchmarks/calculix_zprofile.py``). At 0.2 MPa the zone's interior (0.4-2.5 mm from
+    a held face) carries the 3-D force within 2 % (measured 0.0-0.1 %); at 0.6 MPa exofric's
+    interior is above it at d1 by the excess this file bounds elsewhere (measured +16.2 %,
+    held within 10-20 %: a measured bound, not a tolerance), while next to the faces the 3-D
+    halves' mean and exofric agree within 6 % (measured -0.9 / +3.6 %; at 0.2 MPa exofric is
+    8-13 % low there, bounded at 20 %)."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+    import calculix_zprofile as zp
+
+    data = json.loads((Path(__file__).parent / "data" / "ccx_pullout_zprofile.json").read_text())
+    runs = {r["ccx"]["pressure_mpa"]: r["ccx"] for r in data["runs"]}
+    assert set(runs) == {0.2, 0.6}
+    for p, c in runs.items():
+        e = zp.exofric_profile(p, np.array(c["delta_mm"]))
+        d1 = 0.1 * (p / 0.6) ** 2
+        r1, r2 = (zp.compare(c, e, d) for d in (d1, 2 * d1))
+        interior = r1["interior_exofric_n"] / r1["interior_3d_n"] - 1.0
+        if p == 0.2:
+            assert abs(interior) < 0.02, r1
+            assert abs(r2["interior_exofric_n"] / r2["interior_3d_n"] - 1.0) < 0.02, r2
+            assert -0.2 < r1["face_exofric_n"] / r1["face_3d_n"] - 1.0 < 0.0, r1
+        else:
+            assert 0.10 < interior < 0.20, r1
+            for r in (r1, r2):
+                assert abs(r["face_exofric_n"] / r["face_3d_n"] - 1.0) < 0.06, r
