@@ -855,8 +855,8 @@ def held_stretch_note(stretch: float, length_mm: float) -> str:
 def _held_zones(sec: SectionPullout, law: _Iwan, lengths: tuple[float, float],
                 counts: tuple[int, int], line: tuple[float, float]) -> _Iwan:
     """The section law with the held end zones' law on the stations within
-    :data:`~exofric.defaults.PULLOUT_HELD_ZONE_MM`
-    of either end (weights by the share of each station's tributary length in a zone).
+    :data:`~exofric.defaults.PULLOUT_HELD_ZONE_MM` of either end (weights by the share of each
+    station's tributary length in a zone).
 
     Each zone is the 3-D scalar problem of :mod:`exofric.simulate._shear_lag` (held face,
     symmetry face at the zone's end; a tube of at most 2 zone lengths is two zones of half

@@ -33,9 +33,9 @@ Units: mm, N, MPa.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 
 from exofric import defaults
 from exofric.simulate._antiplane import CondensedSection, condense, solve_friction_steps
@@ -65,7 +65,7 @@ class HeldEnds:
         The section solve's stick penalty (N/mm^3) and creep tolerance (mm).
     """
 
-    K: Any
+    K: sp.csr_matrix
     area: np.ndarray
     section: CondensedSection
     contact: np.ndarray
@@ -130,7 +130,6 @@ def zone_stiffness(ends: HeldEnds, h: np.ndarray, held: tuple[bool, bool]) -> Co
     [[0.857143]]
     """
     lam, MV, mz = _z_modes(np.asarray(h, float), held)
-    import scipy.sparse as sp
 
     kc = np.stack([condense((ends.K + sp.diags(ends.ez_mpa * lj * ends.area)).tocsr(),
                             ends.contact) for lj in lam])
