@@ -1,7 +1,8 @@
 """Shared presentation helpers for CLI commands (no computation here).
 
-Module level imports only typer and rich: every command module imports this one, so whatever
-it imports, ``exofric --help`` pays for (``tests/test_startup.py``).
+Module level imports only typer: every command module imports this one, so whatever it
+imports, ``exofric --help`` pays for (``tests/test_startup.py``). rich (~30 ms) is imported
+when a table is first printed, so ``--json`` runs never import it.
 """
 
 from __future__ import annotations
@@ -10,15 +11,41 @@ import json
 import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import typer
-from rich.console import Console
-from rich.table import Table
+
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table
 
 JSON_OPTION = typer.Option(False, "--json", help="Print exactly one JSON object on stdout.")
 
-console = Console()
+
+class _Console:
+    """rich's ``Console``, made when first used (attributes and ``with`` go to it)."""
+
+    _real: Console | None = None
+
+    @staticmethod
+    def real() -> Console:
+        if _Console._real is None:
+            from rich.console import Console
+
+            _Console._real = Console()
+        return _Console._real
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.real(), name)
+
+    def __enter__(self) -> Console:
+        return self.real().__enter__()
+
+    def __exit__(self, *exc: Any) -> None:
+        self.real().__exit__(*exc)
+
+
+console: Console = _Console()  # type: ignore[assignment]
 
 
 #: Every warning printed during this command (``exofric: warning: ...`` on stderr): ``--json``
@@ -76,6 +103,7 @@ def narrow_table(title: str, columns: list[str]) -> Table:
     """A table that reads at 80 columns: light rules, no outer padding, right-aligned numbers
     (the first column left), headers that wrap (units in them) instead of being cut."""
     from rich import box
+    from rich.table import Table
 
     t = Table(title=title, box=box.SIMPLE_HEAD, pad_edge=False, header_style="bold",
               title_justify="left", min_width=min(len(title), 78))
@@ -86,6 +114,8 @@ def narrow_table(title: str, columns: list[str]) -> Table:
 
 def kv_table(title: str, rows: list[tuple[str, str, str]]) -> Table:
     """A two/three-column rich table: quantity, value, unit."""
+    from rich.table import Table
+
     t = Table(title=title, show_header=True, header_style="bold")
     t.add_column("quantity")
     t.add_column("value", justify="right")
