@@ -426,11 +426,12 @@ TUBE_RUNS_LOW_P: tuple[TubeRun, ...] = tuple(
 TUBE_RUNS_RETRY: tuple[TubeRun, ...] = (TubeRun("test 1", 0.4, 5.0, travel_mm=1.0),
                                         TubeRun("test 1", 0.4, 5.0, travel_mm=0.5),
                                         TubeRun("test 1", 0.4, 5.0, n_z=10, travel_mm=0.5))
-#: the 5 mm base tube at 0.6 MPa (session 44) and 0.4 MPa (session 45) on 0.125 mm elements
-#: along z (does the reference level off?)
+#: the 5 mm base tube at 0.6 MPa (session 44) and 0.4 MPa (session 45), and both 5 mm tubes at
+#: 0.2 MPa (session 46), on 0.125 mm elements along z (does the reference level off?)
 TUBE_RUNS_FINE: tuple[TubeRun, ...] = (
     TubeRun("test 1", 0.6, 5.0, n_z=40, travel_mm=0.4),
-    TubeRun("test 1", 0.4, 5.0, n_z=40, travel_mm=secant_travel_mm(0.4)))
+    TubeRun("test 1", 0.4, 5.0, n_z=40, travel_mm=secant_travel_mm(0.4)),
+    *(TubeRun(name, 0.2, 5.0, n_z=40, travel_mm=secant_travel_mm(0.2)) for name in STRUCTURES))
 #: the issue's 30 mm tube at 0.6 MPa on 30 uniform 1 mm elements along z (session 45; graded
 #: elements of 0.68-2.7 mm stalled in the inflation, see above): 20134 equations, 1195 s CPU;
 #: exofric k1 +8.31 %, k2 +9.01 % against it (not refined at the faces: docs section 12)

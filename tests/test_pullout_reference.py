@@ -286,24 +286,16 @@ def test_every_finest_reference_is_refined_along_z() -> None:
 #: misses by more than the issue's 5 %: the stated measured error bound (reported, not hidden;
 #: see the module docstring and ``bench_pullout_ccx.py``). Every other case is within 5 %.
 HELD_K_BOUNDS: dict[tuple[str, float, float, int], float] = {
-    # k1 (~0.4 x the sliding force): the 3-D k1 falls at every refinement along z to 0.25 mm
-    # and levels off at 0.125 mm (-0.37 % at 0.6 MPa, +0.70 % at 0.4 MPa; module docstring)
-    ("test 1", 5.0, 0.4, 0): 0.085,   # measured +7.40 % (11.989 N/mm, 0.125 mm; +8.15 % 0.25 mm)
-    ("test 3", 5.0, 0.4, 0): 0.07,    # measured +6.56 % (14.141 N/mm, 0.25 mm)
-    ("test 1", 5.0, 0.6, 0): 0.10,    # measured +9.73 % (13.962 N/mm, 0.125 mm)
-    ("test 1", 10.0, 0.6, 0): 0.10,   # measured +9.68 % (19.535 N/mm, graded)
-    ("test 3", 5.0, 0.6, 0): 0.11,    # measured +10.36 % (16.405 N/mm, 0.25 mm)
+    # k1 (~0.4 x the sliding force) at 0.6 MPa, with the vector held zone (session 46; the
+    # scalar zone: +9.73 / +9.68 / +10.36 %); the 3-D k1 levels off at 0.125 mm there (-0.37 %)
+    ("test 1", 5.0, 0.6, 0): 0.07,    # measured +6.54 % (13.962 N/mm, 0.125 mm)
+    ("test 1", 10.0, 0.6, 0): 0.095,  # measured +8.74 % (19.535 N/mm, graded)
+    ("test 3", 5.0, 0.6, 0): 0.075,   # measured +6.71 % (16.405 N/mm, 0.25 mm)
     # the 30 mm tube against its 1 mm reference (UNREFINED): on the 5 mm base tube at 0.6 MPa
     # refining 1 -> 0.125 mm moved the 3-D k1 by -4.2 % and k2 by +2.3 %, so against a
     # refined reference k1 would be further above, k2 a little less
-    ("test 1", 30.0, 0.6, 0): 0.09,   # measured +8.31 % (35.804 N/mm, 1 mm)
-    ("test 1", 30.0, 0.6, 1): 0.095,  # measured +9.01 % (32.549 N/mm, 1 mm)
-    # k2 (~0.7 x the sliding force)
-    ("test 1", 5.0, 0.4, 1): 0.075,   # measured +6.60 % (9.897 N/mm, 0.125 mm; steps +0.22 /
-    #                                   +0.26 / +0.43 %)
-    ("test 3", 5.0, 0.4, 1): 0.07,    # measured +6.71 % (11.540 N/mm; steps -0.90 / +0.49 %)
-    ("test 1", 10.0, 0.6, 1): 0.055,  # measured +5.15 % (17.425 N/mm, graded; rising)
-    ("test 3", 5.0, 0.6, 1): 0.055,   # measured +5.20 % (13.811 N/mm; +0.55 / +0.93 %)
+    ("test 1", 30.0, 0.6, 0): 0.085,  # measured +7.80 % (35.804 N/mm, 1 mm)
+    ("test 1", 30.0, 0.6, 1): 0.095,  # measured +8.80 % (32.549 N/mm, 1 mm)
 }
 SECANT_KEYS = [(*k, i) for k in GROUPS for i in range(len(SECANT_AT_06_MM))]
 
@@ -352,13 +344,16 @@ def test_held_tube_reference_rises_with_refinement() -> None:
     assert 0.0 < k["3x30"] / k["2x20"] - 1.0 < 0.015, k
 
 
-def test_k1_reference_falls_with_refinement_along_z_then_levels_off() -> None:
+def test_k1_reference_falls_with_refinement_along_z_then_levels_off_from_0_4_mpa() -> None:
     """Every tube's 3-D secant k1 (~0.4 x the sliding force) falls at every halving of the
     elements along z down to 0.25 mm (measured -1.0 to -7.0 %, tested < 0 and the last < 4.5 %
-    in size), and the one halving past it, to 0.125 mm (the 5 mm base tube at 0.4 and 0.6 MPa),
-    moves it by less than 1 % (measured +0.70 / -0.37 %): the reference levels off, and exofric's
-    k1 error against its finest run is within ~1 % of that against a converged one (a data
-    check; the runs are CalculiX's)."""
+    in size). The one halving past it, to 0.125 mm: at 0.4 and 0.6 MPa (the 5 mm base tube) it
+    moves k1 by less than 1 % (measured +0.70 / -0.37 %): the reference levels off there. At 0.2
+    MPa (both 5 mm tubes, session 46) it keeps falling, by more than the halving before
+    (measured -5.4 / -5.3 % after -2.3 / -2.9 %; tested -8 to -3 %): the low-pressure k1, read
+    at 0.011 mm, is not converged in the reference, so exofric's error there (vector zone
+    -1.7 / +0.6 % against 0.125 mm) is an error against a stiff reference (a data check; the
+    runs are CalculiX's)."""
     for key, runs in GROUPS.items():
         z = np.array(_uniform_z(runs, 0))
         if len(z) < 2:
@@ -367,7 +362,10 @@ def test_k1_reference_falls_with_refinement_along_z_then_levels_off() -> None:
         coarse, fine = steps[:2], steps[2:]   # 1 -> 0.5 -> 0.25 mm, then 0.125 mm
         assert np.all(coarse < 0.0), (key, steps)
         assert abs(coarse[-1]) < 0.045, (key, steps)
-        assert np.all(np.abs(fine) < 0.01), (key, steps)
+        if key[2] >= 0.4:
+            assert np.all(np.abs(fine) < 0.01), (key, steps)
+        else:
+            assert np.all((-0.08 < fine) & (fine < -0.03)), (key, steps)
 
 
 def test_scalar_zone_kinematics_are_softer_than_3d_on_a_held_annulus() -> None:
@@ -410,14 +408,16 @@ def test_inflation_stretch_softens_the_3d_held_zone_and_pressure_hardly_moves_it
 
 
 def test_the_held_tubes_excess_sits_in_the_zone_interior() -> None:
-    """Where along z the held tube's excess sits (docs/formulation.md section 12, session 45):
-    exofric's held zone now, against the stored 3-D friction force per slice of the 5 mm base
-    tube (``benchmarks/calculix_zprofile.py``). At 0.2 MPa the zone's interior (0.4-2.5 mm from
-    a held face) carries the 3-D force within 2 % (measured 0.0-0.1 %); at 0.6 MPa exofric's
-    interior is above it at d1 by the excess this file bounds elsewhere (measured +16.2 %,
-    held within 10-20 %: a measured bound, not a tolerance), while next to the faces the 3-D
-    halves' mean and exofric agree within 6 % (measured -0.9 / +3.6 %; at 0.2 MPa exofric is
-    8-13 % low there, bounded at 20 %)."""
+    """Where along z the held tube's remaining excess sits (docs/formulation.md section 12):
+    exofric's held zone (the vector zone, session 46), against the stored 3-D friction force
+    per slice of the 5 mm base tube (``benchmarks/calculix_zprofile.py``, 0.5 mm elements along
+    z: at 0.2 MPa that grid's k1 is 8 % above the 0.125 mm run's). At 0.2 MPa the zone's
+    interior (0.4-2.5 mm from a held face) is within 6 % of the 3-D force (measured -4.7 /
+    -4.4 % at d1 / 2 d1; the scalar zone: 0.0 / -0.1 %); at 0.6 MPa it is above it at d1 by
+    the k1 excess this file bounds elsewhere (measured +11.1 %, held within 5-15 %: a measured
+    bound, not a tolerance; the scalar zone +16.2 %) and within 6 % at 2 d1 (+3.3 %), while
+    next to the faces the 3-D halves' mean and exofric agree within 6 % at 0.6 MPa (measured
+    -1.6 / +3.6 %; at 0.2 MPa exofric is 8-16 % low there, bounded at 20 %)."""
     import sys
 
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
@@ -431,11 +431,12 @@ def test_the_held_tubes_excess_sits_in_the_zone_interior() -> None:
         d1 = 0.1 * (p / 0.6) ** 2
         r1, r2 = (zp.compare(c, e, d) for d in (d1, 2 * d1))
         interior = r1["interior_exofric_n"] / r1["interior_3d_n"] - 1.0
+        interior2 = r2["interior_exofric_n"] / r2["interior_3d_n"] - 1.0
         if p == 0.2:
-            assert abs(interior) < 0.02, r1
-            assert abs(r2["interior_exofric_n"] / r2["interior_3d_n"] - 1.0) < 0.02, r2
+            assert abs(interior) < 0.06 and abs(interior2) < 0.06, (r1, r2)
             assert -0.2 < r1["face_exofric_n"] / r1["face_3d_n"] - 1.0 < 0.0, r1
         else:
-            assert 0.10 < interior < 0.20, r1
+            assert 0.05 < interior < 0.15, r1
+            assert abs(interior2) < 0.06, r2
             for r in (r1, r2):
                 assert abs(r["face_exofric_n"] / r["face_3d_n"] - 1.0) < 0.06, r

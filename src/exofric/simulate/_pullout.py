@@ -112,8 +112,8 @@ class SectionPullout(DisplayMixin):
         stiffness without the fittings' foundation, its contact nodes; N/mm^2, mm).
     max_stretch : float
         Largest in-plane principal stretch of the squeeze state (unitless; NaN if unknown):
-        the inflation's stretch, which the held end zones do not see (a note from
-        :data:`~exofric.defaults.PULLOUT_HELD_STRETCH_NOTE`).
+        past :data:`~exofric.defaults.PULLOUT_HELD_STRETCH_NOTE` a pull with held ends notes
+        that its end zones are too stiff in the early slip.
 
     Examples
     --------
@@ -329,9 +329,9 @@ class _Section(CondensedSection):
     coupling: HeldEnds | None = None
 
 
-def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float,
-                   ends: str) -> tuple[_Section, float, float, float, float, str, float,
-                                       Any, np.ndarray]:
+def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float, ends: str,
+                   held_zone: str = defaults.PULLOUT_HELD_ZONE
+                   ) -> tuple[_Section, float, float, float, float, str, float, Any, np.ndarray]:
     """(condensed section, factor to full section, G, S_wire, S_wall, note, in-plane ratio,
     full stiffness, contact node indices).
 
@@ -377,9 +377,50 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float,
     K = K.tocsr()
     wire, caps, lengths = np.concatenate(on_wire), np.concatenate(cap), np.concatenate(length)
     held = HeldEnds(K_free, area, CondensedSection(np.zeros((0, 0)), wire, caps, lengths),
-                    c_idx, fac, defaults.PULLOUT_EZ_OVER_G * g)
+                    c_idx, fac, defaults.PULLOUT_EZ_OVER_G * g,
+                    vector=(_vector(res, k, c_idx, half)
+                            if ends == "fixed" and held_zone == "vector" else None))
     sec = _Section(condense(K, c_idx), wire, caps, lengths, held)
     return sec, fac, g, s["wire"], s["wall"], note, ratio, K, c_idx
+
+
+def _vector(res: SqueezeResult, k: int, contact: np.ndarray, half: bool) -> Any:
+    """The vector zone's section (:mod:`exofric.simulate._vector_zone`) for Mooney-Rivlin
+    and neo-Hookean tubes; None (the scalar zone) for the others."""
+    from exofric.fe import PlaneStrainMaterial
+    from exofric.simulate._vector_zone import vector_section
+
+    material = res.material
+    if isinstance(material, MooneyRivlin):
+        mr = material
+    elif isinstance(material, HyperelasticModel) and material.name in ("neo-hookean",
+                                                                       "mooney-rivlin"):
+        mr = material.to_mooney_rivlin()
+    else:
+        return None
+    nodes, elements = res.nodes, res.elements
+    e = elements[:, [0, 3, 6]]  # the polar quad9's inner edges (local nodes 0, 3, 6)
+    c = nodes[elements[:, [0, 3, 6, 2, 5, 8]]].reshape(-1, 2).mean(axis=0)
+    r = np.hypot(nodes[e, 0] - c[0], nodes[e, 1] - c[1])
+    r_in = 0.5 * res.structure.tube_id_mm
+    bore = e[np.all(np.abs(r - r_in) < 1e-6 * r_in, axis=1)]
+    sym = np.flatnonzero(np.abs(nodes[:, 0]) < 1e-9) if half else np.zeros(0, int)
+    stretch = 1.0 if res.axial_stretch is None else float(res.axial_stretch[k])
+    # contact normals from the obstacles into the tube: off the wire, in from the hole wall
+    # (the wire rests on the hole wall: its centre is (hole - wire) / 2 from the hole's, at the
+    # wire's angle from the top, as the squeeze places it)
+    x = nodes[contact] + res.displacements[k][contact]
+    on_wire = np.isin(contact, np.asarray(res.contact.profiles[k]["wire"]["node"], int))
+    st = res.structure
+    a = math.radians(float(res.setup.wire_angle_deg))
+    wc = 0.5 * (st.hole_mm - st.wire_mm) * np.array([math.sin(a), math.cos(a)])
+    nrm = np.where(on_wire[:, None], x - wc, -x)
+    nrm = nrm / np.hypot(nrm[:, 0], nrm[:, 1])[:, None]
+    return vector_section(nodes, elements, res.displacements[k], c10=mr.c10_mpa,
+                          c01=mr.c01_mpa, bulk_mpa=PlaneStrainMaterial(material).bulk_modulus,
+                          pressure_mpa=float(res.pressure_mpa[k]), contact=contact, bore=bore,
+                          symmetry=sym, axial_stretch=stretch, tube_center=(c[0], c[1]),
+                          contact_normals=nrm)
 
 
 def _diag(v: np.ndarray) -> Any:
@@ -464,7 +505,7 @@ def section_pullout(setup: PulloutSetup, pressure_mpa: float, *,
     n_sq = float(res.squeeze_force_n_per_mm[squeeze_index])
     stretch = float(res.max_stretch[squeeze_index])
     sec, fac, g, s_wire, s_wall, note, ratio, K_full, c_idx = _build_section(
-        res, squeeze_index, mw, mh, ends)
+        res, squeeze_index, mw, mh, ends, num.held_zone)
     notes: list[str] = []
     cap_wire = fac * float(sec.capacity[sec.on_wire].sum())
     cap_wall = fac * float(sec.capacity[~sec.on_wire].sum())
@@ -819,8 +860,10 @@ def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float,
     if sec.ends == "fixed" and sec.held_ends is not None:
         law = _held_zones(sec, law, (L, float(np.abs(path).max())), (n_z, n_path),
                           (line_cap, line_rel * max(k0, 1e-12)))
-        if sec.max_stretch >= defaults.PULLOUT_HELD_STRETCH_NOTE:
-            notes.append(held_stretch_note(sec.max_stretch, L))
+        vector = sec.held_ends.vector is not None
+        if sec.max_stretch >= (defaults.PULLOUT_HELD_STRETCH_NOTE if vector
+                               else defaults.PULLOUT_HELD_STRETCH_NOTE_SCALAR):
+            notes.append(held_stretch_note(sec.max_stretch, L, vector))
     forces, us, full = _shear_lag(law, ea, L, path, ratio, n_z)
     z = np.linspace(0.0, L, n_z + 1)
     slip_len = np.array([float(z[f].max()) + L / n_z / 2 if np.any(f) else 0.0 for f in full])
@@ -835,9 +878,10 @@ def _length_from_section(sec: SectionPullout, L: float, ea: float, ratio: float,
 HELD_STRETCH_NOTE = "held end zones too stiff"
 
 
-def held_stretch_note(stretch: float, length_mm: float) -> str:
+def held_stretch_note(stretch: float, length_mm: float, vector: bool = True) -> str:
     """The note of a pull with held ends from an inflated state stretched by ``stretch``
-    (largest in-plane principal stretch, unitless) on a tube of ``length_mm`` (mm).
+    (largest in-plane principal stretch, unitless) on a tube of ``length_mm`` (mm), with the
+    vector held zone (``vector``) or the scalar one.
 
     Examples
     --------
@@ -845,11 +889,17 @@ def held_stretch_note(stretch: float, length_mm: float) -> str:
     'held end zones too stiff'
     """
     zone = min(2.0 * defaults.PULLOUT_HELD_ZONE_MM, length_mm)
-    return (f"{HELD_STRETCH_NOTE}: the scalar end-zone model does not see the inflation's "
-            f"in-plane stretch (largest {stretch:.2f} here); against CalculiX, 5-10 mm held "
-            "tubes stretched 1.47-1.76 came out 4-10 % too stiff before they slide (sliding "
-            f"force within 0.6 %); it applies to the stiffness of the {zone:g} mm next to the "
-            "held end faces (docs/formulation.md section 12)")
+    if vector:
+        what = ("against CalculiX, 5-10 mm held tubes squeezed to a stretch of 1.76 came out "
+                "6.5-9 % too stiff at 0.3-0.4 of their sliding force (at 0.5-0.7 of it, and "
+                "at stretches up to 1.47, within 5 %; sliding force within 0.6 %)")
+    else:
+        what = ("the scalar end-zone model does not see the inflation's in-plane stretch; "
+                "against CalculiX, 5-10 mm held tubes stretched 1.47-1.76 came out 4-10 % too "
+                "stiff before they slide (sliding force within 0.6 %)")
+    return (f"{HELD_STRETCH_NOTE}: {what}; largest stretch {stretch:.2f} here; it applies to "
+            f"the stiffness of the {zone:g} mm next to the held end faces "
+            "(docs/formulation.md section 12)")
 
 
 def _held_zones(sec: SectionPullout, law: _Iwan, lengths: tuple[float, float],

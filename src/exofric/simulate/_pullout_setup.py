@@ -59,6 +59,10 @@ class PulloutNumerics:
     line_stick_rel : float
         Stick spring of the wire-wall line contact relative to the section's initial
         stiffness (unitless, > 0; the rigid limit as it grows).
+    held_zone : {'vector', 'scalar'}
+        Model of the zones next to held end faces (``ends="fixed"``): the 3-D incremental
+        problem about the squeeze (``'vector'``; Mooney-Rivlin and neo-Hookean tubes, others
+        use the scalar one) or the axial field alone with a rod modulus 3 G (``'scalar'``).
 
     Examples
     --------
@@ -76,6 +80,7 @@ class PulloutNumerics:
     n_z: int = defaults.PULLOUT_Z_ELEMENTS
     n_path: int = defaults.PULLOUT_PATH_STEPS
     line_stick_rel: float = defaults.PULLOUT_LINE_STICK_REL
+    held_zone: str = defaults.PULLOUT_HELD_ZONE
 
     def __post_init__(self) -> None:
         _count("n_steps", self.n_steps, 2, 10_000)
@@ -84,12 +89,16 @@ class PulloutNumerics:
         check_positive("stick_penalty", self.stick_penalty, "N/mm^3")
         check_positive("creep_tol_mm", self.creep_tol_mm, "mm")
         check_positive("line_stick_rel", self.line_stick_rel)
+        if self.held_zone not in ("vector", "scalar"):
+            raise InputError(f"held_zone must be 'vector' or 'scalar', got {self.held_zone!r}",
+                             param="held_zone")
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (unit-suffixed keys)."""
         return {"n_steps": self.n_steps, "stick_penalty_n_per_mm3": float(self.stick_penalty),
                 "creep_tol_mm": float(self.creep_tol_mm), "n_z": self.n_z,
-                "n_path": self.n_path, "line_stick_rel": float(self.line_stick_rel)}
+                "n_path": self.n_path, "line_stick_rel": float(self.line_stick_rel),
+                "held_zone": self.held_zone}
 
 
 def check_pullout_friction(mu_wire: float, mu_wall: float, mu_wire_wall: float, ends: str,

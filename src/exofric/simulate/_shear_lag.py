@@ -39,6 +39,7 @@ import scipy.sparse as sp
 
 from exofric import defaults
 from exofric.simulate._antiplane import CondensedSection, condense, solve_friction_steps
+from exofric.simulate._vector_zone import VectorSection, vector_zone_stiffness
 
 __all__: list[str] = []
 
@@ -73,6 +74,7 @@ class HeldEnds:
     ez_mpa: float
     penalty: float = 1e3
     creep_tol_mm: float = 1e-9
+    vector: VectorSection | None = None
 
 
 def z_elements(length: float, first: float | None = None,
@@ -129,6 +131,8 @@ def zone_stiffness(ends: HeldEnds, h: np.ndarray, held: tuple[bool, bool]) -> Co
     >>> zone_stiffness(he, np.array([1.0, 1.0]), (True, True)).K.round(6).tolist()
     [[0.857143]]
     """
+    if ends.vector is not None:
+        return vector_zone_stiffness(ends.vector, ends.section, h, held)
     lam, MV, mz = _z_modes(np.asarray(h, float), held)
 
     kc = np.stack([condense((ends.K + sp.diags(ends.ez_mpa * lj * ends.area)).tocsr(),
