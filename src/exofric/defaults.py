@@ -489,14 +489,16 @@ PULLOUT_HELD_ZONE_MM: Final = 5.0
 #: Convergence of the held 5 mm base tube's secant to 0.2 mm at 0.6 MPa (first / growth
 #: 0.25 / 1.5, 0.125 / 1.25, 0.0625 / 1.125, 0.03125 / 1.0625): 12.331, 12.274, 12.262,
 #: 12.258 N/mm, so these defaults are +0.6 % above the converged zone (10 mm base and 5 mm
-#: test 3: +0.7 %); the K(P) of the 116 mm tube moves by 0.1-0.2 % for +20-40 % CPU, which
-#: is why they stay (tests/test_pullout_held_zone.py).
+#: test 3: +0.7 %; the vector zone: 12.024, 11.976, 11.961, +0.59 %); the K(P) of the 116 mm
+#: tube moves by 0.1-0.2 % for +20-40 % CPU, which is why they stay
+#: (tests/test_pullout_held_zone.py).
 PULLOUT_HELD_DZ_MM: Final = 0.25
 #: Growth of the held zone's elements along z away from the held face (unitless; see
 #: PULLOUT_HELD_DZ_MM for the convergence study).
 PULLOUT_HELD_DZ_GROWTH: Final = 1.5
-#: The zone's rod modulus along z over the shear modulus (unitless): the laterally free,
-#: incompressible rod (E_z = 3 G; E_z = G gives a 15-18 % softer secant on the held tubes).
+#: The scalar zone's rod modulus along z over the shear modulus (unitless; ``held_zone=
+#: "scalar"``): the laterally free, incompressible rod (E_z = 3 G; E_z = G gives a 15-18 %
+#: softer secant on the held tubes).
 PULLOUT_EZ_OVER_G: Final = 3.0
 #: The held end zones' model (``"vector"`` or ``"scalar"``): the 3-D incremental problem
 #: about the squeeze (``simulate/_vector_zone.py``; Mooney-Rivlin and neo-Hookean tubes, the

@@ -17,15 +17,15 @@ condensed onto the contact nodes; the modes recombine into one dense contact sti
 On a held face the wire-arc nodes are held against the moving wire: they slide at once and
 carry their Coulomb capacity over half an element (rigid-plastic; it vanishes as h -> 0).
 
-Neglected: the in-plane displacements that axial gradients drive (E_z = 3 G is the laterally
-free rod; E_z = G gives a 15-18 % softer secant). On held axisymmetric annuli this makes the
-zone softer than linear 3-D elasticity, not stiffer (scalar / 3-D force 0.6-0.84,
-``benchmarks/calculix_heldzone.py``; docs/formulation.md section 12). The zone is written in
-the reference configuration, so it does not see the inflation's stretch, which in 3-D makes
-that in-plane flow cheaper: on the held annulus inflated first the 3-D force falls by a fifth
-to a quarter at the tube's stretches, the bore pressure itself moving it by 2 % at most. This
-is why the held tubes from 0.4 MPa are 4-10 % too stiff against CalculiX; pulls from a
-state stretched past ``defaults.PULLOUT_HELD_STRETCH_NOTE`` say so in their notes.
+This scalar zone is the ``held_zone="scalar"`` option. It neglects the in-plane displacements
+that axial gradients drive (E_z = 3 G is the laterally free rod; E_z = G gives a 15-18 % softer
+secant) and is written in the reference configuration, so it does not see the inflation's
+stretch: on the held annulus inflated first (CalculiX) it is 19-27 % below 3-D unstretched and
+up to 11 % above it at a bore stretch of 1.84. The default is the vector zone
+(:mod:`exofric.simulate._vector_zone`, the 3-D incremental problem about the squeeze; within
+1.6 % of that annulus at every stretch): :func:`zone_stiffness` takes it from
+``HeldEnds.vector`` and returns the same condensed contact stiffness, so the friction solve
+and the Iwan law below do not change (docs/formulation.md section 12).
 
 Units: mm, N, MPa.
 """
