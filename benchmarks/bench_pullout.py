@@ -5,6 +5,9 @@ Targets on the 2-core CI machine: K(P) < 10 s, the per-unit-length solve < 1 s p
 
 Measured 2026-11-27 (session 43, held end zones on, load average ~5 on the 2 cores): K(P) 7.6 s,
 section 0.26 s per pressure; a profile of the curve (5.6 s) gives the held zones 1.4 s (25 %).
+2026-11-28 (session 46, the vector held zone, load ~1.4 with a CI run beside it): K(P) 5.37 s,
+section 0.24 s; in a profile of the curve (5.8 s) the vector zone's section matrices take 0.8 s
+and its modes 0.8 s.
 """
 
 from __future__ import annotations
