@@ -296,14 +296,21 @@ def _nan_none(a: np.ndarray) -> list[float | None]:
 # section
 
 
+def _mooney_rivlin(material: Any) -> MooneyRivlin | None:
+    """The material as Mooney-Rivlin constants (neo-Hookean: C01 = 0), or None (Yeoh, Ogden)."""
+    if isinstance(material, MooneyRivlin):
+        return material
+    if isinstance(material, HyperelasticModel) and material.name in ("neo-hookean",
+                                                                     "mooney-rivlin"):
+        return material.to_mooney_rivlin()
+    return None
+
+
 def _modulus(material: Any, nodes: np.ndarray, elements: np.ndarray,
              disp: np.ndarray) -> tuple[np.ndarray | float, float, str]:
     """(anti-plane modulus, G MPa, note)."""
-    if isinstance(material, MooneyRivlin):
-        c10, c01 = material.c10_mpa, material.c01_mpa
-    elif isinstance(material, HyperelasticModel) and material.name in ("neo-hookean",
-                                                                       "mooney-rivlin"):
-        mr = material.to_mooney_rivlin()
+    mr = _mooney_rivlin(material)
+    if mr is not None:
         c10, c01 = mr.c10_mpa, mr.c01_mpa
     else:
         g = float(material.shear_modulus_mpa)
@@ -391,12 +398,8 @@ def _vector(res: SqueezeResult, k: int, contact: np.ndarray, half: bool) -> Any:
     from exofric.simulate._vector_zone import vector_section
 
     material = res.material
-    if isinstance(material, MooneyRivlin):
-        mr = material
-    elif isinstance(material, HyperelasticModel) and material.name in ("neo-hookean",
-                                                                       "mooney-rivlin"):
-        mr = material.to_mooney_rivlin()
-    else:
+    mr = _mooney_rivlin(material)
+    if mr is None:
         return None
     nodes, elements = res.nodes, res.elements
     e = elements[:, [0, 3, 6]]  # the polar quad9's inner edges (local nodes 0, 3, 6)

@@ -72,6 +72,10 @@ class PulloutNumerics:
     Traceback (most recent call last):
     ...
     exofric.errors.InputError: n_path must be an integer in [2, 100000], got 1
+    >>> PulloutNumerics(held_zone="bonded")
+    Traceback (most recent call last):
+    ...
+    exofric.errors.InputError: held_zone must be 'vector' or 'scalar', got 'bonded'
     """
 
     n_steps: int = defaults.PULLOUT_SECTION_STEPS

@@ -39,7 +39,7 @@ import scipy.sparse as sp
 
 from exofric import defaults
 from exofric.simulate._antiplane import CondensedSection, condense, solve_friction_steps
-from exofric.simulate._vector_zone import VectorSection, vector_zone_stiffness
+from exofric.simulate._vector_zone import VectorSection, vector_zone_stiffness, z_modes
 
 __all__: list[str] = []
 
@@ -98,24 +98,11 @@ def z_elements(length: float, first: float | None = None,
 def _z_modes(h: np.ndarray, held: tuple[bool, bool]) -> tuple[np.ndarray, np.ndarray,
                                                              np.ndarray]:
     """(lambda (1/mm^2), M V (mm), tributary lengths (mm)) of the free stations along z for
-    linear elements of lengths ``h`` (mm), lumped."""
-    from scipy.linalg import eigh
-
-    n = len(h)
-    Kz = np.zeros((n + 1, n + 1))
-    idx = np.arange(n)
-    np.add.at(Kz, (idx, idx), 1.0 / h)
-    np.add.at(Kz, (idx + 1, idx + 1), 1.0 / h)
-    np.add.at(Kz, (idx, idx + 1), -1.0 / h)
-    np.add.at(Kz, (idx + 1, idx), -1.0 / h)
-    mz = np.zeros(n + 1)
-    np.add.at(mz, idx, 0.5 * h)
-    np.add.at(mz, idx + 1, 0.5 * h)
-    keep = np.ones(n + 1, bool)
-    keep[0], keep[-1] = not held[0], not held[1]
-    Kz, mz = Kz[np.ix_(keep, keep)], mz[keep]
-    lam, V = eigh(Kz, np.diag(mz))
-    return np.clip(lam, 0.0, None), mz[:, None] * V, mz
+    linear elements of lengths ``h`` (mm), lumped: the generalised eigenpairs of (K_z, M_z),
+    K_z = D^T diag(h) D, are the squared singular values and M^1/2 Q of the vector zone's
+    :func:`~exofric.simulate._vector_zone.z_modes` (one owner)."""
+    s, MQ, m = z_modes(np.asarray(h, float), held)
+    return s * s, MQ, m
 
 
 def zone_stiffness(ends: HeldEnds, h: np.ndarray, held: tuple[bool, bool]) -> CondensedSection:
