@@ -292,3 +292,35 @@ def test_normal_force_change_next_to_the_faces_matches_3d() -> None:
             inside = (lo >= face - 1e-9) & (hi <= 2.5 + 0.3)
             interior = base[inside].sum() * (2.5 - face) / (hi[inside] - lo[inside]).sum()
             assert abs(far) < 0.03 * interior, (p, d, far, interior)
+
+
+def test_the_vector_section_is_built_once_per_squeeze_and_freed_with_it() -> None:
+    """A fit pulls many times from one squeeze with other coefficients: the vector zone's
+    section (and its zones' stiffness) is kept per squeeze result and pressure, gives the
+    same pull as one built afresh (from a copy of the squeeze: 1e-12), and is dropped when the
+    squeeze result is."""
+    import dataclasses
+    import gc
+
+    from exofric import squeeze
+    from exofric.geometry import BASE
+    from exofric.simulate import PulloutSetup, pullout
+    from exofric.simulate._pullout import _VECTOR_SECTIONS
+
+    st = dataclasses.replace(BASE, length_mm=10.0)
+    mat = MooneyRivlin.from_shore(62.5)
+    sq = squeeze(st, mat, [0.4], accuracy="draft", gravity="none", keep_fields=True)
+    key = (id(sq), 0)
+    runs = []
+    for mu in (0.3, 0.4, 0.3):
+        setup = PulloutSetup(st, mat, mu_wire=mu, mu_wall=0.5, mu_wire_wall=0.0)
+        runs.append(pullout(setup, 0.4, displacement_mm=0.2, cycles=0, squeeze_result=sq))
+        assert key in _VECTOR_SECTIONS
+    fresh = pullout(PulloutSetup(st, mat, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.0), 0.4,
+                    displacement_mm=0.2, cycles=0, squeeze_result=dataclasses.replace(sq))
+    for r in (runs[2], fresh):
+        assert np.allclose(r.force_n, runs[0].force_n, rtol=1e-12, atol=0.0)
+    assert not np.allclose(runs[1].force_n, runs[0].force_n)
+    del sq, runs, fresh
+    gc.collect()
+    assert key not in _VECTOR_SECTIONS

@@ -385,10 +385,27 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float, e
     wire, caps, lengths = np.concatenate(on_wire), np.concatenate(cap), np.concatenate(length)
     held = HeldEnds(K_free, area, CondensedSection(np.zeros((0, 0)), wire, caps, lengths),
                     c_idx, fac, defaults.PULLOUT_EZ_OVER_G * g,
-                    vector=(_vector(res, k, c_idx, half)
+                    vector=(_vector_cached(res, k, c_idx, half)
                             if ends == "fixed" and held_zone == "vector" else None))
     sec = _Section(condense(K, c_idx), wire, caps, lengths, held)
     return sec, fac, g, s["wire"], s["wall"], note, ratio, K, c_idx
+
+
+#: the vector zone's section per (squeeze result, pressure index): it does not depend on the
+#: friction coefficients, which a fit (``fit-pullout``) varies over the same squeeze; an entry
+#: lives as long as its squeeze result
+_VECTOR_SECTIONS: dict[tuple[int, int], Any] = {}
+
+
+def _vector_cached(res: SqueezeResult, k: int, contact: np.ndarray, half: bool) -> Any:
+    """:func:`_vector`, once per squeeze result and pressure."""
+    import weakref
+
+    key = (id(res), k % len(res.pressure_mpa))
+    if key not in _VECTOR_SECTIONS:
+        _VECTOR_SECTIONS[key] = _vector(res, k, contact, half)
+        weakref.finalize(res, _VECTOR_SECTIONS.pop, key, None)
+    return _VECTOR_SECTIONS[key]
 
 
 def _vector(res: SqueezeResult, k: int, contact: np.ndarray, half: bool) -> Any:

@@ -59,7 +59,7 @@ Units: mm, N, MPa.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -165,6 +165,10 @@ class VectorSection:
     contact_w: np.ndarray
     R: tuple[sp.csr_matrix, ...]
     normals: np.ndarray | None = None
+    #: the zones' contact stiffness and station lengths by (element lengths, held): they do
+    #: not depend on the friction coefficients, which a fit varies (:func:`vector_zone_stiffness`)
+    zones: dict[tuple[bytes, tuple[bool, bool]], tuple[np.ndarray, np.ndarray]] = field(
+        default_factory=dict, repr=False, compare=False)
 
     def mode(self, s: float) -> np.ndarray:
         """The mode of wavenumber ``s`` (1/mm) condensed on the contact nodes' w (c, c)."""
@@ -377,12 +381,19 @@ def vector_zone_stiffness(vs: VectorSection, section: CondensedSection, h: np.nd
     >>> vector_zone_stiffness(vs, sec, np.full(4, 0.5), (True, False)).K.shape
     (128, 128)
     """
-    s, MQ, m = z_modes(h, held)
-    kc = np.stack([vs.mode(float(sj)) for sj in s])
-    ns, nc = MQ.shape[0], len(vs.contact_w)
-    C = np.einsum("aj,bj,jpq->apbq", MQ, MQ, kc).reshape(ns * nc, ns * nc)
-    return CondensedSection(0.5 * (C + C.T), np.tile(section.on_wire, ns),
-                            np.kron(m, section.capacity), np.kron(m, section.length))
+    key = (np.asarray(h, float).tobytes(), (bool(held[0]), bool(held[1])))
+    if key not in vs.zones:
+        s, MQ, m = z_modes(h, held)
+        kc = np.stack([vs.mode(float(sj)) for sj in s])
+        ns, nc = MQ.shape[0], len(vs.contact_w)
+        C = np.einsum("aj,bj,jpq->apbq", MQ, MQ, kc).reshape(ns * nc, ns * nc)
+        C = 0.5 * (C + C.T)
+        C.setflags(write=False)  # shared by every pull from this squeeze
+        vs.zones[key] = (C, m)
+    C, m = vs.zones[key]
+    ns = len(m)
+    return CondensedSection(C, np.tile(section.on_wire, ns), np.kron(m, section.capacity),
+                            np.kron(m, section.length))
 
 
 def normal_force_change(vs: VectorSection, h: np.ndarray, held: tuple[bool, bool],
