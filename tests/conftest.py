@@ -3,12 +3,20 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import pytest
+
+# One BLAS thread per process, as `make test` sets it (Makefile): with `pytest -n 2` run by hand
+# two workers with two BLAS threads each on two cores made the pull-out fits ~10x slower
+# (tests/test_pullfit.py: 330 s against 37 s). Set before NumPy is first imported (nothing above
+# imports it); the CLI's subprocesses inherit it.
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
 
 @dataclass
