@@ -321,12 +321,13 @@ def _modulus(material: Any, nodes: np.ndarray, elements: np.ndarray,
                                   "J^-2/3 I + 2 C01 J^-4/3 adj(C2), exact for the axial shear")
 
 
-def _outer_edges(nodes: np.ndarray, elements: np.ndarray, center: tuple[float, float],
-                 r_out: float) -> np.ndarray:
-    """Outer-surface edges (m, 3) of a quad9 polar mesh (local nodes 2, 5, 8)."""
-    e = elements[:, [2, 5, 8]]
+def _ring_edges(nodes: np.ndarray, elements: np.ndarray, center: tuple[float, float],
+                radius: float, outer: bool = True) -> np.ndarray:
+    """Outer- (local nodes 2, 5, 8) or inner-surface (0, 3, 6) edges (m, 3) of a quad9 polar
+    mesh: the element sides whose nodes lie at ``radius`` (mm) from ``center``."""
+    e = elements[:, [2, 5, 8] if outer else [0, 3, 6]]
     r = np.hypot(nodes[e, 0] - center[0], nodes[e, 1] - center[1])
-    return e[np.all(np.abs(r - r_out) < 1e-6 * r_out, axis=1)]
+    return e[np.all(np.abs(r - radius) < 1e-6 * radius, axis=1)]
 
 
 @dataclass(frozen=True)
@@ -358,7 +359,7 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float, e
     k_anchor = (8.0 * 3.0 * g * a_t / st.length_mm ** 2 if ends == "fixed" else 1e-4 * g)
     K_free = K.tocsr()
     K = K + _diag(k_anchor / fac * area / area.sum())
-    edges = _outer_edges(nodes, elements, st.tube_center_mm, 0.5 * st.tube_od_mm)
+    edges = _ring_edges(nodes, elements, st.tube_center_mm, 0.5 * st.tube_od_mm)
     x_now = nodes + disp
     w_now = nodal_weights(edges, x_now, len(nodes))
     w_ref = nodal_weights(edges, nodes, len(nodes))
@@ -419,11 +420,10 @@ def _vector(res: SqueezeResult, k: int, contact: np.ndarray, half: bool) -> Any:
     if mr is None:
         return None
     nodes, elements = res.nodes, res.elements
-    e = elements[:, [0, 3, 6]]  # the polar quad9's inner edges (local nodes 0, 3, 6)
+    # the mesh's own centre (the squeeze may have moved the tube from the structure's)
     c = nodes[elements[:, [0, 3, 6, 2, 5, 8]]].reshape(-1, 2).mean(axis=0)
-    r = np.hypot(nodes[e, 0] - c[0], nodes[e, 1] - c[1])
-    r_in = 0.5 * res.structure.tube_id_mm
-    bore = e[np.all(np.abs(r - r_in) < 1e-6 * r_in, axis=1)]
+    bore = _ring_edges(nodes, elements, (c[0], c[1]), 0.5 * res.structure.tube_id_mm,
+                       outer=False)
     sym = np.flatnonzero(np.abs(nodes[:, 0]) < 1e-9) if half else np.zeros(0, int)
     stretch = 1.0 if res.axial_stretch is None else float(res.axial_stretch[k])
     # contact normals from the obstacles into the tube: off the wire, in from the hole wall

@@ -103,8 +103,7 @@ def mooney_rivlin_tangent(F: np.ndarray, c10: float, c01: float) -> np.ndarray:
     cc = np.einsum("...ij,...ij->...", C, C)[..., None, None, None, None]
     I2 = 0.5 * (I1 ** 2 - cc)
     dJ = J[..., 0, 0] * np.swapaxes(Fi, -1, -2)  # cof F
-    d2J = J * (np.einsum("...ji,...lk->...ijkl", Fi, Fi) - np.einsum("...li,...jk->...ijkl",
-                                                                      Fi, Fi))
+    d2J = volume_hessian(F)
     dI1 = 2.0 * F
     d2I1 = 2.0 * np.einsum("ik,jl->ijkl", eye, eye)
     FC = np.einsum("...ik,...kj->...ij", F, C)
@@ -183,7 +182,7 @@ def _assemble(elements: np.ndarray, ke: np.ndarray, n_dofs: int) -> sp.csr_matri
     return sp.csr_matrix((ke.ravel(), (rows, cols)), shape=(n_dofs, n_dofs))
 
 
-def _bore_coupling(nodes: np.ndarray, x: np.ndarray, bore: np.ndarray, center: np.ndarray
+def _bore_coupling(x: np.ndarray, bore: np.ndarray, center: np.ndarray
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(rows w, cols u, values) of int N_a N_b n dl on the bore edges (current geometry)."""
     from exofric.fe import lagrange_1d
@@ -311,7 +310,7 @@ def vector_section(nodes: np.ndarray, elements: np.ndarray, displacement: np.nda
         r, c = H2.row, H2.col
         K0 = K0 + sp.csr_matrix((-pressure_mpa * axial_stretch * H2.data,
                                  (3 * (r // 2) + r % 2, 3 * (c // 2) + c % 2)), shape=(nd, nd))
-        rw, cu, v = _bore_coupling(nodes, x, bore, np.asarray(tube_center, float))
+        rw, cu, v = _bore_coupling(x, bore, np.asarray(tube_center, float))
         Kc = sp.csr_matrix((-pressure_mpa * v, (rw, cu)), shape=(nd, nd))
         K1 = K1 + Kc + Kc.T
     contact = np.asarray(contact, int)
