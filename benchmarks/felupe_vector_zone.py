@@ -197,8 +197,9 @@ def felupe_zone(state: dict[str, Any], pressure: float, lz: float = ZONE_MM,
                            "squeeze_displacement_max_mm": float(np.hypot(*u2.T).max())}
     far_inplane = bc(face1, (0, 0, 1))
     far_inplane.update(base[far_inplane.points, :2].ravel())
-    # the far face is free along z, under the state's axial stress (the plane-strain state's
-    # sigma_zz, even about the middle of the tube; the pull's increment is odd there)
+    # the far face is free along z under the state's axial stress (the plane-strain state's
+    # sigma_zz, even about the middle of the tube; the pull's increment of sigma_zz is odd
+    # about it, so zero there)
     far = np.flatnonzero(face1)
     keep_state = fem.PointLoad(fields, far, values=np.c_[0 * far, 0 * far, r0[far, 2]])
     for name, f in profiles(zl, lz).items():
