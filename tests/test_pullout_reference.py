@@ -33,18 +33,18 @@ pressures (no reverse coupling) are what is tested.
   model solves the zones next to the held faces in 3-D (the vector zone, session 46;
   docs/formulation.md section 12, "The vector zone"). Measured (exofric vs the finest run; base
   0.2 / 0.4 / 0.6 MPa, 10 mm base 0.6, test 3 0.2 / 0.4 / 0.6): sliding force -1.33 / +0.05 /
-  +0.38, +0.54, -1.25 / +0.03 / +0.59 %; k1 -1.68 / +3.36 / +3.98, +8.74, +0.58 / +2.56 / +6.71
-  %; k2 -2.74 / +3.00 / +1.66, +4.76, -1.68 / +3.19 / +2.08 % (the 5 mm base tube at 0.6 MPa
-  against its 3 x 30 run on 0.25 mm, session 47; against 2 x 20 on 0.125 mm it was +6.54 /
-  +1.54 %: once the faces are resolved along z, 2 x 20 reads k1 2-3 % low, so the other 0.6 MPa
-  errors, against 2 x 20, are upper estimates) (the scalar zone: k1 +2.20 / +7.40
+  +0.38, +0.54, -1.25 / +0.03 / +0.59 %; k1 -1.68 / +3.36 / +3.98, +8.74, +0.58 / +2.56 / +3.67
+  %; k2 -2.74 / +3.00 / +1.66, +4.76, -1.68 / +3.19 / +1.11 % (both 5 mm tubes at 0.6 MPa
+  against their 3 x 30 runs on 0.25 mm, session 47; against 2 x 20 they were +6.54 / +1.54 %
+  and +6.71 / +2.08 %: once the faces are resolved along z, 2 x 20 reads k1 2-3 % low, so the
+  10 mm tube's error, against 2 x 20, is an upper estimate) (the scalar zone: k1 +2.20 / +7.40
   / +9.73, +9.68, +4.32 / +6.56 / +10.36 %, k2 +0.54 / +6.60 / +4.13, +5.15, +1.57 / +6.71 /
   +5.20 %). The 3-D k1 falls at every halving along z to 0.25 mm (-1.0 to -7.0 %); k2 rises at
   0.6 MPa, falls at 0.2 MPa, moves < 1 % at 0.4 MPa (no order). On 0.125 mm elements the 5 mm
   base tube's k1 moves -0.37 / +0.70 % at 0.6 / 0.4 MPa (the reference levels off), but both 5 mm
   tubes' k1 at 0.2 MPa falls another 5.4 / 5.3 % (not converged there). The cases above 5 % are
   tested at their stated measured bounds (``HELD_K_BOUNDS``): k1 at 0.6 MPa of the 10 mm base
-  and 5 mm test-3 tubes (2 x 20 references) and the unrefined 30 mm tube.
+  tube (a 2 x 20 reference) and the unrefined 30 mm tube.
 
 Measures: sliding force = force at the end of the travel (flat to 4e-6); initial stiffness =
 F / delta at delta = 5e-4 x the travel (constant to 4e-7 over the next outputs: all stuck).
@@ -296,9 +296,8 @@ HELD_K_BOUNDS: dict[tuple[str, float, float, int], float] = {
     # coarse there by 2-3 % once the faces are resolved along z (session 47,
     # test_k1_reference_rises_with_refinement_in_the_plane). The 5 mm base tube's finest run is
     # now on 3 x 30 and 0.25 mm (27502 equations): +3.98 %, within 5 % (it was +6.54 % against
-    # 2 x 20 and 0.125 mm)
+    # 2 x 20 and 0.125 mm); so is test 3's (+3.67 %; +6.71 % against 2 x 20)
     ("test 1", 10.0, 0.6, 0): 0.095,  # measured +8.74 % (19.535 N/mm, graded, 2 x 20)
-    ("test 3", 5.0, 0.6, 0): 0.075,   # measured +6.71 % (16.405 N/mm, 0.25 mm, 2 x 20)
     # the 30 mm tube against its 1 mm reference (UNREFINED): on the 5 mm base tube at 0.6 MPa
     # refining 1 -> 0.125 mm moved the 3-D k1 by -4.2 % and k2 by +2.3 %, so against a
     # refined reference k1 would be further above, k2 a little less
@@ -353,14 +352,15 @@ def test_held_tube_reference_rises_with_refinement() -> None:
 
 
 def test_k1_reference_rises_with_refinement_in_the_plane() -> None:
-    """The 5 mm base tube at 0.6 MPa: once the held faces are resolved along z, the 3-D k1
-    rises as the plane is refined. 2 x 20 -> 3 x 30 moves it by +0.09 % on 1 mm elements along
-    z, +1.60 % on 0.5 mm and +2.08 % on 0.25 mm; 3 x 30 -> 4 x 40 on 0.5 mm by +0.61 % (k2:
-    +0.80 / +0.73 / +0.29 % and +0.49 %). The 2 x 20 references of the other tubes therefore
-    read k1 at 0.6 MPa 2-3 % low (their exofric errors are upper estimates), and the base
-    tube's finest run (most equations) is the 3 x 30, 0.25 mm one (a data check: the runs are
-    CalculiX's; tested: each refinement in the plane raises k1 from 0.5 mm, the first by 1-3 %
-    and the second by less than the first)."""
+    """The 5 mm tubes at 0.6 MPa: once the held faces are resolved along z, the 3-D k1 rises
+    as the plane is refined. On the base tube 2 x 20 -> 3 x 30 moves it by +0.09 % on 1 mm
+    elements along z, +1.60 % on 0.5 mm and +2.08 % on 0.25 mm; 3 x 30 -> 4 x 40 on 0.5 mm by
+    +0.61 % (k2: +0.80 / +0.73 / +0.29 % and +0.49 %); on test 3, 2 x 20 -> 3 x 30 on 0.25 mm
+    by +2.93 % (k2 +0.96 %). The 2 x 20 references of the other tubes therefore read k1 at 0.6
+    MPa 2-3 % low (their exofric errors are upper estimates), and both tubes' finest runs (most
+    equations) are the 3 x 30, 0.25 mm ones (a data check: the runs are CalculiX's; tested:
+    each refinement in the plane raises k1 from 0.5 mm, the first by 1-3.5 % and the second by
+    less than the first)."""
     runs = GROUPS["test 1", 5.0, 0.6]
     d = _secant_mm(0.6, 0)
     k: dict[tuple[str, int], float] = {}
@@ -368,11 +368,15 @@ def test_k1_reference_rises_with_refinement_in_the_plane() -> None:
         if r["spec"]["z_grading"] == 1.0:
             k.setdefault((r["mesh"], r["spec"]["n_z"]), _k(r["delta_mm"], r["force"], d))
     for n in (10, 20):
-        assert 0.01 < k["3x30", n] / k["2x20", n] - 1 < 0.03, (n, k)
+        assert 0.01 < k["3x30", n] / k["2x20", n] - 1 < 0.035, (n, k)
     second = k["4x40", 10] / k["3x30", 10] - 1
     assert 0.0 < second < k["3x30", 10] / k["2x20", 10] - 1, k
-    finest = max(runs, key=_fineness)
-    assert (finest["mesh"], finest["spec"]["n_z"]) == ("3x30", 20)
+    t3 = {r["mesh"]: _k(r["delta_mm"], r["force"], d) for r in GROUPS["test 3", 5.0, 0.6]
+          if r["spec"]["n_z"] == 20}
+    assert 0.01 < t3["3x30"] / t3["2x20"] - 1 < 0.035, t3
+    for key in (("test 1", 5.0, 0.6), ("test 3", 5.0, 0.6)):
+        finest = max(GROUPS[key], key=_fineness)
+        assert (finest["mesh"], finest["spec"]["n_z"]) == ("3x30", 20), key
 
 
 def test_k1_reference_falls_with_refinement_along_z_then_levels_off_from_0_4_mpa() -> None:

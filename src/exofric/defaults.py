@@ -509,10 +509,10 @@ PULLOUT_HELD_ZONE: Final = "vector"
 #: Largest in-plane stretch of the squeeze state (unitless) from which a pull with held ends
 #: carries a note that its end zones are stiff in the early slip. With the vector zone, against
 #: CalculiX the 5-10 mm held tubes' first secant (k1) is within 5 % at stretches 1.18-1.47
-#: (0.2-0.4 MPa: -1.7 to +3.4 %) and +4.0 to +8.7 % at 1.76 (0.6 MPa: +4.0 % against the 3-D
-#: reference refined in the plane, +6.7 / +8.7 % against 2 x 20 ones, which read k1 2-3 % low;
-#: the second secant within 5 % everywhere): the note starts between them (docs/formulation.md
-#: section 12).
+#: (0.2-0.4 MPa: -1.7 to +3.4 %) and +3.7 to +8.7 % at 1.76 (0.6 MPa: +4.0 / +3.7 % on the 5 mm
+#: tubes against 3-D references refined in the plane, +8.7 % on the 10 mm one against 2 x 20,
+#: which reads k1 2-3 % low; the second secant within 5 % everywhere): the note starts between
+#: them (docs/formulation.md section 12).
 PULLOUT_HELD_STRETCH_NOTE: Final = 1.6
 #: The same for the scalar zone (``held_zone="scalar"``): k1 and k2 -3.3..+4.3 % at 1.18,
 #: +4.1..+10.4 % at 1.47-1.76.

@@ -911,8 +911,8 @@ def held_stretch_note(stretch: float, length_mm: float, vector: bool = True) -> 
     zone = min(2.0 * defaults.PULLOUT_HELD_ZONE_MM, length_mm)
     if vector:
         what = ("against CalculiX, 5-10 mm held tubes squeezed to a stretch of 1.76 came out "
-                "4-9 % too stiff at 0.3-0.4 of their sliding force (4 % against the reference "
-                "refined in the plane, 6.7-8.7 % against coarser ones; at 0.5-0.7 of it, and "
+                "4-9 % too stiff at 0.3-0.4 of their sliding force (4 % against references "
+                "refined in the plane, 8.7 % against a coarser one; at 0.5-0.7 of it, and "
                 "at stretches up to 1.47, within 5 %; sliding force within 0.6 %)")
     else:
         what = ("the scalar end-zone model does not see the inflation's in-plane stretch; "
