@@ -157,13 +157,23 @@ def _extrude(nodes2: dict[int, tuple[float, float]], elems2: dict[int, list[int]
     return nodes, elems, offset
 
 
-def _graded(length: float, n: int, ratio: float) -> np.ndarray:
-    """n elements over [0, length], smallest at both ends, largest/smallest = ratio."""
+def _graded(length: float, n: int, ratio: float, growth: float | None = None) -> np.ndarray:
+    """n elements over [0, length], smallest at both ends, largest/smallest = ratio.
+
+    Without ``growth`` the sizes grow geometrically from each end to the middle; with it they
+    grow by ``growth`` per element from each end until they reach ``ratio`` x the smallest,
+    then stay at that size (a uniform middle: long tubes keep their largest elements at an
+    aspect ratio the contact tolerates). Element boundaries (mm)."""
     if n < 2 or ratio == 1.0:
         return np.linspace(0.0, length, n + 1)
     h = n // 2
-    q = ratio ** (1.0 / max(h - 1, 1))
-    half = q ** np.arange(h)
+    if growth is None:
+        q = ratio ** (1.0 / max(h - 1, 1))
+        half = q ** np.arange(h)
+    else:
+        if not growth > 1.0:
+            raise ValueError(f"z growth must be > 1, got {growth}")
+        half = np.minimum(growth ** np.arange(h), ratio)
     sizes = np.concatenate([half, [half[-1]] if n % 2 else [], half[::-1]])
     return np.concatenate([[0.0], np.cumsum(sizes)]) / sizes.sum() * length
 
@@ -200,6 +210,7 @@ def pullout_deck(
     depth_mm: float = 1.0,
     n_z: int = 2,
     z_grading: float = 1.0,
+    z_growth: float | None = None,
     ends: str = "fixed",
     n_radial: int = 2,
     n_circ: int = 30,
@@ -232,6 +243,9 @@ def pullout_deck(
     depth_mm, n_z, z_grading : float, int, float
         Slice thickness / tube length (mm), elements along z, largest / smallest element
         length along z (tube: smallest at both ends).
+    z_growth : float, optional
+        Tube only: sizes grow by this factor per element from each end up to ``z_grading`` x
+        the smallest, a uniform middle beyond (default: geometric to the middle).
     ends : {"fixed", "free"}
         Tube only: end faces u_z = 0 (end fittings) or free.
     n_radial, n_circ, grading : int, int, float
@@ -281,7 +295,8 @@ def pullout_deck(
                                     first_node=max(h2) + 1, first_element=1)
     offset = 10 ** (len(str(max(w2))) + 0)
     L = float(depth_mm)
-    zb = _graded(L, int(n_z), z_grading) if kind == "tube" else np.linspace(0.0, L, n_z + 1)
+    zb = (_graded(L, int(n_z), z_grading, z_growth) if kind == "tube"
+          else np.linspace(0.0, L, n_z + 1))
     tn, te, _ = _extrude(t2, e2, _corners(g2), zb, offset, 1)
     # rigid parts: z boundaries over [-(delta_max + margin), L + margin], about the tube's
     # element length
@@ -339,6 +354,7 @@ def pullout_deck(
                        delta_max_mm, max_increment_mm, max_increment_inflation))
     mesh = {"kind": kind, "element": element, "n_radial": n_radial, "n_circ": n_circ,
             "grading": grading, "n_z": n_z, "z_grading": z_grading, "depth_mm": L,
+            "z_growth": z_growth, "z_boundaries_mm": [float(v) for v in zb],
             "rigid_elements": rigid_elements, "penalty_mpa_per_mm": penalty,
             "stick_slope_mpa_per_mm": stick_slope, "contact": contact,
             "delta_max_mm": delta_max_mm, "max_increment_mm": max_increment_mm,

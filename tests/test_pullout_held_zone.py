@@ -53,8 +53,8 @@ def test_held_zone_converges_along_z_and_the_default_is_within_1pct(
 
 
 def test_pulls_from_a_stretched_state_say_their_held_zones_are_too_stiff() -> None:
-    """Against CalculiX the held tubes' early-slip secant k1 is 4-9 % too stiff at a stretch
-    of 1.76 (0.6 MPa) with the vector zone (4 % against references refined in the plane),
+    """Against CalculiX the held tubes' early-slip secant k1 is 3-6 % too stiff at a stretch
+    of 1.76 (0.6 MPa) with the vector zone (references refined in the plane),
     within 5 % up to 1.47 (docs/formulation.md section 12): a pull with held ends says so,
     with the stretch of the squeeze it starts from (the
     squeeze's own ``max_stretch``, an independent output), only where that stretch is past
@@ -91,3 +91,33 @@ def test_pulls_from_a_stretched_state_say_their_held_zones_are_too_stiff() -> No
     assert defaults.PULLOUT_HELD_STRETCH_NOTE_SCALAR < r.section.max_stretch \
         < defaults.PULLOUT_HELD_STRETCH_NOTE
     assert [n for n in r.notes if "does not see the inflation" in n], r.notes
+
+
+def _secant_116(zone_mm: float, monkeypatch: pytest.MonkeyPatch, sq: object) -> float:
+    """Secant F(d) / d (N/mm) at d = 0.0111 mm (0.1 mm (0.2 / 0.6)^2, ~0.35 of the sliding
+    force) of the 116 mm base tube held at both ends, 0.2 MPa, zones of ``zone_mm``."""
+    monkeypatch.setattr(defaults, "PULLOUT_HELD_ZONE_MM", zone_mm)
+    setup = PulloutSetup(BASE, MAT, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.0,
+                         ends="fixed", cable_ea_n=1e5)
+    r = pullout(setup, 0.2, displacement_mm=0.1, cycles=0, squeeze_result=sq,  # type: ignore[arg-type]
+                first_loading=True)
+    d = 0.1 / 9.0
+    return float(np.interp(d, r.displacement_mm, r.force_n)) / d
+
+
+def test_held_zone_length_converges_and_the_default_holds_the_decay(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """The fittings' rod acts on the section only where the tube slides on the wall, so the
+    zones next to the held faces must hold the whole decay of a face's influence (section 12,
+    "Tube ends"). A convergence study in the zone's length on the 116 mm base tube at 0.2 MPa
+    (the softest section, the longest decay): the secant rises with the zone to a limit, 10 ->
+    20 mm moves it by more than 20 -> 36 mm, and the default (20 mm) is within 0.5 % of 36 mm
+    (measured -0.03 %; test 3: -0.3 %, the reason for 0.5 %). 5 mm, the zone before the rod
+    moved to the wall's slip, is 4.7 % low (measured -4.7 %: the bound is 3 %)."""
+    assert defaults.PULLOUT_HELD_ZONE_MM == 20.0
+    sq = squeeze(BASE, MAT, [0.2], gravity="none", keep_fields=True)
+    k5, k10, k20, k36 = (_secant_116(z, monkeypatch, sq) for z in (5.0, 10.0, 20.0, 36.0))
+    assert k5 < k10 < k20, (k5, k10, k20, k36)
+    assert abs(k36 - k20) < 0.5 * (k20 - k10), (k10, k20, k36)
+    assert abs(k20 / k36 - 1.0) < 0.005, (k20, k36)
+    assert k5 / k36 - 1.0 < -0.03, (k5, k36)

@@ -17,34 +17,34 @@ pressures (no reverse coupling) are what is tested.
   ``section_pullout(..., ends="free")`` (a periodic slice has no end fittings) at 0.2, 0.4,
   0.6 MPa on the base group (Table 3 test 1) and test 3, mu_wire_wall = 0 (two rigid bodies
   have no line contact in the 3-D model).
-* Held tubes (``tests/data/ccx_pullout_tube.json``, ``runs``): 5 mm of the base group and of
-  test 3 at 0.2, 0.4 and 0.6 MPa and 10 mm of the base group at 0.6 MPa, the end faces held
-  axially (u_z = 0, in-plane free), the rigid wire pulled to full sliding (a run counts as
-  sliding when its force is flat to 1e-5 over its last three outputs), and secant runs on 1 /
-  0.5 / 0.25 mm elements along z (the 10 mm tube: 1 mm and graded from 0.116 mm; the 5 mm base
-  tube at 0.6 MPa also on 3 x 30 in the plane on 1 / 0.5 / 0.25 mm and on 4 x 40 on 0.5 mm;
-  test 3 at 0.6 MPa on 3 x 30 and 0.25 mm, session 47). Compared with ``pullout(..., ends="fixed",
-  cable_ea_n=1e5)`` on the same length (the 3-D wire is rigid; EA / L >= 3e3 N/mm against the
-  tube's <= 40 N/mm): the sliding force (finest sliding run) and two secants F(d) / d (finest
-  run: most equations), k1 at d1 = 0.1 mm (P / 0.6 MPa)^2, where the 3-D force is 0.30-0.42 x
-  the sliding force, and k2 at 2 d1 (0.53-0.72 x; 0.2 mm at 0.6 MPa). The 3-D end rows, held
-  against the moving wire, slip at once, so the early F / delta is no elastic stiffness; the
-  slip displacement scales with P^2 (at 0.2 MPa the tubes slide fully by ~0.06 mm). The reduced
-  model solves the zones next to the held faces in 3-D (the vector zone, session 46;
-  docs/formulation.md section 12, "The vector zone"). Measured (exofric vs the finest run; base
-  0.2 / 0.4 / 0.6 MPa, 10 mm base 0.6, test 3 0.2 / 0.4 / 0.6): sliding force -1.33 / +0.05 /
-  +0.38, +0.54, -1.25 / +0.03 / +0.59 %; k1 -1.68 / +3.36 / +3.98, +8.74, +0.58 / +2.56 / +3.67
-  %; k2 -2.74 / +3.00 / +1.66, +4.76, -1.68 / +3.19 / +1.11 % (both 5 mm tubes at 0.6 MPa
-  against their 3 x 30 runs on 0.25 mm, session 47; against 2 x 20 they were +6.54 / +1.54 %
-  and +6.71 / +2.08 %: once the faces are resolved along z, 2 x 20 reads k1 2-3 % low, so the
-  10 mm tube's error, against 2 x 20, is an upper estimate) (the scalar zone: k1 +2.20 / +7.40
-  / +9.73, +9.68, +4.32 / +6.56 / +10.36 %, k2 +0.54 / +6.60 / +4.13, +5.15, +1.57 / +6.71 /
-  +5.20 %). The 3-D k1 falls at every halving along z to 0.25 mm (-1.0 to -7.0 %); k2 rises at
-  0.6 MPa, falls at 0.2 MPa, moves < 1 % at 0.4 MPa (no order). On 0.125 mm elements the 5 mm
-  base tube's k1 moves -0.37 / +0.70 % at 0.6 / 0.4 MPa (the reference levels off), but both 5 mm
-  tubes' k1 at 0.2 MPa falls another 5.4 / 5.3 % (not converged there). The cases above 5 % are
-  tested at their stated measured bounds (``HELD_K_BOUNDS``): k1 at 0.6 MPa of the 10 mm base
-  tube (a 2 x 20 reference) and the unrefined 30 mm tube.
+* Held tubes (``tests/data/ccx_pullout_tube.json``, ``runs``): 5 mm of the base group and of test 3
+  at 0.2, 0.4 and 0.6 MPa and 10 mm of the base group at 0.6 MPa, the end faces held axially (u_z =
+  0, in-plane free), the rigid wire pulled to full sliding (a run counts as sliding when its force
+  is flat to 1e-5 over its last three outputs), and secant runs on 1 / 0.5 / 0.25 mm elements along
+  z (the 10 mm tube: 1 mm and graded from 0.116 mm; the 5 mm base tube at 0.6 MPa also on 3 x 30 in
+  the plane on 1 / 0.5 / 0.25 mm and on 4 x 40 on 0.5 mm; test 3 at 0.6 MPa on 3 x 30 and 0.25 mm,
+  session 47). Compared with ``pullout(..., ends="fixed", cable_ea_n=1e5)`` on the same length (the
+  3-D wire is rigid; EA / L >= 3e3 N/mm against the tube's <= 40 N/mm): the sliding force (finest
+  sliding run) and two secants F(d) / d (finest run: most equations), k1 at d1 = 0.1 mm (P / 0.6
+  MPa)^2, where the 3-D force is 0.30-0.42 x the sliding force, and k2 at 2 d1 (0.53-0.72 x; 0.2 mm
+  at 0.6 MPa). The 3-D end rows, held against the moving wire, slip at once, so the early F / delta
+  is no elastic stiffness; the slip displacement scales with P^2 (at 0.2 MPa the tubes slide fully
+  by ~0.06 mm). The reduced model solves the zones next to the held faces in 3-D (the vector zone,
+  session 46; docs/formulation.md section 12, "The vector zone"). Measured (exofric vs the finest
+  run; base 0.2 / 0.4 / 0.6 MPa, 10 mm base 0.6, test 3 0.2 / 0.4 / 0.6): sliding force -1.33 /
+  +0.05 / +0.38, +0.54, -1.25 / +0.03 / +0.59 %; k1 -1.68 / +3.36 / +3.88, +6.15, +0.52 / +2.27 /
+  +3.42 %; k2 -2.74 / +3.00 / +1.65, +4.07, -1.68 / +3.19 / +1.09 % (both 5 mm tubes at 0.6 MPa
+  against their 3 x 30 runs on 0.25 mm, session 47, the 10 mm tube against its graded 3 x 30 run,
+  session 48; against 2 x 20 they were +6.54 / +1.54 %, +8.74 / +4.76 % and +6.71 / +2.08 %: once
+  the faces are resolved along z, 2 x 20 reads k1 2-3 % low) (the scalar zone: k1 +2.20 / +7.40 /
+  +9.73, +9.68, +4.32 / +6.56 / +10.36 %, k2 +0.54 / +6.60 / +4.13, +5.15, +1.57 / +6.71 / +5.20
+  %). The 3-D k1 falls at every halving along z to 0.25 mm (-1.0 to -7.0 %); k2 rises at 0.6 MPa,
+  falls at 0.2 MPa, moves < 1 % at 0.4 MPa (no order). On 0.125 mm elements the 5 mm base tube's k1
+  moves -0.37 / +0.70 % at 0.6 / 0.4 MPa (the reference levels off), but both 5 mm tubes' k1 at 0.2
+  MPa falls another 5.4 / 5.3 % (not converged there). The cases above 5 % are tested at their
+  stated measured bound (``HELD_K_BOUNDS``): k1 at 0.6 MPa of the 10 mm base tube (+6.15 %). The 30
+  mm tube (its reference unrefined at the faces) is +3.53 / +4.74 % on k1 / k2 (+7.80 / +8.80 %
+  before the fittings' rod moved to the wall's slip, session 48).
 
 Measures: sliding force = force at the end of the travel (flat to 4e-6); initial stiffness =
 F / delta at delta = 5e-4 x the travel (constant to 4e-7 over the next outputs: all stuck).
@@ -260,20 +260,27 @@ REFINED_FACE_MM = 0.25
 
 
 def _face_element_mm(spec: dict[str, Any]) -> float:
-    """Length (mm) of a stored run's elements next to the held faces: the geometric sizes of
-    ``calculix_pullout._graded`` (n_z elements, largest / smallest = z_grading)."""
+    """Length (mm) of a stored run's elements next to the held faces: the sizes of
+    ``calculix_pullout._graded`` (n_z elements, largest / smallest = z_grading, geometric to
+    the middle, or growing by z_growth per element up to z_grading and uniform beyond)."""
     n, length, ratio = int(spec["n_z"]), float(spec["length_mm"]), float(spec["z_grading"])
     if n < 2 or ratio == 1.0:
         return length / n
-    half = ratio ** (np.arange(n // 2) / max(n // 2 - 1, 1))
+    growth = spec.get("z_growth")
+    if growth is None:
+        half = ratio ** (np.arange(n // 2) / max(n // 2 - 1, 1))
+    else:
+        half = np.minimum(float(growth) ** np.arange(n // 2), ratio)
     return length / (2.0 * half.sum() + (half[-1] if n % 2 else 0.0))
 
 
 #: tubes whose only 3-D runs are not refined at the held faces, and why: their secants are
-#: compared (``HELD_K_BOUNDS``) against a reference that is known to move with refinement
+#: compared (within 5 % or ``HELD_K_BOUNDS``) against a reference that is known to move with
+#: refinement
 UNREFINED: dict[tuple[str, float, float], str] = {
     ("test 1", 30.0, 0.6): "the issue's 30 mm tube: 30 uniform 1 mm elements along z, 20134 "
-                           "equations, 1195 s CPU (graded elements stalled in the inflation)",
+                           "equations, 1195 s CPU (graded elements stalled in the inflation; "
+                           "3 x 30 with 0.25 mm faces timed out there at 0.85 P, session 48)",
 }
 
 
@@ -296,13 +303,17 @@ HELD_K_BOUNDS: dict[tuple[str, float, float, int], float] = {
     # coarse there by 2-3 % once the faces are resolved along z (session 47,
     # test_k1_reference_rises_with_refinement_in_the_plane). The 5 mm base tube's finest run is
     # now on 3 x 30 and 0.25 mm (27502 equations): +3.98 %, within 5 % (it was +6.54 % against
-    # 2 x 20 and 0.125 mm); so is test 3's (+3.67 %; +6.71 % against 2 x 20)
-    ("test 1", 10.0, 0.6, 0): 0.095,  # measured +8.74 % (19.535 N/mm, graded, 2 x 20)
-    # the 30 mm tube against its 1 mm reference (UNREFINED): on the 5 mm base tube at 0.6 MPa
-    # refining 1 -> 0.125 mm moved the 3-D k1 by -4.2 % and k2 by +2.3 %, so against a
-    # refined reference k1 would be further above, k2 a little less
-    ("test 1", 30.0, 0.6, 0): 0.085,  # measured +7.80 % (35.804 N/mm, 1 mm)
-    ("test 1", 30.0, 0.6, 1): 0.095,  # measured +8.80 % (32.549 N/mm, 1 mm)
+    # 2 x 20 and 0.125 mm); so is test 3's (+3.67 %; +6.71 % against 2 x 20). The 10 mm base
+    # tube on 3 x 30 (graded 0.116 -> 1.43 mm along z, 24784 equations, session 48): its k1
+    # 20.010 N/mm is +2.43 % above the 2 x 20 run's 19.535, and exofric +6.15 % above it (was
+    # +8.74 % against 2 x 20); k2 +4.07 % (was +4.75 %)
+    ("test 1", 10.0, 0.6, 0): 0.07,  # measured +6.15 % (20.010 N/mm, graded, 3 x 30)
+    # The 30 mm tube against its 1 mm reference (UNREFINED) was +7.80 / +8.80 % (k1 / k2)
+    # until session 48, when the fittings' rod moved to the wall's slip and the zones to 20 mm:
+    # +3.53 / +4.74 %, within 5 %, no bound. (On the 5 mm base tube at 0.6 MPa refining the
+    # faces 1 -> 0.125 mm moved the 3-D k1 by -4.2 % and k2 by +2.3 %, and the plane 2 x 20 ->
+    # 3 x 30 moved k1 by +2.1 %; the 30 mm tube's faces carry less of its force. Its refined
+    # run, 3 x 30 with 0.25 mm faces, timed out in CalculiX's inflation: ``failures``.)
 }
 SECANT_KEYS = [(*k, i) for k in GROUPS for i in range(len(SECANT_AT_06_MM))]
 
@@ -356,9 +367,11 @@ def test_k1_reference_rises_with_refinement_in_the_plane() -> None:
     as the plane is refined. On the base tube 2 x 20 -> 3 x 30 moves it by +0.09 % on 1 mm
     elements along z, +1.60 % on 0.5 mm and +2.08 % on 0.25 mm; 3 x 30 -> 4 x 40 on 0.5 mm by
     +0.61 % (k2: +0.80 / +0.73 / +0.29 % and +0.49 %); on test 3, 2 x 20 -> 3 x 30 on 0.25 mm
-    by +2.93 % (k2 +0.96 %). The 2 x 20 references of the other tubes therefore read k1 at 0.6
+    by +2.93 % (k2 +0.96 %); on the 10 mm base tube graded along z by +2.43 % (session 48).
+    The 2 x 20 references of the other tubes therefore read k1 at 0.6
     MPa 2-3 % low (their exofric errors are upper estimates), and both tubes' finest runs (most
-    equations) are the 3 x 30, 0.25 mm ones (a data check: the runs are CalculiX's; tested:
+    equations) are the 3 x 30, 0.25 mm ones, the 10 mm tube's its graded 3 x 30 run (a data
+    check: the runs are CalculiX's; tested:
     each refinement in the plane raises k1 from 0.5 mm, the first by 1-3.5 % and the second by
     less than the first)."""
     runs = GROUPS["test 1", 5.0, 0.6]
@@ -377,6 +390,11 @@ def test_k1_reference_rises_with_refinement_in_the_plane() -> None:
     for key in (("test 1", 5.0, 0.6), ("test 3", 5.0, 0.6)):
         finest = max(GROUPS[key], key=_fineness)
         assert (finest["mesh"], finest["spec"]["n_z"]) == ("3x30", 20), key
+    # the 10 mm base tube, graded along z (0.116 mm at the faces): 2 x 20 -> 3 x 30 +2.43 %
+    ten = {r["mesh"]: _k(r["delta_mm"], r["force"], d) for r in GROUPS["test 1", 10.0, 0.6]
+           if r["spec"]["z_grading"] != 1.0}
+    assert 0.01 < ten["3x30"] / ten["2x20"] - 1 < 0.035, ten
+    assert max(GROUPS["test 1", 10.0, 0.6], key=_fineness)["mesh"] == "3x30"
 
 
 def test_k1_reference_falls_with_refinement_along_z_then_levels_off_from_0_4_mpa() -> None:

@@ -19,10 +19,12 @@ A = G I (a linearisation, stated on the result). Units: mm, MPa, N/mm (per unit 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.linalg import lu_factor, lu_solve
 
 from exofric.errors import ConvergenceError
 from exofric.fe import reference_data
@@ -125,12 +127,17 @@ class CondensedSection:
         Coulomb capacity mu x (normal force) of each node (N per mm of tube).
     length : ndarray (c,)
         Reference tributary length of each node (mm): stick penalties scale with it.
+    hardening : ndarray (c,), optional
+        A spring on each node's slip, in parallel with its Coulomb slider (N/mm per mm of
+        slip, per mm of tube): the end fittings holding a tube that slides on the wall
+        (docs/formulation.md section 12, "Tube ends"). None: no spring.
     """
 
     K: np.ndarray
     on_wire: np.ndarray
     capacity: np.ndarray
     length: np.ndarray
+    hardening: np.ndarray | None = None
 
 
 def condense(K: sp.csr_matrix, contact: np.ndarray) -> np.ndarray:
@@ -208,7 +215,10 @@ def solve_friction_steps(sec: CondensedSection, deltas: np.ndarray, penalty: flo
     step Newton solves the penalised problem (slipping nodes carry their Coulomb force and
     have zero tangent: the exact, consistent tangent), then the multipliers take the nodal
     tractions and the step is re-solved until every sticking node's elastic slip is below
-    ``creep_tol_mm``: true stick, independent of the penalty.
+    ``creep_tol_mm``: true stick, independent of the penalty. A node with a ``hardening``
+    spring h (``sec.hardening``) carries its Coulomb force plus h times its accumulated slip
+    (a slider in parallel with a spring, behind the stick penalty: linear kinematic
+    hardening; its slipping tangent is penalty h / (penalty + h)).
 
     Parameters
     ----------
@@ -239,73 +249,165 @@ def solve_friction_steps(sec: CondensedSection, deltas: np.ndarray, penalty: flo
     [0.0, 0.25, 0.5]
     """
     c = len(sec.capacity)
-    e = sec.on_wire.astype(float)
-    kp = penalty * sec.length
-    s = np.zeros(c)
-    lam = np.zeros(c)
+    law = _NodeLaws(sec, penalty)
+    knorm = float(np.abs(sec.K).max(initial=0.0)) + float(law.kp.max(initial=0.0))
     w = np.zeros(c)
     m = len(deltas)
     force, wall, iters = np.zeros(m), np.zeros(m), np.zeros(m, int)
     stick_out = np.zeros((m, c), bool)
     w_out = np.zeros((m, c))
-    cap = sec.capacity
-
-    def trac(w: np.ndarray, d: float) -> tuple[np.ndarray, np.ndarray]:
-        tr = lam + kp * (d * e - w - s)
-        st = np.abs(tr) <= cap
-        return np.where(st, tr, cap * np.sign(tr)), st
-
-    def energy(w: np.ndarray, d: float) -> float:
-        y = lam + kp * (d * e - w - s)
-        hub = np.where(np.abs(y) <= cap, 0.5 * y * y, cap * np.abs(y) - 0.5 * cap * cap)
-        return float(0.5 * w @ sec.K @ w + (hub / kp).sum())
-
+    tangent = _Tangent(sec.K, law)
     for k, d in enumerate(deltas):
         n_it = 0
         for _ in range(max_al):
-            prev = np.inf
-            for _ in range(max_newton):
-                t, st = trac(w, d)
-                r = sec.K @ w - t
-                n_it += 1
-                scale = max(1.0, float(np.abs(t).max(initial=0.0)))
-                knorm = float(np.abs(sec.K).max()) + float(kp.max())
-                # 1e-8 of the largest traction: the Schur complement's round-off on a near-
-                # rigid tube motion (free ends) leaves residuals of ~1e-9 N/mm
-                res = float(np.abs(r).max())
-                if res <= max(1e-8 * scale, 1e-13 * knorm * max(1.0, float(np.abs(w).max()))):
-                    break
-                if res <= 1e-6 * scale and res >= 0.999 * prev:  # stalled at round-off
-                    break
-                prev = res
-                H = sec.K + np.diag(kp * st)
-                dw = np.linalg.solve(H, -r)
-                # the problem minimises a convex energy (elastic + Huber-type friction
-                # potential): Armijo backtracking on it stops the active-set cycling
-                e0, slope, alpha = energy(w, d), float(r @ dw), 1.0
-                while alpha > 1e-6 and energy(w + alpha * dw, d) > e0 + 1e-4 * alpha * slope:
-                    alpha *= 0.5
-                # near convergence the energy's decrease is below round-off: full step
-                w = w + (alpha if alpha > 1e-6 else 1.0) * dw
-            else:
-                raise ConvergenceError(f"pull-out section: Newton did not converge at "
-                                       f"displacement {d:g} mm")
-            t, st = trac(w, d)
-            slip_el = (t - lam) / kp  # elastic slip of the penalty
-            lam = t.copy()
+            w, n = _newton(sec.K, law, tangent, w, float(d), knorm, max_newton)
+            n_it += n
+            t, st = law.traction(w, d)
+            slip_el = (t - law.lam) / law.kp  # elastic slip of the penalty
             if not np.any(st) or np.abs(slip_el[st]).max() <= creep_tol_mm:
                 break
+            law.update_multipliers(t, st)
         else:
             raise ConvergenceError(f"pull-out section: augmented Lagrangian did not converge at "
                                    f"displacement {d:g} mm")
-        # commit: slip takes up what the penalty held (sticking nodes: < creep_tol_mm)
-        s = d * e - w - (t - lam) / kp
-        s = np.where(st, s, d * e - w)
-        lam = t
-        force[k] = float((t * e).sum())
-        wall[k] = float((t * (1 - e)).sum())
+        law.commit(w, float(d), t, st)
+        force[k] = float((t * law.e).sum())
+        wall[k] = float((t * (1 - law.e)).sum())
         stick_out[k] = st
         w_out[k] = w
         iters[k] = n_it
     return {"force": force, "wall_force": wall, "stick": stick_out, "w": w_out,
             "iterations": iters}
+
+
+class _NodeLaws:
+    """The contact nodes' laws and state (N/mm of tube, mm): stick penalty kp, Coulomb capacity,
+    hardening spring h, the multipliers ``lam``, the committed reference ``s`` and the springs'
+    forces ``back``. A node's trial force is y = lam + kp (d e - w - s) (e: 1 on the wire)."""
+
+    def __init__(self, sec: CondensedSection, penalty: float) -> None:
+        c = len(sec.capacity)
+        self.e = sec.on_wire.astype(float)
+        self.kp = penalty * sec.length
+        self.cap = sec.capacity
+        self.h = np.zeros(c) if sec.hardening is None else np.asarray(sec.hardening, float)
+        self.hard = self.h > 0.0
+        self.lam, self.s, self.back = np.zeros(c), np.zeros(c), np.zeros(c)
+
+    def trial(self, w: np.ndarray, d: float) -> np.ndarray:
+        return self.lam + self.kp * (d * self.e - w - self.s)
+
+    def traction(self, w: np.ndarray, d: float) -> tuple[np.ndarray, np.ndarray]:
+        """The nodes' forces on the tube and their stick flags."""
+        tr = self.trial(w, d)
+        z = tr - self.back
+        st = np.abs(z) <= self.cap
+        over = np.abs(z) - self.cap
+        h, kp = self.h, self.kp
+        return np.where(st, tr, self.back + np.sign(z) * (self.cap + h * over / (kp + h))), st
+
+    def energy(self, w: np.ndarray, d: float) -> float:
+        """The trial force's potential: Huber, with a quadratic tail where hardening."""
+        y = self.trial(w, d)
+        z = y - self.back
+        cap, h, kp = self.cap, self.h, self.kp
+        over = np.abs(z) - cap
+        hub = np.where(over <= 0.0, 0.5 * z * z,
+                       cap * np.abs(z) - 0.5 * cap * cap + 0.5 * h * over * over / (kp + h))
+        return float(((hub + self.back * y) / kp).sum())
+
+    def stiffness(self, st: np.ndarray) -> np.ndarray:
+        """The nodes' tangent (N/mm per mm): kp sticking, kp h / (kp + h) slipping."""
+        return self.kp * np.where(st, 1.0, self.h / (self.kp + self.h))
+
+    def update_multipliers(self, t: np.ndarray, st: np.ndarray) -> None:
+        """Uzawa: the multipliers take the tractions; a slipping node with a spring keeps the
+        step's start (its trial force is the spring's reference; a Coulomb node saturates)."""
+        self.lam = np.where(st | ~self.hard, t, self.lam)
+
+    def commit(self, w: np.ndarray, d: float, t: np.ndarray, st: np.ndarray) -> None:
+        """End of a step: the springs take the step's slip behind the penalty, the multipliers
+        the tractions, the reference the relative displacement (sticking: < creep_tol_mm)."""
+        z = self.trial(w, d) - self.back
+        slip = np.sign(z) * np.clip(np.abs(z) - self.cap, 0.0, None) / (self.kp + self.h)
+        self.back = self.back + np.where(st, 0.0, self.h * slip)
+        self.lam = t.copy()
+        self.s = d * self.e - w
+
+
+class _Tangent:
+    """Solves with K + diag(node stiffness) (one per stick set): an LU of one stick set, and
+    for a set that differs from it at a few nodes the Sherman-Morrison-Woodbury identity on
+    those nodes (k solves with the LU and a k x k system instead of a new factorisation)."""
+
+    #: largest number of changed nodes solved by Woodbury rather than a new factorisation
+    MAX_CHANGED = 8
+
+    def __init__(self, K: np.ndarray, law: _NodeLaws) -> None:
+        self.K, self.law = K, law
+        self.st: np.ndarray | None = None
+        self.diag = np.zeros(len(K))
+        self.lu: Any = None
+        self.update: tuple[np.ndarray, np.ndarray, Any] | None = None
+        self.update_key: bytes | None = None
+
+    def solve(self, st: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        diag = self.law.stiffness(st)
+        changed = np.flatnonzero(st != self.st) if self.st is not None else None
+        if changed is None or len(changed) > self.MAX_CHANGED:
+            self.lu = lu_factor(self.K + np.diag(diag), check_finite=False)
+            self.st, self.diag, self.update, self.update_key = st.copy(), diag, None, None
+            changed = np.zeros(0, int)
+        y = lu_solve(self.lu, rhs, check_finite=False)
+        if not len(changed):
+            return np.asarray(y)
+        key = st.tobytes()
+        if key != self.update_key:
+            E = np.zeros((len(st), len(changed)))
+            E[changed, np.arange(len(changed))] = 1.0
+            Z = lu_solve(self.lu, E, check_finite=False)
+            cap = np.diag(1.0 / (diag[changed] - self.diag[changed])) + Z[changed]
+            self.update, self.update_key = (changed, Z, lu_factor(cap, check_finite=False)), key
+        assert self.update is not None
+        idx, Z, cap_lu = self.update
+        return np.asarray(y - Z @ lu_solve(cap_lu, y[idx], check_finite=False))
+
+
+def _newton(K: np.ndarray, law: _NodeLaws, tangent: _Tangent, w: np.ndarray, d: float,
+            knorm: float, max_newton: int) -> tuple[np.ndarray, int]:
+    """Newton on K w = t(w) at wire displacement ``d`` (mm), Armijo backtracking on the convex
+    energy (elastic + the friction potential), which stops the active-set cycling; (w,
+    iterations)."""
+    prev = np.inf
+    for it in range(1, max_newton + 1):
+        t, st = law.traction(w, d)
+        kw = K @ w
+        r = kw - t
+        scale = max(1.0, float(np.abs(t).max(initial=0.0)))
+        # 1e-8 of the largest traction: the Schur complement's round-off on a near-rigid tube
+        # motion (free ends) leaves residuals of ~1e-9 N/mm
+        res = float(np.abs(r).max())
+        if res <= max(1e-8 * scale, 1e-13 * knorm * max(1.0, float(np.abs(w).max()))):
+            return w, it
+        if res <= 1e-6 * scale and res >= 0.999 * prev:  # stalled at round-off
+            return w, it
+        prev = res
+        dw = tangent.solve(st, -r)
+        w = w + _armijo(law, w, dw, d, (w @ kw, w @ (K @ dw), dw @ (K @ dw)), float(r @ dw)) * dw
+    raise ConvergenceError(f"pull-out section: Newton did not converge at displacement {d:g} mm")
+
+
+def _armijo(law: _NodeLaws, w: np.ndarray, dw: np.ndarray, d: float,
+            quad: tuple[float, float, float], slope: float) -> float:
+    """Backtracking step length on the energy along w + a dw; ``quad`` = (w K w, w K dw,
+    dw K dw) gives the elastic part in O(c) a trial. Near convergence the energy's decrease is
+    below round-off: a full step."""
+    wkw, wkd, dkd = (float(v) for v in quad)
+
+    def energy(a: float) -> float:
+        return 0.5 * (wkw + a * (2.0 * wkd + a * dkd)) + law.energy(w + a * dw, d)
+
+    e0, alpha = energy(0.0), 1.0
+    while alpha > 1e-6 and energy(alpha) > e0 + 1e-4 * alpha * slope:
+        alpha *= 0.5
+    return alpha if alpha > 1e-6 else 1.0

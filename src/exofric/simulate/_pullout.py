@@ -109,7 +109,8 @@ class SectionPullout(DisplayMixin):
         pressures.
     held_ends : HeldEnds or None
         What the length model needs to solve the zones next to held end faces (the section's
-        stiffness without the fittings' foundation, its contact nodes; N/mm^2, mm).
+        stiffness without the fittings' rod or the regulariser, its contact nodes; N/mm^2,
+        mm).
     max_stretch : float
         Largest in-plane principal stretch of the squeeze state (unitless; NaN if unknown):
         past :data:`~exofric.defaults.PULLOUT_HELD_STRETCH_NOTE` a pull with held ends notes
@@ -344,9 +345,13 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float, e
     full stiffness, contact node indices).
 
     The end fittings hold the tube as a rod (E_t A_t = 3 G A) fixed at both ends under a
-    uniform load: midspan stiffness 8 E_t A_t / L^2 per mm, spread over the section by area
-    (``free``: 1e-4 G). The length model solves the zones next to held end faces itself
-    (:mod:`exofric.simulate._shear_lag`) from the stiffness without that foundation.
+    uniform load: midspan stiffness 8 E_t A_t / L^2 per mm. While the tube sticks on the wall
+    the wall carries it and the rod's force in a long tube's middle is zero, so the rod acts
+    only on the wall arc's slip: a hardening spring on each wall node, shared by tributary
+    length (a section that does not touch the wall: a foundation spread over the section by
+    area). Both ends: a 1e-4 G foundation by area (regulariser). The length model solves the
+    zones next to held end faces itself (:mod:`exofric.simulate._shear_lag`) from the
+    stiffness without either.
     """
     st = res.structure
     nodes, elements = res.nodes, res.elements
@@ -356,9 +361,9 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float, e
     a, g, note = _modulus(res.material, nodes, elements, disp)
     K, area = antiplane_stiffness(nodes, elements, a)
     a_t = 0.25 * math.pi * (st.tube_od_mm ** 2 - st.tube_id_mm ** 2)
-    k_anchor = (8.0 * 3.0 * g * a_t / st.length_mm ** 2 if ends == "fixed" else 1e-4 * g)
+    k_rod = 8.0 * 3.0 * g * a_t / st.length_mm ** 2 if ends == "fixed" else 0.0
     K_free = K.tocsr()
-    K = K + _diag(k_anchor / fac * area / area.sum())
+    K = K + _diag(1e-4 * g / fac * area / area.sum())
     edges = _ring_edges(nodes, elements, st.tube_center_mm, 0.5 * st.tube_od_mm)
     x_now = nodes + disp
     w_now = nodal_weights(edges, x_now, len(nodes))
@@ -382,13 +387,18 @@ def _build_section(res: SqueezeResult, k: int, mu_wire: float, mu_wall: float, e
             tq = np.abs(np.asarray(arc["shear_mpa"], dtype=float))
             ratio = float(np.max(tq / np.maximum(mu * p, 1e-300))) if mu > 0 else 0.0
     c_idx = np.concatenate(idx)
-    K = K.tocsr()
     wire, caps, lengths = np.concatenate(on_wire), np.concatenate(cap), np.concatenate(length)
+    hardening = None
+    if k_rod > 0.0 and np.any(~wire):
+        hardening = np.where(wire, 0.0, k_rod / fac * lengths / lengths[~wire].sum())
+    elif k_rod > 0.0:
+        K = K + _diag(k_rod / fac * area / area.sum())
+    K = K.tocsr()
     held = HeldEnds(K_free, area, CondensedSection(np.zeros((0, 0)), wire, caps, lengths),
                     c_idx, fac, defaults.PULLOUT_EZ_OVER_G * g,
                     vector=(_vector_cached(res, k, c_idx, half)
                             if ends == "fixed" and held_zone == "vector" else None))
-    sec = _Section(condense(K, c_idx), wire, caps, lengths, held)
+    sec = _Section(condense(K, c_idx), wire, caps, lengths, hardening, held)
     return sec, fac, g, s["wire"], s["wall"], note, ratio, K, c_idx
 
 
@@ -479,8 +489,9 @@ def section_pullout(setup: PulloutSetup, pressure_mpa: float, *,
     setup : PulloutSetup
         Structure, material, the three interfaces' coefficients (``mu_static`` is not used
         here: the section law is kinetic), the ends (``fixed``: the tube held axially by its
-        end fittings, a rod of E = 3 G to both ends as a soft foundation; ``free``: it may
-        slide on the wall once the wall arc slides), the squeeze's accuracy and the numerics
+        end fittings, a rod of E = 3 G to both ends acting on the wall arc's slip, so the
+        tube that slides on the wall is held until the wire slides; ``free``: it may slide
+        on the wall once the wall arc slides), the squeeze's accuracy and the numerics
         (``n_steps``, ``stick_penalty``, ``creep_tol_mm``).
     pressure_mpa : float
         Pressure (MPa).
@@ -553,9 +564,16 @@ def section_pullout(setup: PulloutSetup, pressure_mpa: float, *,
     out = solve_friction_steps(sec, deltas, stick_penalty, creep_tol_mm)
     chunks = 0
     # extend until the wire arc slides on its whole length, or the tube slides on the wall
-    while (np.any(out["stick"][-1][on]) and np.any(out["stick"][-1][~on])
+    # (free ends; held ends: the fittings take over from the wall, the rod's spring on the
+    # wall's slip, until the wire slides: chunks long enough for that spring to reach the
+    # wire's capacity)
+    while (np.any(out["stick"][-1][on]) and (ends == "fixed" or np.any(out["stick"][-1][~on]))
            and chunks < 20 and cap_wire > 0 and plateau_tube == cap_wire):
-        more = deltas[-1] + np.arange(1, int(n_steps) + 1) * step
+        chunk = int(n_steps) * step
+        if not np.any(out["stick"][-1][~on]) and sec.hardening is not None:
+            slope = max(fac * float(sec.hardening.sum()), 1e-12 * k0)
+            chunk = max(chunk, 1.5 * (cap_wire - fac * float(out["force"][-1])) / slope)
+        more = deltas[-1] + np.arange(1, int(n_steps) + 1) * (chunk / int(n_steps))
         nxt = _continue(sec, out, deltas, more, stick_penalty, creep_tol_mm)
         deltas = np.concatenate([deltas, more])
         out = nxt
@@ -911,9 +929,9 @@ def held_stretch_note(stretch: float, length_mm: float, vector: bool = True) -> 
     zone = min(2.0 * defaults.PULLOUT_HELD_ZONE_MM, length_mm)
     if vector:
         what = ("against CalculiX, 5-10 mm held tubes squeezed to a stretch of 1.76 came out "
-                "4-9 % too stiff at 0.3-0.4 of their sliding force (4 % against references "
-                "refined in the plane, 8.7 % against a coarser one; at 0.5-0.7 of it, and "
-                "at stretches up to 1.47, within 5 %; sliding force within 0.6 %)")
+                "3-6 % too stiff at 0.3-0.4 of their sliding force (3.4-3.9 % on 5 mm tubes, "
+                "6.2 % on a 10 mm one; at 0.5-0.7 of it, and at stretches up to 1.47, within "
+                "5 %; sliding force within 0.6 %)")
     else:
         what = ("the scalar end-zone model does not see the inflation's in-plane stretch; "
                 "against CalculiX, 5-10 mm held tubes stretched 1.47-1.76 came out 4-10 % too "

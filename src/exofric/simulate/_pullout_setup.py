@@ -166,8 +166,9 @@ class PulloutSetup:
     cable_ea_n : float
         Cable axial stiffness EA (N, in (0, 1e10]), default :data:`exofric.defaults.CABLE_EA_N`.
     ends : {'fixed', 'free'}
-        Tube held axially by its end fittings, or free to slide on the wall once the wall arc
-        slides.
+        Tube held axially by its end fittings (the zones next to them solved in 3-D; a tube
+        that slides on the wall is held by them until the wire slides), or free to slide on
+        the wall once the wall arc slides.
     accuracy : {'draft', 'standard', 'fine'} or None
         The squeeze's accuracy level (None: the default unless ``mesh`` is given).
     mesh : MeshSpec or None
