@@ -393,7 +393,8 @@ def _newton(K: np.ndarray, law: _NodeLaws, tangent: _Tangent, w: np.ndarray, d: 
             return w, it
         prev = res
         dw = tangent.solve(st, -r)
-        w = w + _armijo(law, w, dw, d, (w @ kw, w @ (K @ dw), dw @ (K @ dw)), float(r @ dw)) * dw
+        kdw = K @ dw
+        w = w + _armijo(law, w, dw, d, (w @ kw, w @ kdw, dw @ kdw), float(r @ dw)) * dw
     raise ConvergenceError(f"pull-out section: Newton did not converge at displacement {d:g} mm")
 
 
