@@ -926,7 +926,7 @@ def held_stretch_note(stretch: float, length_mm: float, vector: bool = True) -> 
     >>> held_stretch_note(1.76, 116.0).split(":")[0]
     'held end zones too stiff'
     """
-    zone = min(2.0 * defaults.PULLOUT_HELD_ZONE_MM, length_mm)
+    zone = min(defaults.PULLOUT_HELD_ZONE_MM, 0.5 * length_mm)
     if vector:
         what = ("against CalculiX, 5-10 mm held tubes squeezed to a stretch of 1.76 came out "
                 "3-6 % too stiff at 0.3-0.4 of their sliding force (3.4-3.9 % on 5 mm tubes, "
@@ -937,7 +937,7 @@ def held_stretch_note(stretch: float, length_mm: float, vector: bool = True) -> 
                 "against CalculiX, 5-10 mm held tubes stretched 1.47-1.76 came out 4-10 % too "
                 "stiff before they slide (sliding force within 0.6 %)")
     return (f"{HELD_STRETCH_NOTE}: {what}; largest stretch {stretch:.2f} here; it applies to "
-            f"the stiffness of the {zone:g} mm next to the held end faces "
+            f"the stiffness of the {zone:g} mm next to each held end face "
             "(docs/formulation.md section 12)")
 
 
