@@ -16,24 +16,26 @@ import numpy as np
 import pytest
 
 from exofric import defaults
-from exofric.geometry import BASE
+from exofric.geometry import BASE, Structure
 from exofric.material import MooneyRivlin
-from exofric.simulate import PulloutNumerics, PulloutSetup, pullout, squeeze
+from exofric.simulate import PulloutNumerics, PulloutSetup, SqueezeResult, pullout, squeeze
 
 MAT = MooneyRivlin.from_shore(62.5)
 LEVELS = ((0.25, 1.5), (0.125, 1.25), (0.0625, 1.125))
 
 
-def _secant(first: float, growth: float, monkeypatch: pytest.MonkeyPatch, sq: object,
-            st: object) -> float:
-    """Secant F(0.2 mm) / 0.2 mm (N/mm) of the held tube with the zone's z elements."""
-    monkeypatch.setattr(defaults, "PULLOUT_HELD_DZ_MM", first)
-    monkeypatch.setattr(defaults, "PULLOUT_HELD_DZ_GROWTH", growth)
-    setup = PulloutSetup(st, MAT, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.0,  # type: ignore[arg-type]
-                         ends="fixed", cable_ea_n=1e5)
-    r = pullout(setup, 0.6, displacement_mm=0.3, cycles=0, squeeze_result=sq,  # type: ignore[arg-type]
+def _secant(monkeypatch: pytest.MonkeyPatch, sq: SqueezeResult, st: Structure, pressure: float,
+            d: float, travel: float, **zone: float) -> float:
+    """Secant F(d) / d (N/mm) of the tube ``st`` held at both ends at ``pressure`` (MPa),
+    pulled to ``travel`` (mm), with the held zone's defaults ``zone`` (names in
+    exofric.defaults) set for the pull."""
+    for name, value in zone.items():
+        monkeypatch.setattr(defaults, name, value)
+    setup = PulloutSetup(st, MAT, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.0, ends="fixed",
+                         cable_ea_n=1e5)
+    r = pullout(setup, pressure, displacement_mm=travel, cycles=0, squeeze_result=sq,
                 first_loading=True)
-    return float(np.interp(0.2, r.displacement_mm, r.force_n)) / 0.2
+    return float(np.interp(d, r.displacement_mm, r.force_n)) / d
 
 
 def test_held_zone_converges_along_z_and_the_default_is_within_1pct(
@@ -45,7 +47,8 @@ def test_held_zone_converges_along_z_and_the_default_is_within_1pct(
     step, 0.1 %)."""
     st = dataclasses.replace(BASE, length_mm=5.0)
     sq = squeeze(st, MAT, [0.6], gravity="none", keep_fields=True)
-    s = [_secant(f, g, monkeypatch, sq, st) for f, g in LEVELS]
+    s = [_secant(monkeypatch, sq, st, 0.6, 0.2, 0.3, PULLOUT_HELD_DZ_MM=f, PULLOUT_HELD_DZ_GROWTH=g)
+         for f, g in LEVELS]
     d1, d2 = s[0] - s[1], s[1] - s[2]
     assert d1 > 0.0 and 0.0 < d2 < 0.5 * d1, s
     converged = s[2] - d2 * d2 / (d1 - d2)  # geometric tail of the steps
@@ -93,18 +96,6 @@ def test_pulls_from_a_stretched_state_say_their_held_zones_are_too_stiff() -> No
     assert [n for n in r.notes if "does not see the inflation" in n], r.notes
 
 
-def _secant_116(zone_mm: float, monkeypatch: pytest.MonkeyPatch, sq: object) -> float:
-    """Secant F(d) / d (N/mm) at d = 0.0111 mm (0.1 mm (0.2 / 0.6)^2, ~0.35 of the sliding
-    force) of the 116 mm base tube held at both ends, 0.2 MPa, zones of ``zone_mm``."""
-    monkeypatch.setattr(defaults, "PULLOUT_HELD_ZONE_MM", zone_mm)
-    setup = PulloutSetup(BASE, MAT, mu_wire=0.3, mu_wall=0.5, mu_wire_wall=0.0,
-                         ends="fixed", cable_ea_n=1e5)
-    r = pullout(setup, 0.2, displacement_mm=0.1, cycles=0, squeeze_result=sq,  # type: ignore[arg-type]
-                first_loading=True)
-    d = 0.1 / 9.0
-    return float(np.interp(d, r.displacement_mm, r.force_n)) / d
-
-
 def test_held_zone_length_converges_and_the_default_holds_the_decay(
         monkeypatch: pytest.MonkeyPatch) -> None:
     """The fittings' rod acts on the section only where the tube slides on the wall, so the
@@ -116,7 +107,10 @@ def test_held_zone_length_converges_and_the_default_holds_the_decay(
     moved to the wall's slip, is 4.7 % low (measured -4.7 %: the bound is 3 %)."""
     assert defaults.PULLOUT_HELD_ZONE_MM == 20.0
     sq = squeeze(BASE, MAT, [0.2], gravity="none", keep_fields=True)
-    k5, k10, k20, k36 = (_secant_116(z, monkeypatch, sq) for z in (5.0, 10.0, 20.0, 36.0))
+    # at 0.1 mm (0.2 / 0.6)^2 = 0.0111 mm, ~0.35 of the sliding force
+    k5, k10, k20, k36 = (_secant(monkeypatch, sq, BASE, 0.2, 0.1 / 9.0, 0.1,
+                                                 PULLOUT_HELD_ZONE_MM=z)
+                         for z in (5.0, 10.0, 20.0, 36.0))
     assert k5 < k10 < k20, (k5, k10, k20, k36)
     assert abs(k36 - k20) < 0.5 * (k20 - k10), (k10, k20, k36)
     assert abs(k20 / k36 - 1.0) < 0.005, (k20, k36)
