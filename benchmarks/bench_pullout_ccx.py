@@ -234,7 +234,9 @@ def solve(name: str, pressure: float, *, mesh: str = REFERENCE_MESH, kind: str =
     opts = {**(SLICE if kind == "slice" else TUBE), **MESHES[mesh],
             "delta_max_mm": delta_max(pressure), **extra, "max_increment_mm": max_increment_mm,
             "stick_slope": stick_slope}
-    r = ccxp.ccx_pullout(geo, material(), pressure, MU_WIRE, MU_WALL, ccx=ccx, **opts)
+    timeout_s = float(opts.pop("timeout_s", 3600.0))
+    r = ccxp.ccx_pullout(geo, material(), pressure, MU_WIRE, MU_WALL, ccx=ccx,
+                         timeout_s=timeout_s, **opts)
     f = r.force_per_mm if kind == "slice" else r.force_n
     k = f / r.delta_mm
     return {
@@ -376,7 +378,8 @@ class TubeRun:
     ends), and the travel (mm; None: :func:`delta_max`, to full sliding; a shorter travel
     gives the secant alone: the same F(delta) to 0.03 % at 0.2 mm, 2 against 0.4 mm); with
     ``z_growth`` the sizes grow by that factor per element from each face up to ``z_grading``
-    x the smallest and stay there (a uniform middle; tag suffix ``q``)."""
+    x the smallest and stay there (a uniform middle; tag suffix ``q``); ``timeout_s`` (s,
+    wall clock) stops a run that CalculiX has not finished (recorded in ``failures``)."""
 
     structure: str
     pressure_mpa: float
@@ -386,6 +389,7 @@ class TubeRun:
     z_grading: float = 1.0
     travel_mm: float | None = None
     z_growth: float | None = None
+    timeout_s: float = 3600.0
 
     @property
     def tag(self) -> str:
@@ -455,7 +459,10 @@ TUBE_RUNS_PLANE: tuple[TubeRun, ...] = (TubeRun("test 1", 0.6, 5.0, "3x30", n_z=
                                         TubeRun("test 3", 0.6, 5.0, "3x30", n_z=20,
                                                 travel_mm=0.4),
                                         TubeRun("test 1", 0.6, 10.0, "3x30", n_z=18,
-                                                z_grading=12.37, travel_mm=0.4))
+                                                z_grading=12.37, travel_mm=0.4),
+                                        TubeRun("test 1", 0.6, 10.0, "4x40", n_z=18,
+                                                z_grading=12.37, travel_mm=0.4,
+                                                timeout_s=4 * 3600.0))
 #: the 30 mm tube on 3 x 30 with 0.25 mm at the held faces, growing x 1.25 to 1.43 mm and
 #: uniform beyond (41k equations; session 48): it crawled in the inflation from 0.60 P
 #: (increments down to 0.002 P, node-to-surface chatter) and hit ccx_pullout's 1 h timeout at
@@ -484,6 +491,8 @@ def run_tubes(out: dict[str, Any], ccx: str = "ccx", note: Any = None,
                                  else {"delta_max_mm": spec.travel_mm})
         if spec.z_growth is not None:
             extra["z_growth"] = spec.z_growth
+        if spec.timeout_s != 3600.0:
+            extra["timeout_s"] = spec.timeout_s
         try:
             r = solve(spec.structure, spec.pressure_mpa, mesh=spec.mesh, kind="tube", ccx=ccx,
                       depth_mm=spec.length_mm, n_z=spec.n_z, z_grading=spec.z_grading,

@@ -260,18 +260,16 @@ REFINED_FACE_MM = 0.25
 
 
 def _face_element_mm(spec: dict[str, Any]) -> float:
-    """Length (mm) of a stored run's elements next to the held faces: the sizes of
-    ``calculix_pullout._graded`` (n_z elements, largest / smallest = z_grading, geometric to
-    the middle, or growing by z_growth per element up to z_grading and uniform beyond)."""
-    n, length, ratio = int(spec["n_z"]), float(spec["length_mm"]), float(spec["z_grading"])
-    if n < 2 or ratio == 1.0:
-        return length / n
-    growth = spec.get("z_growth")
-    if growth is None:
-        half = ratio ** (np.arange(n // 2) / max(n // 2 - 1, 1))
-    else:
-        half = np.minimum(float(growth) ** np.arange(n // 2), ratio)
-    return length / (2.0 * half.sum() + (half[-1] if n % 2 else 0.0))
+    """Length (mm) of a stored run's elements next to the held faces, by the deck's own
+    grading (``calculix_pullout._graded``, the one owner) on the stored run's spec."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+    from calculix_pullout import _graded
+
+    zb = _graded(float(spec["length_mm"]), int(spec["n_z"]), float(spec["z_grading"]),
+                 spec.get("z_growth"))
+    return float(zb[1] - zb[0])
 
 
 #: tubes whose only 3-D runs are not refined at the held faces, and why: their secants are

@@ -85,7 +85,7 @@ def z_elements(length: float, first: float | None = None,
     Examples
     --------
     >>> z_elements(5.0).round(3).tolist()
-    [0.241, 0.361, 0.541, 0.812, 1.218, 1.827]
+    [0.117, 0.147, 0.184, 0.229, 0.287, 0.358, 0.448, 0.56, 0.7, 0.875, 1.094]
     """
     first = defaults.PULLOUT_HELD_DZ_MM if first is None else first
     growth = defaults.PULLOUT_HELD_DZ_GROWTH if growth is None else growth
