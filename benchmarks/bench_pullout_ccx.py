@@ -114,8 +114,12 @@ table's errors move by < 0.3 points): k1 +3.88 / +3.42 % (5 mm base / test 3), +
 +3.53 % (30 mm against its 1 mm run; k2 +4.74 %, was +7.80 / +8.80 % with the rod as a
 foundation). The sliding force is within the issue's 2 % at every pressure; the secants meet the
 issue's 5 % everywhere but k1 at 0.6 MPa on the 10 mm base tube (tested at its stated bound,
-``HELD_K_BOUNDS`` in ``tests/test_pullout_reference.py``; docs/formulation.md section 12). The
-30 mm tube on 3 x 30 with 0.25 mm faces (``TUBE_30_PLANE``) timed out in the inflation.
+then ``HELD_K_BOUNDS`` in ``tests/test_pullout_reference.py``; docs/formulation.md section 12). The
+30 mm tube on 3 x 30 with 0.25 mm faces (``TUBE_30_PLANE``) timed out in the inflation. Session
+49: the held zone's z grid refined to its own convergence (first element 0.125 mm, growth 1.25;
+k1 had been 0.9-1.6 % above the converged zone) gives k1 +2.81 / +2.28 % (5 mm base / test 3 at
+0.6 MPa), +4.96 % (10 mm), +2.93 % (30 mm) and k2 +1.25 / +0.53, +3.58, +4.37 %: every secant
+within 5 %, no bound left. The 10 mm tube on 4 x 40 (``TUBE_10_PLANE``) chattered in the pull.
 The 5 mm base tube at 0.4 MPa on 1 mm elements stopped in ccx with "too many cutbacks" (one node,
 7133 dof 2) pulled to 1.4, 1 or 0.5 mm (``failures``); its sliding force is from 0.5 mm elements
 pulled to 0.5 mm. Earlier (the first comparison, 0.6 MPa only, k2): the smeared end-fitting
@@ -459,16 +463,19 @@ TUBE_RUNS_PLANE: tuple[TubeRun, ...] = (TubeRun("test 1", 0.6, 5.0, "3x30", n_z=
                                         TubeRun("test 3", 0.6, 5.0, "3x30", n_z=20,
                                                 travel_mm=0.4),
                                         TubeRun("test 1", 0.6, 10.0, "3x30", n_z=18,
-                                                z_grading=12.37, travel_mm=0.4),
-                                        TubeRun("test 1", 0.6, 10.0, "4x40", n_z=18,
-                                                z_grading=12.37, travel_mm=0.4,
-                                                timeout_s=4 * 3600.0))
+                                                z_grading=12.37, travel_mm=0.4))
 #: the 30 mm tube on 3 x 30 with 0.25 mm at the held faces, growing x 1.25 to 1.43 mm and
 #: uniform beyond (41k equations; session 48): it crawled in the inflation from 0.60 P
 #: (increments down to 0.002 P, node-to-surface chatter) and hit ccx_pullout's 1 h timeout at
 #: 0.853 P (in ``failures``). Not in ``ALL_TUBE_RUNS``; add it to run it
 TUBE_30_PLANE = TubeRun("test 1", 0.6, 30.0, "3x30", n_z=30, z_grading=5.72, travel_mm=0.4,
                         z_growth=1.25)
+#: the 10 mm tube on 4 x 40, graded as on 3 x 30 (session 49, the plane's next step for its
+#: k1): the inflation passed (~38 min) but the pull's third increment (2e-5 mm) was cut back
+#: to 1e-6 mm with the residual stuck near 0.015 N (753 contact elements: stick/slip chatter)
+#: and the run was stopped (in ``failures``). Not in ``ALL_TUBE_RUNS``; add it to run it
+TUBE_10_PLANE = TubeRun("test 1", 0.6, 10.0, "4x40", n_z=18, z_grading=12.37, travel_mm=0.4,
+                        timeout_s=4 * 3600.0)
 ALL_TUBE_RUNS = (TUBE_RUNS + TUBE_RUNS_LOW_P + TUBE_RUNS_RETRY + TUBE_RUNS_FINE + TUBE_RUNS_LONG
                  + TUBE_RUNS_PLANE)
 

@@ -495,8 +495,9 @@ PULLOUT_HELD_ZONE_MM: Final = 20.0
 #: base), 21.242, 21.003, 20.937, 20.915 (10 mm base), 17.506, 17.317, 17.273, 17.260 (5 mm
 #: test 3), 37.076, 36.852, 36.786, 36.764 (30 mm base). These defaults (the second level,
 #: since session 49) are +0.27 to +0.47 % above the Richardson value of the last three; the
-#: first level was +0.87 to +1.61 %. The K(P) of the 116 mm tube moves by 0.1-0.2 % and takes
-#: ~20 % more CPU (tests/test_pullout_held_zone.py).
+#: first level was +0.87 to +1.61 %; 0.125 / 1.35 would be +0.5 to +0.8 %. The K(P) of the
+#: 116 mm tube moves by 0.1-0.2 % and takes 30-50 % more CPU (6.3-8.1 s against 4.1-6.7 s;
+#: tests/test_pullout_held_zone.py, benchmarks/bench_pullout.py).
 PULLOUT_HELD_DZ_MM: Final = 0.125
 #: Growth of the held zone's elements along z away from the held face (unitless; see
 #: PULLOUT_HELD_DZ_MM for the convergence study).
@@ -513,14 +514,14 @@ PULLOUT_EZ_OVER_G: Final = 3.0
 PULLOUT_HELD_ZONE: Final = "vector"
 #: Largest in-plane stretch of the squeeze state (unitless) from which a pull with held ends
 #: carries a note that its end zones are stiff in the early slip. With the vector zone, against
-#: CalculiX the 5-10 mm held tubes' first secant (k1) is within 5 % at stretches 1.18-1.47
-#: (0.2-0.4 MPa: -1.7 to +3.4 %) and +3.4 to +6.2 % at 1.76 (0.6 MPa: +3.9 / +3.4 % on the 5 mm
-#: tubes, +6.2 % on the 10 mm one, against 3-D references refined in the plane and at the held
-#: faces; the second secant within 5 % everywhere): the note starts between them
+#: CalculiX the 5-10 mm held tubes' first secant (k1) is within 3 % at stretches 1.18-1.47
+#: (0.2-0.4 MPa: -2.2 to +2.3 %) and +2.3 to +5.0 % at 1.76 (0.6 MPa: +2.8 / +2.3 % on the 5 mm
+#: tubes, +5.0 % on the 10 mm one, against 3-D references refined in the plane and at the held
+#: faces; the second secant within 3.6 % everywhere; session 49): the note starts between them
 #: (docs/formulation.md section 12).
 PULLOUT_HELD_STRETCH_NOTE: Final = 1.6
-#: The same for the scalar zone (``held_zone="scalar"``): k1 and k2 -3.3..+4.3 % at 1.18,
-#: +4.1..+10.4 % at 1.47-1.76.
+#: The same for the scalar zone (``held_zone="scalar"``): k1 and k2 +0.3..+3.5 % at 1.18,
+#: +3.6..+6.3 % at 1.47-1.76 (session 49).
 PULLOUT_HELD_STRETCH_NOTE_SCALAR: Final = 1.3
 #: The zone's law is solved at displacements PULLOUT_HELD_GRID_MM (k / m)^2 (mm), k = 0, 1, ...,
 #: continued to the travel (fixed points: smooth in the coefficients for the calibration).

@@ -929,12 +929,12 @@ def held_stretch_note(stretch: float, length_mm: float, vector: bool = True) -> 
     zone = min(defaults.PULLOUT_HELD_ZONE_MM, 0.5 * length_mm)
     if vector:
         what = ("against CalculiX, 5-10 mm held tubes squeezed to a stretch of 1.76 came out "
-                "3-6 % too stiff at 0.3-0.4 of their sliding force (3.4-3.9 % on 5 mm tubes, "
-                "6.2 % on a 10 mm one; at 0.5-0.7 of it, and at stretches up to 1.47, within "
-                "5 %; sliding force within 0.6 %)")
+                "2-5 % too stiff at 0.3-0.4 of their sliding force (2.3-2.8 % on 5 mm tubes, "
+                "5.0 % on a 10 mm one; at 0.5-0.7 of it within 3.6 %, and at stretches up to "
+                "1.47 within 3 %; sliding force within 0.6 %)")
     else:
         what = ("the scalar end-zone model does not see the inflation's in-plane stretch; "
-                "against CalculiX, 5-10 mm held tubes stretched 1.47-1.76 came out 4-10 % too "
+                "against CalculiX, 5-10 mm held tubes stretched 1.47-1.76 came out 4-6 % too "
                 "stiff before they slide (sliding force within 0.6 %)")
     return (f"{HELD_STRETCH_NOTE}: {what}; largest stretch {stretch:.2f} here; it applies to "
             f"the stiffness of the {zone:g} mm next to each held end face "
