@@ -8,7 +8,8 @@ section 0.26 s per pressure; a profile of the curve (5.6 s) gives the held zones
 2026-11-28 (session 46, the vector held zone, load ~1.4 with a CI run beside it): K(P) 5.37 s,
 section 0.24 s; in a profile of the curve (5.8 s) the vector zone's section matrices take 0.8 s
 and its modes 0.8 s. Session 49 (idle, one BLAS thread; the held zones' z grid from 0.125 mm x
-1.25): K(P) 6.3-8.1 s, section 0.17-0.28 s.
+1.25): K(P) 6.3-8.1 s, section 0.17-0.28 s; with the friction solve's secant predictor 4.2-6.5 s
+and 0.14-0.22 s.
 """
 
 from __future__ import annotations

@@ -496,8 +496,9 @@ PULLOUT_HELD_ZONE_MM: Final = 20.0
 #: test 3), 37.076, 36.852, 36.786, 36.764 (30 mm base). These defaults (the second level,
 #: since session 49) are +0.27 to +0.47 % above the Richardson value of the last three; the
 #: first level was +0.87 to +1.61 %; 0.125 / 1.35 would be +0.5 to +0.8 %. The K(P) of the
-#: 116 mm tube moves by 0.1-0.2 % and takes 30-50 % more CPU (6.3-8.1 s against 4.1-6.7 s;
-#: tests/test_pullout_held_zone.py, benchmarks/bench_pullout.py).
+#: 116 mm tube moves by 0.1-0.2 % and took 30-50 % more CPU (6.3-8.1 s against 4.1-6.7 s), won
+#: back by the friction solve's secant predictor (4.2-6.5 s; tests/test_pullout_held_zone.py,
+#: benchmarks/bench_pullout.py).
 PULLOUT_HELD_DZ_MM: Final = 0.125
 #: Growth of the held zone's elements along z away from the held face (unitless; see
 #: PULLOUT_HELD_DZ_MM for the convergence study).
