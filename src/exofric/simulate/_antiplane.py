@@ -18,6 +18,7 @@ A = G I (a linearisation, stated on the result). Units: mm, MPa, N/mm (per unit 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -414,6 +415,19 @@ def _armijo(law: _NodeLaws, w: np.ndarray, dw: np.ndarray, d: float,
     def energy(a: float) -> float:
         return 0.5 * (wkw + a * (2.0 * wkd + a * dkd)) + law.energy(w + a * dw, d)
 
+    return armijo(energy, slope)
+
+
+def armijo(energy: Callable[[float], float], slope: float) -> float:
+    """Step length a along a Newton direction by backtracking (halving from 1) until the
+    convex ``energy(a)`` falls by 1e-4 a ``slope`` (``slope``: the energy's derivative at 0,
+    negative); below 1e-6 the decrease is under round-off (near convergence): a full step.
+
+    Examples
+    --------
+    >>> armijo(lambda a: (a - 0.2) ** 2, -0.4)   # the full step overshoots; 1/4 is accepted
+    0.25
+    """
     e0, alpha = energy(0.0), 1.0
     while alpha > 1e-6 and energy(alpha) > e0 + 1e-4 * alpha * slope:
         alpha *= 0.5

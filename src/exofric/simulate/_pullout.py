@@ -35,6 +35,7 @@ from exofric.material import HyperelasticModel, MooneyRivlin
 from exofric.simulate._antiplane import (
     CondensedSection,
     antiplane_stiffness,
+    armijo,
     axial_shear,
     condense,
     mooney_rivlin_modulus,
@@ -734,14 +735,10 @@ def _shear_lag(law: _Iwan, ea: float, length: float, path: np.ndarray, ratio: fl
                 ab[2, :-1] = -kE
                 du = -solve_banded((1, 1), ab, r[1:])
                 # a convex energy is minimised: Armijo backtracking stops active-set cycling
-                e0, slope, alpha = energy(u, cap), float(r[1:] @ du), 1.0
-                while alpha > 1e-6:
-                    trial = u.copy()
-                    trial[1:] += alpha * du
-                    if energy(trial, cap) <= e0 + 1e-4 * alpha * slope:
-                        break
-                    alpha *= 0.5
-                step = (alpha if alpha > 1e-6 else 1.0) * du
+                def along(a: float, du: np.ndarray = du, cap: np.ndarray = cap) -> float:
+                    return energy(np.r_[u[0], u[1:] + a * du], cap)
+
+                step = armijo(along, float(r[1:] @ du)) * du
                 u[1:] += step
                 if np.abs(step).max() <= 1e-13 * max(1.0, np.abs(u).max()):
                     break                    # converged to round-off (the residual is kE eps u)
